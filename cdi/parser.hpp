@@ -1,0 +1,26 @@
+// Parses the CDI XML a node serves (memory space 0xFF) into the typed model of document.hpp.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string_view>
+
+#include "cdi/decimal.hpp"
+#include "cdi/diagnostic.hpp"
+#include "cdi/document.hpp"
+
+namespace olcb::cdi {
+
+/// The outcome of parse(): a document when there were no errors, and every finding.
+struct ParseResult {
+    std::optional<Document> document;
+    Diagnostics diagnostics;
+};
+
+/// Deepest group nesting accepted; deeper documents are refused before any recursion.
+inline constexpr std::size_t kMaxGroupDepth = 64;
+
+/// Parses CDI bytes as a node serves them; document is empty when diagnostics has errors.
+ParseResult parse(std::string_view bytes);
+
+}  // namespace olcb::cdi

@@ -1,0 +1,52 @@
+// lcc-cdi: validate, lay out and render CDI files.
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+#include "cdi/tool/commands.hpp"
+
+namespace po = boost::program_options;
+
+namespace {
+
+constexpr const char* kUsage =
+    "usage: lcc-cdi COMMAND [OPTIONS] FILE...\n"
+    "\n"
+    "Commands:\n"
+    "  validate FILE...      check each CDI against its schema and the standard's rules\n"
+    "  layout FILE [--json]  list every variable with its space, address and size\n"
+    "  render FILE           print the CDI as an indented, human-readable tree\n"
+    "\n"
+    "Run 'lcc-cdi COMMAND --help' for the options of a command.\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::cerr << kUsage;
+        return olcb::cdi::tool::kExitUsage;
+    }
+    const std::string command = argv[1];
+    if (command == "--help" || command == "-h" || command == "help") {
+        std::cout << kUsage;
+        return 0;
+    }
+    std::vector<std::string> args(argv + 2, argv + argc);
+    try {
+        if (command == "validate") return olcb::cdi::tool::run_validate(args);
+        if (command == "layout") return olcb::cdi::tool::run_layout(args);
+        if (command == "render") return olcb::cdi::tool::run_render(args);
+    } catch (const po::error& e) {
+        std::cerr << "lcc-cdi " << command << ": " << e.what() << "\n";
+        return olcb::cdi::tool::kExitUsage;
+    } catch (const std::exception& e) {
+        std::cerr << "lcc-cdi " << command << ": " << e.what() << "\n";
+        return olcb::cdi::tool::kExitUsage;
+    }
+    std::cerr << "lcc-cdi: unknown command '" << command << "'\n\n" << kUsage;
+    return olcb::cdi::tool::kExitUsage;
+}

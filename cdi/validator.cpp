@@ -1,0 +1,60 @@
+#include "cdi/validator.hpp"
+
+#include <algorithm>
+#include <tuple>
+#include <utility>
+
+#include "cdi/layout.hpp"
+#include "cdi/parser.hpp"
+#include "cdi/semantic_rules.hpp"
+
+namespace olcb::cdi {
+namespace {
+
+void append(Diagnostics& out, Diagnostics more) {
+    out.insert(out.end(), std::make_move_iterator(more.begin()),
+               std::make_move_iterator(more.end()));
+}
+
+/// Sorts by line (stable, so each pass keeps its own order within a line) and drops exact
+/// repeats, which arise when two passes word the same finding identically.
+void sort_and_dedupe(Diagnostics& diagnostics) {
+    std::stable_sort(diagnostics.begin(), diagnostics.end(),
+                     [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
+    Diagnostics unique;
+    unique.reserve(diagnostics.size());
+    for (Diagnostic& d : diagnostics) {
+        bool repeat = false;
+        for (auto u = unique.rbegin(); u != unique.rend() && u->line == d.line && !repeat; ++u) {
+            repeat = u->severity == d.severity && u->message == d.message;
+        }
+        if (!repeat) unique.push_back(std::move(d));
+    }
+    diagnostics = std::move(unique);
+}
+
+}  // namespace
+
+ValidationReport validate(std::string_view bytes) {
+    ValidationReport report;
+    append(report.diagnostics, validate_schema(bytes, &report.schema));
+
+    ParseResult parsed = parse(bytes);
+    if (!report.schema.well_formed && !parsed.document) {
+        // libxml2 already reported why the text is not XML; the model parser's errors would
+        // say the same thing a second time in other words.
+        std::erase_if(parsed.diagnostics,
+                      [](const Diagnostic& d) { return d.severity == Severity::kError; });
+    }
+    append(report.diagnostics, std::move(parsed.diagnostics));
+
+    if (parsed.document) {
+        report.parsed = true;
+        append(report.diagnostics, check_semantics(*parsed.document));
+        append(report.diagnostics, build_layout(*parsed.document).diagnostics);
+    }
+    sort_and_dedupe(report.diagnostics);
+    return report;
+}
+
+}  // namespace olcb::cdi
