@@ -1,0 +1,54 @@
+// The outcome of one conformance check: what every check produces and every report consumes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace olcb::conform {
+
+/// Result of a check; kWarn is a finding that does not fail the run.
+enum class Status : std::uint8_t { kPass, kFail, kWarn, kSkip };
+
+/// The check categories of docs/checks.md.
+enum class Category : std::uint8_t {
+    kFrame,
+    kMessage,
+    kPip,
+    kSnip,
+    kDatagram,
+    kMemory,
+    kCdi,
+    kAcdi,
+    kEncoding,
+};
+
+/// "PASS", "FAIL", "WARN" or "SKIP".
+std::string_view status_name(Status status);
+/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi" or "encoding".
+std::string_view category_name(Category category);
+
+/// One executed check.
+struct CheckResult {
+    std::string id;       ///< stable ID from docs/checks.md, e.g. "cdi.nul-terminated"
+    Category category = Category::kMessage;
+    Status status = Status::kSkip;
+    std::string message;  ///< one line: what was checked, and for failures what went wrong
+    std::string section;  ///< the standard and section, e.g. "CDI S 5" or "MemoryConfigurationS 4.8"
+    std::string expected; ///< for failures: what the standard wants (may be empty)
+    std::string seen;     ///< for failures: what the node did (may be empty)
+};
+
+/// Every check run against one node, in the order they ran.
+struct NodeReport {
+    std::string node_id;  ///< dotted hex, e.g. "05.01.01.01.22.00"
+    std::string name;     ///< SNIP manufacturer + model + user name, for humans
+    std::vector<CheckResult> checks;
+    std::string restore_summary;  ///< "memory byte-identical to before" or what differs
+
+    /// Number of checks with this status.
+    std::size_t count(Status status) const;
+};
+
+}  // namespace olcb::conform
