@@ -1,0 +1,121 @@
+#include "openlcb/candump_log.hpp"
+
+#include <cstdio>
+
+namespace olcb::candump {
+
+namespace {
+
+constexpr char kHex[] = "0123456789ABCDEF";
+
+int hex_value(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+// Parses an unsigned decimal of at most `max_digits` digits; the whole view must be digits.
+std::optional<std::uint64_t> parse_decimal(std::string_view s, std::size_t max_digits) {
+    if (s.empty() || s.size() > max_digits) return std::nullopt;
+    std::uint64_t v = 0;
+    for (char c : s) {
+        if (c < '0' || c > '9') return std::nullopt;
+        v = v * 10 + static_cast<std::uint64_t>(c - '0');
+    }
+    return v;
+}
+
+}  // namespace
+
+std::string format(const CanFrame& frame, std::chrono::microseconds timestamp,
+                   std::string_view interface) {
+    const long long us = timestamp.count() < 0 ? 0 : timestamp.count();
+    char head[40];
+    std::snprintf(head, sizeof head, "(%010lld.%06lld) ", us / 1'000'000, us % 1'000'000);
+    std::string out = head;
+    out.append(interface);
+    out.push_back(' ');
+    const int digits = frame.extended ? 8 : 3;
+    const std::uint32_t id = frame.id & (frame.extended ? 0x1FFFFFFFu : 0x7FFu);
+    for (int i = digits - 1; i >= 0; --i) out.push_back(kHex[(id >> (4 * i)) & 0xF]);
+    out.push_back('#');
+    const std::uint8_t len = frame.len > 8 ? 8 : frame.len;
+    if (frame.remote) {
+        out.push_back('R');
+        if (len != 0) out.push_back(static_cast<char>('0' + len));
+        return out;
+    }
+    for (std::uint8_t i = 0; i < len; ++i) {
+        out.push_back(kHex[frame.data[i] >> 4]);
+        out.push_back(kHex[frame.data[i] & 0xF]);
+    }
+    return out;
+}
+
+std::optional<Entry> parse(std::string_view line) {
+    while (!line.empty() && (line.back() == '\n' || line.back() == '\r' || line.back() == ' ' ||
+                             line.back() == '\t')) {
+        line.remove_suffix(1);
+    }
+    // "(seconds.micros)"
+    if (line.size() < 3 || line.front() != '(') return std::nullopt;
+    const auto close = line.find(')');
+    if (close == std::string_view::npos) return std::nullopt;
+    const std::string_view stamp = line.substr(1, close - 1);
+    const auto dot = stamp.find('.');
+    if (dot == std::string_view::npos) return std::nullopt;
+    const auto seconds = parse_decimal(stamp.substr(0, dot), 12);
+    const auto micros = parse_decimal(stamp.substr(dot + 1), 6);
+    if (!seconds || !micros || stamp.size() - dot - 1 != 6) return std::nullopt;
+    line.remove_prefix(close + 1);
+    if (line.empty() || line.front() != ' ') return std::nullopt;
+    line.remove_prefix(1);
+    // "iface "
+    const auto space = line.find(' ');
+    if (space == 0 || space == std::string_view::npos || space > kMaxInterfaceName) {
+        return std::nullopt;
+    }
+    Entry entry;
+    entry.timestamp = std::chrono::microseconds(*seconds * 1'000'000 + *micros);
+    entry.interface = std::string(line.substr(0, space));
+    line.remove_prefix(space + 1);
+    // "ID#DATA" | "ID#R[len]"
+    const auto hash = line.find('#');
+    if (hash != 3 && hash != 8) return std::nullopt;
+    std::uint32_t id = 0;
+    for (std::size_t i = 0; i < hash; ++i) {
+        const int v = hex_value(line[i]);
+        if (v < 0) return std::nullopt;
+        id = id << 4 | static_cast<std::uint32_t>(v);
+    }
+    CanFrame& frame = entry.frame;
+    frame.extended = hash == 8;
+    if (id > (frame.extended ? 0x1FFFFFFFu : 0x7FFu)) return std::nullopt;  // error frame or junk
+    frame.id = id;
+    std::string_view rest = line.substr(hash + 1);
+    if (!rest.empty() && (rest.front() == 'R' || rest.front() == 'r')) {
+        frame.remote = true;
+        if (rest.size() == 1) return entry;
+        if (rest.size() != 2 || rest[1] < '0' || rest[1] > '8') return std::nullopt;
+        frame.len = static_cast<std::uint8_t>(rest[1] - '0');
+        return entry;
+    }
+    // Data bytes, optionally separated by '.' as canplayer accepts.
+    std::size_t i = 0;
+    while (i < rest.size()) {
+        if (rest[i] == '.') {
+            ++i;
+            continue;
+        }
+        if (frame.len == 8 || i + 1 >= rest.size()) return std::nullopt;
+        const int hi = hex_value(rest[i]);
+        const int lo = hex_value(rest[i + 1]);
+        if (hi < 0 || lo < 0) return std::nullopt;
+        frame.data[frame.len++] = static_cast<std::uint8_t>(hi << 4 | lo);
+        i += 2;
+    }
+    return entry;
+}
+
+}  // namespace olcb::candump

@@ -1,0 +1,99 @@
+// 48-bit node IDs and 64-bit event IDs: big-endian bytes on the wire, dotted hex for people.
+#pragma once
+
+#include <array>
+#include <compare>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace olcb {
+
+/// A 48-bit OpenLCB node ID (value 0 means "unknown / none").
+class NodeId {
+public:
+    /// Number of bytes on the wire.
+    static constexpr std::size_t kSize = 6;
+    /// Mask of the 48 valid bits.
+    static constexpr std::uint64_t kMask = 0xFFFF'FFFF'FFFFull;
+
+    /// The zero node ID.
+    constexpr NodeId() = default;
+    /// Node ID from its numeric value; bits above 47 are discarded.
+    constexpr explicit NodeId(std::uint64_t value) : value_(value & kMask) {}
+
+    /// Numeric value (0..2^48-1).
+    constexpr std::uint64_t value() const { return value_; }
+    /// True for the zero ID.
+    constexpr bool is_zero() const { return value_ == 0; }
+    /// Big-endian 6 bytes.
+    std::array<std::uint8_t, kSize> to_bytes() const;
+    /// Node ID from the first 6 bytes of bytes; nullopt if fewer than 6 are given.
+    static std::optional<NodeId> from_bytes(std::span<const std::uint8_t> bytes);
+    /// Dotted uppercase hex, e.g. "05.01.01.01.22.00".
+    std::string to_string() const;
+    /// Parses "05.01.01.01.22.00" (1-2 hex digits per byte) or 12 plain hex digits; on failure
+    /// returns nullopt and, if error is given, a sentence saying what is wrong.
+    static std::optional<NodeId> parse(std::string_view text, std::string* error = nullptr);
+
+    /// Ordered by numeric value.
+    friend constexpr auto operator<=>(NodeId, NodeId) = default;
+
+private:
+    std::uint64_t value_ = 0;
+};
+
+/// A 64-bit OpenLCB event ID.
+class EventId {
+public:
+    /// Number of bytes on the wire.
+    static constexpr std::size_t kSize = 8;
+
+    /// The zero event ID.
+    constexpr EventId() = default;
+    /// Event ID from its numeric value.
+    constexpr explicit EventId(std::uint64_t value) : value_(value) {}
+    /// Event ID made of a node ID (upper 6 bytes) and a 16-bit suffix, the usual allocation.
+    constexpr EventId(NodeId node, std::uint16_t suffix) : value_(node.value() << 16 | suffix) {}
+
+    /// Numeric value.
+    constexpr std::uint64_t value() const { return value_; }
+    /// Big-endian 8 bytes.
+    std::array<std::uint8_t, kSize> to_bytes() const;
+    /// Event ID from the first 8 bytes of bytes; nullopt if fewer than 8 are given.
+    static std::optional<EventId> from_bytes(std::span<const std::uint8_t> bytes);
+    /// Dotted uppercase hex, e.g. "05.01.01.01.22.00.00.01".
+    std::string to_string() const;
+    /// Parses 8 dotted bytes or 16 plain hex digits; nullopt plus an error sentence on failure.
+    static std::optional<EventId> parse(std::string_view text, std::string* error = nullptr);
+
+    /// Ordered by numeric value.
+    friend constexpr auto operator<=>(EventId, EventId) = default;
+
+private:
+    std::uint64_t value_ = 0;
+};
+
+/// Event reported by a node that saw its own node ID used by another node (fact sheet 9).
+inline constexpr EventId kDuplicateNodeIdEvent{0x0101'0000'0000'0201ull};
+
+}  // namespace olcb
+
+/// Hash so NodeId can key unordered containers.
+template <>
+struct std::hash<olcb::NodeId> {
+    std::size_t operator()(olcb::NodeId id) const noexcept {
+        return std::hash<std::uint64_t>{}(id.value());
+    }
+};
+
+/// Hash so EventId can key unordered containers.
+template <>
+struct std::hash<olcb::EventId> {
+    std::size_t operator()(olcb::EventId id) const noexcept {
+        return std::hash<std::uint64_t>{}(id.value());
+    }
+};

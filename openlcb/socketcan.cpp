@@ -1,0 +1,164 @@
+#include "openlcb/socketcan.hpp"
+
+#include <linux/can/raw.h>
+#include <net/if.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <utility>
+
+namespace olcb::socketcan {
+
+::can_frame to_kernel(const CanFrame& frame) {
+    ::can_frame out{};
+    out.can_id = (frame.id & CAN_EFF_MASK) | CAN_EFF_FLAG;
+    out.can_dlc = frame.len > 8 ? 8 : frame.len;
+    std::memcpy(out.data, frame.data.data(), out.can_dlc);
+    return out;
+}
+
+std::optional<CanFrame> from_kernel(const ::can_frame& frame) {
+    if ((frame.can_id & CAN_EFF_FLAG) == 0) return std::nullopt;
+    if ((frame.can_id & (CAN_RTR_FLAG | CAN_ERR_FLAG)) != 0) return std::nullopt;
+    CanFrame out;
+    out.id = frame.can_id & CAN_EFF_MASK;
+    out.len = frame.can_dlc > 8 ? 8 : frame.can_dlc;
+    std::memcpy(out.data.data(), frame.data, out.len);
+    return out;
+}
+
+namespace {
+OpenError make_error(const std::string& interface, const char* step, int err) {
+    std::string reason = std::strerror(err);
+    if (err == EAFNOSUPPORT) reason = "AF_CAN not supported by this kernel";
+    return OpenError{err, "SocketCAN " + interface + ": " + step + " failed: " + reason +
+                              " (errno " + std::to_string(err) + ")"};
+}
+}  // namespace
+
+struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
+    explicit Impl(boost::asio::io_context& io) : stream(io) {}
+
+    void read() {
+        stream.async_read_some(boost::asio::buffer(&in, sizeof in),
+                               [self = shared_from_this(), generation = generation](
+                                   const boost::system::error_code& ec, std::size_t n) {
+                                   if (generation != self->generation || !self->stream.is_open())
+                                       return;
+                                   if (ec) {
+                                       self->close();
+                                       return;
+                                   }
+                                   if (n == sizeof self->in) {
+                                       if (auto frame = from_kernel(self->in)) {
+                                           ++self->stats.frames_received;
+                                           self->handler(*frame);
+                                       } else {
+                                           ++self->stats.frames_ignored;
+                                       }
+                                   }
+                                   if (generation == self->generation) self->read();
+                               });
+    }
+
+    void write() {
+        if (write_active || out.empty() || !stream.is_open()) return;
+        write_active = true;
+        writing = out.front();
+        out.pop_front();
+        stream.async_write_some(boost::asio::buffer(&writing, sizeof writing),
+                                [self = shared_from_this(), generation = generation](
+                                    const boost::system::error_code& ec, std::size_t) {
+                                    if (generation != self->generation) return;
+                                    self->write_active = false;
+                                    if (ec) {
+                                        // ENOBUFS: the interface queue is full; CAN has no
+                                        // retransmission for us.
+                                        ++self->stats.frames_dropped;
+                                    } else {
+                                        ++self->stats.frames_sent;
+                                    }
+                                    self->write();
+                                });
+    }
+
+    void close() {
+        ++generation;
+        boost::system::error_code ignored;
+        stream.close(ignored);
+        out.clear();
+        write_active = false;
+    }
+
+    boost::asio::posix::stream_descriptor stream;
+    ::can_frame in{};
+    ::can_frame writing{};
+    std::deque<::can_frame> out;
+    bool write_active = false;
+    std::uint64_t generation = 0;
+    Stats stats;
+    HandlerSlot handler;
+};
+
+SocketCanPort::SocketCanPort(boost::asio::io_context& io) : impl_(std::make_shared<Impl>(io)) {}
+
+SocketCanPort::~SocketCanPort() {
+    impl_->close();
+}
+
+std::optional<OpenError> SocketCanPort::open(const std::string& interface) {
+    close();
+    if (interface.empty() || interface.size() >= IFNAMSIZ) {
+        return OpenError{EINVAL, "SocketCAN: invalid interface name '" + interface + "'"};
+    }
+    const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_NONBLOCK | SOCK_CLOEXEC, CAN_RAW);
+    if (fd < 0) return make_error(interface, "socket(PF_CAN, SOCK_RAW, CAN_RAW)", errno);
+    const unsigned index = ::if_nametoindex(interface.c_str());
+    if (index == 0) {
+        const int err = errno;
+        ::close(fd);
+        return make_error(interface, "if_nametoindex", err);
+    }
+    sockaddr_can address{};
+    address.can_family = AF_CAN;
+    address.can_ifindex = static_cast<int>(index);
+    if (::bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+        const int err = errno;
+        ::close(fd);
+        return make_error(interface, "bind", err);
+    }
+    impl_->stream.assign(fd);
+    impl_->stats = {};
+    impl_->read();
+    return std::nullopt;
+}
+
+void SocketCanPort::close() {
+    impl_->close();
+}
+bool SocketCanPort::is_open() const {
+    return impl_->stream.is_open();
+}
+SocketCanPort::Stats SocketCanPort::stats() const {
+    return impl_->stats;
+}
+void SocketCanPort::set_handler(FrameHandler handler) {
+    impl_->handler.set(std::move(handler));
+}
+
+void SocketCanPort::send(const CanFrame& frame) {
+    if (!frame.extended || frame.remote) {
+        ++impl_->stats.frames_ignored;  // OpenLCB puts only extended data frames on the bus
+        return;
+    }
+    if (!impl_->stream.is_open() || impl_->out.size() >= kMaxQueuedFrames) {
+        ++impl_->stats.frames_dropped;
+        return;
+    }
+    impl_->out.push_back(to_kernel(frame));
+    impl_->write();
+}
+
+}  // namespace olcb::socketcan

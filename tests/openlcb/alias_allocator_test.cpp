@@ -1,0 +1,282 @@
+#include "openlcb/alias_allocator.hpp"
+
+#include <gtest/gtest.h>
+
+#include "openlcb/gc_test_util.hpp"
+
+namespace olcb {
+namespace {
+
+using namespace std::chrono_literals;
+using test::drain;
+using test::gc;
+using Strings = std::vector<std::string>;
+
+const NodeId kNode(0x050101012200);
+const NodeId kRunner(0x02010D000001);
+const TimePoint t0{};
+
+const Strings kCid343 = {":X17050343N;", ":X16101343N;", ":X15012343N;", ":X14200343N;"};
+const Strings kCidBd9 = {":X17050BD9N;", ":X16101BD9N;", ":X15012BD9N;", ":X14200BD9N;"};
+
+std::vector<AliasEvent> events(AliasAllocator& a) {
+    std::vector<AliasEvent> out;
+    while (auto e = a.pop_event()) out.push_back(*e);
+    return out;
+}
+
+// A node that has completed reservation of 0x343 and drained its output.
+AliasAllocator permitted_node(AliasAllocatorConfig config = {}) {
+    AliasAllocator a(kNode, config);
+    a.start(t0);
+    a.poll(t0 + 200ms);
+    drain(a);
+    events(a);
+    return a;
+}
+
+TEST(AliasAllocator, StartupSequenceOfWorkedExample) {
+    AliasAllocator a(kNode);
+    EXPECT_EQ(a.state(), AliasAllocator::State::kIdle);
+    EXPECT_FALSE(a.next_deadline());
+    a.start(t0);
+    EXPECT_EQ(drain(a), kCid343);
+    EXPECT_EQ(a.alias(), 0x343);
+    EXPECT_EQ(a.state(), AliasAllocator::State::kChecking);
+    EXPECT_EQ(a.next_deadline(), t0 + 200ms);
+
+    a.poll(t0 + 199ms);
+    EXPECT_TRUE(drain(a).empty()) << "RID must not come before 200 ms";
+    EXPECT_FALSE(a.permitted());
+
+    a.poll(t0 + 200ms);
+    EXPECT_EQ(drain(a), (Strings{":X10700343N;", ":X10701343N050101012200;"}));
+    EXPECT_TRUE(a.permitted());
+    EXPECT_FALSE(a.next_deadline());
+    EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kPermitted, 0x343}}));
+    a.poll(t0 + 1s);
+    EXPECT_TRUE(drain(a).empty());
+}
+
+TEST(AliasAllocator, DeferredPermitSendsAmdOnRequest) {
+    AliasAllocator a(kNode, {.auto_permit = false});
+    a.start(t0);
+    drain(a);
+    a.poll(t0 + 200ms);
+    EXPECT_EQ(drain(a), (Strings{":X10700343N;"}));
+    EXPECT_EQ(a.state(), AliasAllocator::State::kReserved);
+    EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kReserved, 0x343}}));
+    a.permit();
+    EXPECT_EQ(drain(a), (Strings{":X10701343N050101012200;"}));
+    EXPECT_TRUE(a.permitted());
+}
+
+TEST(AliasAllocator, CidHittingActiveAliasIsDefendedWithRid) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X17020343N;"), t0 + 1s);
+    EXPECT_EQ(drain(a), (Strings{":X10700343N;"}));
+    EXPECT_TRUE(a.permitted());
+    EXPECT_EQ(a.alias(), 0x343);
+    EXPECT_TRUE(events(a).empty());
+}
+
+TEST(AliasAllocator, CidHittingReservedAliasIsDefendedWithRid) {
+    AliasAllocator a(kNode, {.auto_permit = false});
+    a.start(t0);
+    a.poll(t0 + 200ms);
+    drain(a);
+    a.on_frame(gc(":X14999343N;"), t0 + 300ms);
+    EXPECT_EQ(drain(a), (Strings{":X10700343N;"}));
+    EXPECT_EQ(a.state(), AliasAllocator::State::kReserved);
+}
+
+TEST(AliasAllocator, NonCidHittingActiveAliasSendsAmrAndReallocates) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X19490343N;"), t0 + 1s);
+    Strings expected = {":X10703343N050101012200;"};
+    expected.insert(expected.end(), kCidBd9.begin(), kCidBd9.end());
+    EXPECT_EQ(drain(a), expected);
+    EXPECT_FALSE(a.permitted());
+    EXPECT_EQ(a.alias(), 0xBD9);
+    EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kAliasLost, 0x343}}));
+    a.poll(t0 + 1s + 200ms);
+    EXPECT_EQ(drain(a), (Strings{":X10700BD9N;", ":X10701BD9N050101012200;"}));
+    EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kPermitted, 0xBD9}}));
+}
+
+TEST(AliasAllocator, NonCidHittingReservedAliasDropsItSilently) {
+    AliasAllocator a(kNode, {.auto_permit = false});
+    a.start(t0);
+    a.poll(t0 + 200ms);
+    drain(a);
+    events(a);
+    a.on_frame(gc(":X10701343N020000000001;"), t0 + 300ms);  // AMD from someone else
+    EXPECT_EQ(drain(a), kCidBd9) << "no AMR for an alias that was never Permitted";
+    EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kConflictRestart, 0x343}}));
+    EXPECT_EQ(a.state(), AliasAllocator::State::kChecking);
+}
+
+class TentativeConflict : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(TentativeConflict, AnyFrameWithTentativeAliasRestartsWithNextAlias) {
+    AliasAllocator a(kNode);
+    a.start(t0);
+    drain(a);
+    a.on_frame(gc(GetParam()), t0 + 150ms);
+    EXPECT_EQ(drain(a), kCidBd9);
+    EXPECT_EQ(a.alias(), 0xBD9);
+    EXPECT_EQ(a.attempts(), 2u);
+    EXPECT_EQ(a.next_deadline(), t0 + 350ms);
+    a.poll(t0 + 349ms);
+    EXPECT_TRUE(drain(a).empty());
+    a.poll(t0 + 350ms);
+    EXPECT_EQ(drain(a), (Strings{":X10700BD9N;", ":X10701BD9N050101012200;"}));
+}
+
+INSTANTIATE_TEST_SUITE_P(Frames, TentativeConflict,
+                         ::testing::Values(":X17020343N;", ":X10700343N;",
+                                           ":X10701343N020000000001;", ":X19490343N;",
+                                           ":X1A12C343N2043;"));
+
+TEST(AliasAllocator, SecondConflictMovesToThirdAlias) {
+    AliasAllocator a(kNode);
+    a.start(t0);
+    a.on_frame(gc(":X19490343N;"), t0 + 10ms);
+    a.on_frame(gc(":X19490BD9N;"), t0 + 20ms);
+    EXPECT_EQ(a.alias(), 0x60D);
+    a.on_frame(gc(":X19490BD9N;"), t0 + 30ms);  // the abandoned alias no longer matters
+    EXPECT_EQ(a.alias(), 0x60D);
+}
+
+TEST(AliasAllocator, TransmitErrorDuringCheckRestarts) {
+    AliasAllocator a(kNode);
+    a.start(t0);
+    drain(a);
+    a.on_transmit_error(t0 + 1ms);
+    EXPECT_EQ(drain(a), kCidBd9);
+}
+
+TEST(AliasAllocator, FramesOfOtherAliasesAndNonOpenLcbFramesIgnored) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X19490344N;"), t0 + 1s);
+    a.on_frame(gc(":X19490343R;"), t0 + 1s);  // remote frame
+    a.on_frame(gc(":S343N;"), t0 + 1s);       // standard frame
+    EXPECT_TRUE(drain(a).empty());
+    EXPECT_TRUE(a.permitted());
+}
+
+TEST(AliasAllocator, GlobalAmeAnsweredAndCacheCleared) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1s);
+    EXPECT_EQ(a.cache().node_of(0x12C), kRunner);
+    a.on_frame(gc(":X1070212CN;"), t0 + 2s);
+    EXPECT_EQ(drain(a), (Strings{":X10701343N050101012200;"}));
+    EXPECT_EQ(a.cache().size(), 0u);
+}
+
+TEST(AliasAllocator, AmeWithOurIdAnswered) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X1070212CN050101012200;"), t0 + 1s);
+    EXPECT_EQ(drain(a), (Strings{":X10701343N050101012200;"}));
+}
+
+TEST(AliasAllocator, AmeWithAnotherIdSilent) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1s);
+    a.on_frame(gc(":X1070212CN02010D000001;"), t0 + 2s);
+    EXPECT_TRUE(drain(a).empty());
+    EXPECT_EQ(a.cache().node_of(0x12C), kRunner) << "only a global AME clears the cache";
+}
+
+TEST(AliasAllocator, InhibitedNeverAnswersAme) {
+    AliasAllocator a(kNode);
+    a.start(t0);
+    drain(a);
+    a.on_frame(gc(":X1070212CN;"), t0 + 10ms);
+    a.on_frame(gc(":X1070212CN050101012200;"), t0 + 20ms);
+    EXPECT_TRUE(drain(a).empty());
+
+    AliasAllocator idle(kNode);
+    idle.on_frame(gc(":X1070212CN;"), t0);
+    EXPECT_TRUE(drain(idle).empty());
+}
+
+TEST(AliasAllocator, AmdWithOurNodeIdReportsDuplicate) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X10701777N050101012200;"), t0 + 1s);
+    EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kDuplicateNodeId, 0x343}}));
+    EXPECT_TRUE(drain(a).empty()) << "report only by default";
+    EXPECT_TRUE(a.permitted());
+    EXPECT_FALSE(a.cache().node_of(0x777)) << "our own ID is never cached for another alias";
+}
+
+TEST(AliasAllocator, DuplicateWithHaltSendsPcerThenStaysSilent) {
+    auto a = permitted_node({.halt_on_duplicate = true});
+    a.on_frame(gc(":X10701777N050101012200;"), t0 + 1s);
+    EXPECT_EQ(drain(a), (Strings{":X195B4343N0101000000000201;"}));
+    EXPECT_EQ(a.state(), AliasAllocator::State::kHalted);
+    a.on_frame(gc(":X1070212CN;"), t0 + 2s);
+    a.on_frame(gc(":X17020343N;"), t0 + 2s);
+    a.poll(t0 + 10s);
+    EXPECT_TRUE(drain(a).empty());
+    a.start(t0 + 20s);  // user reset
+    EXPECT_EQ(drain(a).size(), 4u);
+}
+
+TEST(AliasAllocator, DuplicateWhileInhibitedHaltsWithoutPcer) {
+    AliasAllocator a(kNode, {.halt_on_duplicate = true});
+    a.start(t0);
+    drain(a);
+    a.on_frame(gc(":X10701777N050101012200;"), t0 + 10ms);
+    EXPECT_TRUE(drain(a).empty());
+    EXPECT_EQ(a.state(), AliasAllocator::State::kHalted);
+}
+
+TEST(AliasAllocator, CacheLearnsFromAmdVerifiedAndForgetsOnAmr) {
+    auto a = permitted_node();
+    a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1s);
+    EXPECT_EQ(a.cache().alias_of(kRunner), 0x12C);
+    a.on_frame(gc(":X1070312CN02010D000001;"), t0 + 2s);
+    EXPECT_FALSE(a.cache().node_of(0x12C));
+    a.on_frame(gc(":X19170456N020000000002;"), t0 + 3s);
+    EXPECT_EQ(a.cache().node_of(0x456), NodeId(0x020000000002));
+    a.on_frame(gc(":X19100457N020000000003;"), t0 + 3s);
+    EXPECT_EQ(a.cache().node_of(0x457), NodeId(0x020000000003));
+    a.on_frame(gc(":X19170458N0200;"), t0 + 3s);  // truncated: ignored
+    EXPECT_FALSE(a.cache().node_of(0x458));
+}
+
+TEST(AliasAllocator, NextAliasSkipsAliasesKnownInUse) {
+    AliasAllocator a(kNode);
+    a.on_frame(gc(":X10701BD9N020000000009;"), t0);  // someone owns BD9
+    a.start(t0);
+    a.on_frame(gc(":X19490343N;"), t0 + 1ms);
+    EXPECT_EQ(a.alias(), 0x60D);
+}
+
+TEST(AliasAllocator, ReleaseSendsAmrWhenPermitted) {
+    auto a = permitted_node();
+    a.release();
+    EXPECT_EQ(drain(a), (Strings{":X10703343N050101012200;"}));
+    EXPECT_EQ(a.state(), AliasAllocator::State::kIdle);
+    EXPECT_EQ(a.alias(), 0);
+    a.on_frame(gc(":X19490343N;"), t0 + 5s);
+    EXPECT_TRUE(drain(a).empty());
+}
+
+TEST(AliasCache, ReplacesStaleMappings) {
+    AliasCache c;
+    c.add(0x100, NodeId(1));
+    c.add(0x200, NodeId(1));  // node moved to a new alias
+    EXPECT_FALSE(c.node_of(0x100));
+    EXPECT_EQ(c.alias_of(NodeId(1)), 0x200);
+    c.add(0x200, NodeId(2));  // alias reused by another node
+    EXPECT_FALSE(c.alias_of(NodeId(1)));
+    EXPECT_EQ(c.size(), 1u);
+    c.add(0, NodeId(3));
+    c.add(0x300, NodeId(0));
+    EXPECT_EQ(c.size(), 1u);
+}
+
+}  // namespace
+}  // namespace olcb

@@ -1,0 +1,81 @@
+#include "openlcb/node_id.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unordered_set>
+#include <vector>
+
+namespace olcb {
+namespace {
+
+TEST(NodeId, BytesAreBigEndian) {
+    const NodeId id(0x050101012200);
+    const auto bytes = id.to_bytes();
+    EXPECT_EQ(std::vector<std::uint8_t>(bytes.begin(), bytes.end()),
+              (std::vector<std::uint8_t>{0x05, 0x01, 0x01, 0x01, 0x22, 0x00}));
+    EXPECT_EQ(NodeId::from_bytes(bytes), id);
+}
+
+TEST(NodeId, FromBytesNeedsSixBytes) {
+    const std::uint8_t five[] = {1, 2, 3, 4, 5};
+    EXPECT_FALSE(NodeId::from_bytes(five));
+    const std::uint8_t seven[] = {1, 2, 3, 4, 5, 6, 7};
+    EXPECT_EQ(NodeId::from_bytes(seven), NodeId(0x010203040506));
+}
+
+TEST(NodeId, ConstructorKeeps48Bits) {
+    EXPECT_EQ(NodeId(0xFFFF'0102'0304'0506).value(), 0x0102'0304'0506u);
+}
+
+TEST(NodeId, DottedTextRoundTrip) {
+    EXPECT_EQ(NodeId(0x050101012200).to_string(), "05.01.01.01.22.00");
+    EXPECT_EQ(NodeId(0x02010D000001).to_string(), "02.01.0D.00.00.01");
+    EXPECT_EQ(NodeId::parse("05.01.01.01.22.00"), NodeId(0x050101012200));
+    EXPECT_EQ(NodeId::parse("2.1.d.0.0.1"), NodeId(0x02010D000001));
+    EXPECT_EQ(NodeId::parse("02010d000001"), NodeId(0x02010D000001));
+}
+
+TEST(NodeId, ParseErrorsSayWhy) {
+    std::string err;
+    EXPECT_FALSE(NodeId::parse("05.01.01.01.22", &err));
+    EXPECT_NE(err.find("expected 6 bytes, got 5"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("05.01.01.01.22.00.01", &err));
+    EXPECT_NE(err.find("more than 6"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("05.01.0G.01.22.00", &err));
+    EXPECT_NE(err.find("'G' is not a hex digit"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("05..01.01.22.00", &err));
+    EXPECT_NE(err.find("byte 2"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("123.01.01.01.22.00", &err));
+    EXPECT_NE(err.find("byte 1"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("", &err));
+    EXPECT_NE(err.find("empty"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("0501010122", &err));
+    EXPECT_NE(err.find("12 hex digits"), std::string::npos) << err;
+    EXPECT_FALSE(NodeId::parse("05.01.01.01.22.00."));  // trailing dot: empty 7th byte
+}
+
+TEST(NodeId, HashableAndOrdered) {
+    std::unordered_set<NodeId> set{NodeId(1), NodeId(2), NodeId(1)};
+    EXPECT_EQ(set.size(), 2u);
+    EXPECT_LT(NodeId(1), NodeId(2));
+}
+
+TEST(EventId, BytesTextAndComposition) {
+    const EventId e(NodeId(0x050101012200), 0x0001);
+    EXPECT_EQ(e.value(), 0x0501010122000001u);
+    EXPECT_EQ(e.to_string(), "05.01.01.01.22.00.00.01");
+    const auto bytes = e.to_bytes();
+    EXPECT_EQ(bytes[0], 0x05);
+    EXPECT_EQ(bytes[7], 0x01);
+    EXPECT_EQ(EventId::from_bytes(bytes), e);
+    EXPECT_EQ(EventId::parse("05.01.01.01.22.00.00.01"), e);
+    EXPECT_EQ(EventId::parse("0501010122000001"), e);
+    std::string err;
+    EXPECT_FALSE(EventId::parse("05.01.01.01.22.00", &err));
+    EXPECT_NE(err.find("expected 8 bytes, got 6"), std::string::npos) << err;
+    EXPECT_FALSE(EventId::from_bytes(std::vector<std::uint8_t>(7, 0)));
+    EXPECT_EQ(kDuplicateNodeIdEvent.to_string(), "01.01.00.00.00.00.02.01");
+}
+
+}  // namespace
+}  // namespace olcb

@@ -1,0 +1,110 @@
+#include "openlcb/socketcan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "openlcb/transport/tcp_test_util.hpp"
+
+namespace olcb::socketcan {
+namespace {
+
+TEST(SocketCanConversion, SendSetsTheExtendedFlagMasksTheIdAndClampsTheLength) {
+    CanFrame f;
+    f.id = 0xFFFFFFFF;
+    f.len = 12;
+    f.data = {1, 2, 3, 4, 5, 6, 7, 8};
+    const ::can_frame k = to_kernel(f);
+    EXPECT_EQ(k.can_id, 0x1FFFFFFFu | CAN_EFF_FLAG);
+    EXPECT_EQ(k.can_dlc, 8);
+    EXPECT_EQ(k.data[7], 8);
+
+    CanFrame g;
+    g.id = 0x19490343;
+    g.len = 2;
+    g.data = {0xAB, 0xCD, 0xEE};
+    const ::can_frame kg = to_kernel(g);
+    EXPECT_EQ(kg.can_id, 0x19490343u | 0x80000000u);
+    EXPECT_EQ(kg.can_dlc, 2);
+    EXPECT_EQ(kg.data[0], 0xAB);
+    EXPECT_EQ(kg.data[1], 0xCD);
+    EXPECT_EQ(kg.data[2], 0);  // bytes past len are not copied
+}
+
+TEST(SocketCanConversion, ReceiveKeepsExtendedDataFrames) {
+    ::can_frame k{};
+    k.can_id = 0x19170343u | CAN_EFF_FLAG;
+    k.can_dlc = 6;
+    const std::uint8_t bytes[] = {5, 1, 1, 1, 0x22, 0};
+    std::copy(std::begin(bytes), std::end(bytes), k.data);
+    const auto f = from_kernel(k);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->id, 0x19170343u);
+    EXPECT_EQ(f->len, 6);
+    EXPECT_TRUE(f->extended);
+    EXPECT_FALSE(f->remote);
+    EXPECT_EQ(f->data[4], 0x22);
+    EXPECT_EQ(to_kernel(*f).can_id, k.can_id);
+}
+
+TEST(SocketCanConversion, ReceiveDropsStandardRemoteAndErrorFrames) {
+    ::can_frame k{};
+    k.can_id = 0x123;  // standard frame
+    EXPECT_FALSE(from_kernel(k));
+    k.can_id = 0x19490343u | CAN_EFF_FLAG | CAN_RTR_FLAG;
+    EXPECT_FALSE(from_kernel(k));
+    k.can_id = 0x00000004u | CAN_EFF_FLAG | CAN_ERR_FLAG;
+    EXPECT_FALSE(from_kernel(k));
+    k.can_id = CAN_ERR_FLAG | 0x4;
+    EXPECT_FALSE(from_kernel(k));
+}
+
+TEST(SocketCanConversion, ReceiveClampsAnOversizedLength) {
+    ::can_frame k{};
+    k.can_id = 0x19490343u | CAN_EFF_FLAG;
+    k.can_dlc = 15;
+    const auto f = from_kernel(k);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->len, 8);
+}
+
+TEST(SocketCanPort, OpeningAnInvalidNameFailsClearly) {
+    boost::asio::io_context io;
+    SocketCanPort port(io);
+    const auto error = port.open("");
+    ASSERT_TRUE(error);
+    EXPECT_NE(error->message.find("invalid interface name"), std::string::npos);
+    EXPECT_FALSE(port.is_open());
+    port.send(CanFrame{});
+    EXPECT_EQ(port.stats().frames_dropped, 1u);
+}
+
+TEST(SocketCanPort, LiveVcan0FramesReachOtherSocketsNotTheSender) {
+    boost::asio::io_context io;
+    SocketCanPort a(io);
+    SocketCanPort b(io);
+    if (const auto error = a.open("vcan0")) {
+        GTEST_SKIP() << error->message;
+    }
+    ASSERT_FALSE(b.open("vcan0"));
+    std::vector<CanFrame> got_a, got_b;
+    a.set_handler([&](const CanFrame& f) { got_a.push_back(f); });
+    b.set_handler([&](const CanFrame& f) { got_b.push_back(f); });
+    CanFrame f;
+    f.id = 0x19490343;
+    CanFrame standard;
+    standard.id = 0x123;
+    standard.extended = false;
+    a.send(standard);  // never put on the bus
+    a.send(f);
+    ASSERT_TRUE(test::run_until(
+        io, [&] { return !got_b.empty(); }, std::chrono::seconds(5)));
+    test::run_until(
+        io, [] { return false; }, std::chrono::milliseconds(50));
+    EXPECT_EQ(got_b, std::vector<CanFrame>{f});
+    EXPECT_TRUE(got_a.empty());
+    EXPECT_EQ(a.stats().frames_ignored, 1u);
+}
+
+}  // namespace
+}  // namespace olcb::socketcan
