@@ -6,6 +6,9 @@ void AliasCache::add(std::uint16_t alias, NodeId node) {
     alias &= 0xFFF;
     if (alias == 0 || node.is_zero()) return;
     if (by_alias_.empty()) by_alias_.assign(4096, 0);
+    // Every Verified/AMD/Initialization Complete re-announces a known mapping; with 1,000 nodes
+    // on a segment, re-inserting it each time dominated start-up (hash node freed and allocated).
+    if (by_alias_[alias] == node.value()) return;
     remove_alias(alias);
     if (auto it = by_node_.find(node); it != by_node_.end()) {
         by_alias_[it->second] = 0;

@@ -1,0 +1,253 @@
+// One virtual OpenLCB node on a CAN segment, sans-I/O: alias allocation, Initialization Complete,
+// message assembly and dispatch, datagram transport and the mandatory built-in answers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "openlcb/addressed_framing.hpp"
+#include "openlcb/alias_allocator.hpp"
+#include "openlcb/alias_cache.hpp"
+#include "openlcb/can_frame.hpp"
+#include "openlcb/clock.hpp"
+#include "openlcb/datagram_transport.hpp"
+#include "openlcb/message.hpp"
+#include "openlcb/node_id.hpp"
+#include "openlcb/pip.hpp"
+
+namespace olcb {
+
+/// Mandatory answers the stack gives by itself; each can be switched off (fault injection, or an
+/// owner that wants to answer itself through on_message).
+struct NodeBuiltins {
+    /// Verify Node ID (global: empty or our ID; addressed: always) -> Verified Node ID.
+    bool verify_node_id = true;
+    /// Protocol Support Inquiry -> Protocol Support Reply with NodeStackConfig::protocols.
+    bool protocol_support = true;
+    /// Addressed message nobody handled -> Optional Interaction Rejected 0x1043 (see
+    /// never_rejected()).
+    bool reject_unknown_addressed = true;
+    /// Datagram while no datagram handler is set -> OIR 0x1043 echoing MTI 0x1C48.
+    bool reject_datagrams_without_handler = true;
+    /// Defend the active alias: RID on a CID for it, AMR and a new alias when another node uses
+    /// it. Off = such frames are ignored (fault injection); reservation is unaffected.
+    bool defend_alias = true;
+};
+
+/// Everything a NodeStack is built from.
+struct NodeStackConfig {
+    NodeId node_id;                            ///< our 48-bit node ID (must not be zero)
+    ProtocolSet protocols;                     ///< what the node really supports (PSR contents)
+    AliasAllocatorConfig alias;                ///< CID/RID timing, duplicate-ID policy
+    DatagramSenderConfig datagram_sender;      ///< ack timeout, resends, queue bound
+    DatagramReceiverConfig datagram_receiver;  ///< buffers, reassembly timeout
+    MessageAssemblerConfig assembler;          ///< multi-frame limits (datagrams are ignored)
+    NodeBuiltins builtins;                     ///< built-in answers switched on
+    /// After an alias conflict took a new alias: send Initialization Complete again (and call
+    /// on_initialized). Off by default, as OpenMRN: the node stays Initialized; AMD announces the
+    /// new mapping.
+    bool reinitialize_after_alias_change = false;
+    /// Messages send_message() holds while the node is not yet Initialized; more are refused.
+    std::size_t max_pending_messages = 256;
+    /// Frames held for pop_frame(); beyond this new frames are dropped (and counted).
+    std::size_t max_output_frames = 4096;
+};
+
+/// Result of NodeStack::send_message().
+enum class SendStatus : std::uint8_t {
+    kSent,                ///< framed into the output
+    kQueued,              ///< held until Initialization Complete has been sent
+    kUnknownDestination,  ///< destination has neither an alias nor a node ID the cache knows
+    kFramingError,        ///< payload too long for the MTI, or similar (see encode_message)
+    kQueueFull,           ///< max_pending_messages reached
+    kHalted,              ///< duplicate node ID detected: the node stays silent
+};
+
+/// One node on one CAN segment. Feed it every frame of the segment (on_frame) and the time
+/// (poll at next_deadline()); take its frames with pop_frame(). Nothing here blocks or reads a
+/// clock. Frames are produced in the order they must go on the wire.
+///
+/// Lifecycle: start() reserves an alias (CID7..4, >= 200 ms, RID, AMD), then sends Initialization
+/// Complete as the first message and calls on_initialized. Messages given to send_message()
+/// earlier are held and sent right after it. Only an Initialized node dispatches messages.
+class NodeStack {
+public:
+    /// Receives every global message and every message addressed to us (datagrams excepted);
+    /// returns true when it answered (or deliberately ignored) an addressed message, false lets
+    /// the stack reject it with OIR.
+    using MessageHandler = std::function<bool(const Message&)>;
+    /// Receives each complete datagram; the owner must answer it with accept_datagram() or
+    /// reject_datagram(), now or later (the buffer stays in use until then).
+    using DatagramHandler = std::function<void(const ReceivedDatagram&)>;
+    /// Receives the final result of each datagram given to send_datagram().
+    using OutcomeHandler = std::function<void(const DatagramOutcome&)>;
+    /// Called right after Initialization Complete went out (advertise events now).
+    using InitializedHandler = std::function<void()>;
+    /// Called for every alias allocator event (permitted, conflict, alias lost, duplicate ID).
+    using AliasEventHandler = std::function<void(const AliasEvent&)>;
+    /// Called when the output goes from empty to non-empty, or a timer was scheduled (for
+    /// drivers, which then flush and re-arm; see StackDriver).
+    using OutputHandler = std::function<void()>;
+    /// An owner timer, called with the time of the poll() that runs it.
+    using TimerHandler = std::function<void(TimePoint)>;
+
+    /// A stopped stack; call start().
+    explicit NodeStack(NodeStackConfig config);
+    NodeStack(const NodeStack&) = delete;
+    NodeStack& operator=(const NodeStack&) = delete;
+
+    // ---- owner callbacks ----
+    /// Sets the message handler (replaces any previous one).
+    void set_message_handler(MessageHandler handler) { on_message_ = std::move(handler); }
+    /// Sets the datagram handler; without one, datagrams are answered with OIR 0x1043.
+    void set_datagram_handler(DatagramHandler handler) { on_datagram_ = std::move(handler); }
+    /// Sets the datagram outcome handler.
+    void set_outcome_handler(OutcomeHandler handler) { on_outcome_ = std::move(handler); }
+    /// Sets the handler called after each Initialization Complete.
+    void set_initialized_handler(InitializedHandler handler) {
+        on_initialized_ = std::move(handler);
+    }
+    /// Sets the alias event handler.
+    void set_alias_event_handler(AliasEventHandler handler) {
+        on_alias_event_ = std::move(handler);
+    }
+    /// Sets the output notification (used by the driver running this stack).
+    void set_output_handler(OutputHandler handler) { on_output_ = std::move(handler); }
+
+    // ---- lifecycle ----
+    /// Begins alias reservation; no effect when already started.
+    void start(TimePoint now);
+    /// A reboot: drops all reassembly, datagram and pending state (outstanding datagrams are
+    /// reported kAborted), forgets the alias cache, and runs start-up again from the first
+    /// generator alias. No AMR is sent: a rebooting node just goes silent and starts over.
+    /// Frames already in the output stay there (they count as handed to the CAN controller).
+    void restart(TimePoint now);
+    /// Sends Initialization Complete again with the same alias (e.g. after SNIP data changed),
+    /// abandons partial incoming messages and datagrams, and calls on_initialized. Ignored
+    /// unless the node is Initialized.
+    void reinitialize(TimePoint now);
+
+    // ---- input ----
+    /// Processes one frame of the segment (any frame: ours are filtered cheaply).
+    void on_frame(const CanFrame& frame, TimePoint now);
+    /// Runs the timers of every part; call at next_deadline() (calling earlier is harmless).
+    void poll(TimePoint now);
+    /// Earliest time poll() has work, if any.
+    std::optional<TimePoint> next_deadline() const;
+    /// The CAN driver failed to send a frame (a tentative alias is then abandoned).
+    void on_transmit_error(TimePoint now);
+    /// Runs fn at the first poll() at or after `at` (owner timers, e.g. delayed replies); timers
+    /// due at the same time run in the order scheduled; they survive restart().
+    void schedule(TimePoint at, TimerHandler fn);
+    /// The latest time given to start(), restart(), reinitialize(), on_frame() or poll().
+    TimePoint now() const { return now_; }
+    /// Owner timers not yet run.
+    std::size_t scheduled() const { return timers_.size(); }
+
+    // ---- output ----
+    /// Sends msg from this node; source is filled in. An addressed message needs the
+    /// destination alias, or a node ID the alias cache knows. Before Initialization Complete
+    /// the message is held (kQueued) and framed with the alias in use when it goes out.
+    SendStatus send_message(Message msg);
+    /// Queues a datagram (0..72 bytes) to dest_alias; returns its id, or nullopt when the node
+    /// is not Initialized, the payload is too long or the sender queue is full.
+    std::optional<std::uint32_t> send_datagram(std::uint16_t dest_alias,
+                                               std::span<const std::uint8_t> payload,
+                                               TimePoint now);
+    /// Answers a delivered datagram from src with Datagram Received OK (flags: Reply Pending
+    /// etc., see datagram::ok_flags); false when none from src was waiting (the OK still goes).
+    bool accept_datagram(std::uint16_t src, std::uint8_t flags = 0);
+    /// Answers a delivered datagram from src with Datagram Rejected code; false when none from
+    /// src was waiting (the reject still goes).
+    bool reject_datagram(std::uint16_t src, std::uint16_t code);
+    /// Next frame to transmit, oldest first.
+    std::optional<CanFrame> pop_frame();
+    /// Appends every pending frame to out; returns how many.
+    std::size_t drain(std::vector<CanFrame>& out);
+    /// True when pop_frame() would return a frame.
+    bool has_output() const { return out_head_ < out_.size(); }
+
+    // ---- state ----
+    /// Our node ID.
+    NodeId node_id() const { return config_.node_id; }
+    /// Alias held now (tentative, reserved or active); 0 when none.
+    std::uint16_t alias() const { return alias_.alias(); }
+    /// True when the node is Initialized and Permitted, i.e. sends and answers messages now.
+    bool initialized() const { return initialized_ && alias_.permitted(); }
+    /// True after a duplicate node ID stopped the node (only with halt_on_duplicate).
+    bool halted() const { return alias_.state() == AliasAllocator::State::kHalted; }
+    /// Mappings learned about other nodes (node ID <-> alias).
+    const AliasCache& alias_cache() const { return alias_.cache(); }
+    /// The alias state machine (state, attempts).
+    const AliasAllocator& alias_allocator() const { return alias_; }
+    /// Built-in answers, switchable at run time.
+    NodeBuiltins& builtins() { return config_.builtins; }
+    /// Protocols announced in the Protocol Support Reply.
+    void set_protocols(ProtocolSet protocols) { config_.protocols = protocols; }
+    /// Protocols announced in the Protocol Support Reply.
+    ProtocolSet protocols() const { return config_.protocols; }
+    /// The configuration (built-ins and protocols as changed since).
+    const NodeStackConfig& config() const { return config_; }
+    /// Frames dropped because the output exceeded max_output_frames.
+    std::uint64_t dropped_frames() const { return dropped_frames_; }
+    /// Number of times Initialization Complete was sent.
+    std::uint32_t initializations() const { return initializations_; }
+
+    /// True for MTIs never answered with OIR when unhandled: OIR and TDE themselves and the
+    /// replies (PSR, SNIP reply, Datagram OK/Rejected, stream replies/data, traction reply).
+    static bool never_rejected(std::uint16_t mti);
+
+private:
+    void dispatch(const Message& msg);
+    bool handle_builtin(const Message& msg);
+    void on_datagram_frame(const CanFrame& frame, TimePoint now);
+    void on_addressed_frame(const CanFrame& frame, TimePoint now);
+    void on_global_frame(const CanFrame& frame, TimePoint now);
+    void send_oir(std::uint16_t dest, std::uint16_t code, std::uint16_t mti);
+    void send_initialization_complete();
+    void handle_alias_event(const AliasEvent& event);
+    void enter_permitted();
+    void flush_pending();
+    SendStatus frame_message(Message& msg);
+    void push_frame(const CanFrame& frame);
+    // Moves the frames of one part that has no callbacks (cheaper than collect()).
+    template <class Part>
+    void take_frames(Part& part) {
+        while (auto f = part.pop_frame()) push_frame(*f);
+    }
+    void collect();
+    void run_timers(TimePoint now);
+
+    NodeStackConfig config_;
+    AliasAllocator alias_;
+    MessageAssembler assembler_;
+    DatagramSender sender_;
+    DatagramReceiver receiver_;
+
+    MessageHandler on_message_;
+    DatagramHandler on_datagram_;
+    OutcomeHandler on_outcome_;
+    InitializedHandler on_initialized_;
+    AliasEventHandler on_alias_event_;
+    OutputHandler on_output_;
+
+    bool started_ = false;
+    bool initialized_ = false;  // message layer; alias_.permitted() tells the link layer
+    bool collecting_ = false;
+    std::vector<Message> pending_;
+    std::vector<CanFrame> out_;  // out_[out_head_..] pending; reused to avoid allocation
+    std::size_t out_head_ = 0;
+    std::vector<CanFrame> encode_buf_;
+    Message scratch_;  // single-frame global messages are decoded here without allocating
+    std::uint64_t dropped_frames_ = 0;
+    std::uint32_t initializations_ = 0;
+    std::multimap<TimePoint, TimerHandler> timers_;
+    TimePoint now_{};
+};
+
+}  // namespace olcb

@@ -1,0 +1,88 @@
+// Runs NodeStacks on real time: frames between a Transport and the stacks, one steady_timer.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "openlcb/asio.hpp"
+#include "openlcb/can_frame.hpp"
+#include "openlcb/clock.hpp"
+#include "openlcb/node_stack.hpp"
+#include "openlcb/transport.hpp"
+
+namespace olcb {
+
+/// Attaches NodeStacks to one Transport (in-process bus port, hub local endpoint, TCP client,
+/// SocketCAN) on an io_context. The attached stacks share the transport's segment: frames from
+/// the transport go to every stack; a frame a stack emits goes to the transport and to every
+/// other attached stack (transports never echo). One steady_timer is armed at the earliest
+/// deadline of all stacks; the minimum is recomputed once per batch of work (posted, coalesced),
+/// not once per frame.
+class StackDriver {
+public:
+    /// Counters since construction.
+    struct Stats {
+        std::uint64_t frames_in = 0;   ///< frames received from the transport
+        std::uint64_t frames_out = 0;  ///< frames the stacks emitted (sent to the transport)
+        std::uint64_t polls = 0;       ///< NodeStack::poll() calls made on timer expiry
+        std::uint64_t timer_arms = 0;  ///< times the timer was (re)armed
+    };
+
+    /// A driver on io using transport (its frame handler is taken over); the transport must
+    /// outlive the driver.
+    StackDriver(boost::asio::io_context& io, Transport& transport);
+    /// Clears the transport handler; stacks still attached become undriven (their output
+    /// handlers turn into no-ops), whether they are destroyed before or after the driver.
+    ~StackDriver();
+    StackDriver(const StackDriver&) = delete;
+    StackDriver& operator=(const StackDriver&) = delete;
+
+    /// Attaches stack (it must stay alive while the driver runs, or be detached first); its
+    /// output handler is taken over. Start it with stack.start(Clock::now()) or start_all().
+    void attach(NodeStack& stack);
+    /// Detaches stack; its pending output stays in it.
+    void detach(NodeStack& stack);
+    /// Starts every attached stack now.
+    void start_all();
+    /// Flushes output and re-arms the timer soon; owners never need it (stacks notify the
+    /// driver of new output), but it is harmless.
+    void kick();
+    /// Number of attached stacks.
+    std::size_t size() const { return count_; }
+    /// Counters.
+    const Stats& stats() const { return stats_; }
+
+private:
+    struct Slot {
+        NodeStack* stack = nullptr;
+        bool dirty = false;
+    };
+
+    void on_transport_frame(const CanFrame& frame);
+    void process();
+    void schedule();
+    void rearm();
+    void on_timer();
+    void mark_dirty(std::size_t index);
+
+    boost::asio::io_context& io_;
+    Transport& transport_;
+    boost::asio::steady_timer timer_;
+    std::optional<TimePoint> armed_at_;
+    std::vector<Slot> slots_;
+    std::size_t count_ = 0;
+    std::vector<std::size_t> dirty_;
+    std::deque<CanFrame> incoming_;
+    std::vector<CanFrame> scratch_;
+    bool busy_ = false;
+    bool posted_ = false;
+    bool rearm_posted_ = false;
+    Stats stats_;
+    std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+};
+
+}  // namespace olcb
