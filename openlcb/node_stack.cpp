@@ -152,12 +152,11 @@ void NodeStack::flush_pending() {
 void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
     now_ = now;
     if (!can::is_openlcb_frame(frame) || frame.len > 8) return;
-    if (!config_.builtins.defend_alias && alias_.permitted() &&
-        can::source_alias(frame.id) == alias()) {
-        // Fault injection: the frame is processed as if the alias were not ours at all.
-    } else {
-        alias_.on_frame(frame, now);
-    }
+    // Without defence (fault injection) a frame using our active alias is taken as if the alias
+    // were not ours at all.
+    const bool undefended = !config_.builtins.defend_alias && alias_.permitted() &&
+                            can::source_alias(frame.id) == alias();
+    if (!undefended) alias_.on_frame(frame, now);
     // The allocator reports nothing without queueing a frame, except a duplicate node ID (an
     // AMD carrying our ID): skipping collect() otherwise keeps 1,000 stacks per bus cheap.
     const bool control = can::is_control(frame.id);

@@ -1,0 +1,262 @@
+// simnode: runs the nodes of a scenario on one CAN segment (TCP hub, TCP client, SocketCAN or
+// in-process only) until SIGINT/SIGTERM or --run-for.
+#include <signal.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "memory/memory_config_codec.hpp"
+#include "memory/memory_config_defs.hpp"
+#include "openlcb/asio.hpp"
+#include "openlcb/in_process_bus.hpp"
+#include "openlcb/monitor.hpp"
+#include "openlcb/socketcan.hpp"
+#include "openlcb/stack_driver.hpp"
+#include "openlcb/tcp_client.hpp"
+#include "openlcb/tcp_hub_server.hpp"
+#include "openlcb/traffic_log.hpp"
+#include "simnode/scenario.hpp"
+#include "simnode/sim_node.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace olcb;
+using namespace olcb::simnode;
+
+constexpr int kExitRuntime = 1;
+constexpr int kExitUsage = 2;
+// How often start-up progress is checked for the "initialized" line.
+constexpr auto kStartupPoll = std::chrono::milliseconds(10);
+
+// Where `simnode` without arguments finds scenarios/default.ini: the source tree this binary was
+// built from, next to the binary (build tree or install prefix), then the working directory.
+std::vector<fs::path> default_scenarios() {
+    std::vector<fs::path> out;
+    const fs::path source_root = fs::path(__FILE__).parent_path().parent_path().parent_path();
+    out.push_back(source_root / "scenarios" / "default.ini");
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        out.push_back(exe.parent_path() / "../../scenarios/default.ini");
+        out.push_back(exe.parent_path() / "../share/simnode/scenarios/default.ini");
+    }
+    out.push_back(fs::path("scenarios") / "default.ini");
+    return out;
+}
+
+long rss_kib() {
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "VmRSS:") {
+            long kib = 0;
+            status >> kib;
+            return kib;
+        }
+        status.ignore(1 << 16, '\n');
+    }
+    return 0;
+}
+
+void say(const std::string& line) {
+    std::cout << "simnode: " << line << std::endl;  // endl: scripts wait for these lines
+}
+
+// Records every frame of the segment: decoded lines (--trace) and candump lines (--candump).
+class TrafficTap {
+public:
+    bool open(const Scenario& s, std::string& error) {
+        if (!s.trace.empty()) {
+            trace_.open(s.trace, std::ios::app);
+            if (!trace_) {
+                error = "cannot open trace file " + s.trace.string();
+                return false;
+            }
+            monitor_.register_datagram_decoder(
+                memory::kDatagramType,
+                [](std::span<const std::uint8_t> bytes) { return memory::describe(bytes); });
+        }
+        if (!s.candump.empty() &&
+            !log_.add_candump_file(s.candump.string(),
+                                   s.socketcan.empty() ? "vcan0" : s.socketcan)) {
+            error = "cannot open candump file " + s.candump.string();
+            return false;
+        }
+        return true;
+    }
+
+    void record(const CanFrame& frame) {
+        log_.record(frame);
+        if (!trace_.is_open()) return;
+        if (const auto line = monitor_.decode(frame)) {
+            const double t = std::chrono::duration<double>(Clock::now() - start_).count();
+            char stamp[32];
+            std::snprintf(stamp, sizeof stamp, "%10.6f ", t);
+            trace_ << stamp << *line << std::endl;
+        }
+    }
+
+private:
+    std::ofstream trace_;
+    Monitor monitor_;
+    TrafficLog log_;
+    TimePoint start_ = Clock::now();
+};
+
+int run(const Scenario& scenario) {
+    boost::asio::io_context io;
+
+    std::vector<std::unique_ptr<SimNode>> nodes;
+    nodes.reserve(scenario.nodes.size());
+    for (const auto& config : scenario.nodes) {
+        std::string error;
+        std::error_code ec;
+        if (!config.image_dir.empty() && !fs::create_directories(config.image_dir, ec) && ec) {
+            std::cerr << "simnode: cannot create image directory " << config.image_dir.string()
+                      << ": " << ec.message() << "\n";
+            return kExitRuntime;
+        }
+        auto node = SimNode::create(config, error);
+        if (!node) {
+            std::cerr << "simnode: node " << config.node_id.to_string() << ": " << error << "\n";
+            return kExitRuntime;
+        }
+        if (!node->cdi_problem().empty()) {
+            std::cerr << "simnode: warning: node " << config.node_id.to_string()
+                      << " serves a CDI that is not valid: " << node->cdi_problem() << "\n";
+        }
+        nodes.push_back(std::move(node));
+    }
+
+    // The segment: a TCP hub when listening, else an in-process bus. Every other transport
+    // is bridged onto it through one more port, so all of them can be combined.
+    std::unique_ptr<TcpHubServer> hub;
+    std::unique_ptr<InProcessBus> bus;
+    const auto add_port = [&](FrameHandler handler) -> Transport& {
+        return hub ? hub->add_local_endpoint(std::move(handler))
+                   : bus->add_endpoint(std::move(handler));
+    };
+    if (scenario.listen) {
+        hub = std::make_unique<TcpHubServer>(io);
+        if (const auto ec = hub->listen(scenario.listen->host, scenario.listen->port)) {
+            std::cerr << "simnode: cannot listen on " << scenario.listen->to_string() << ": "
+                      << ec.message() << "\n";
+            return kExitRuntime;
+        }
+    } else {
+        bus = std::make_unique<InProcessBus>(io);
+    }
+    Transport& node_port = add_port({});
+
+    TrafficTap tap;
+    std::string error;
+    if (!scenario.trace.empty() || !scenario.candump.empty()) {
+        if (!tap.open(scenario, error)) {
+            std::cerr << "simnode: " << error << "\n";
+            return kExitRuntime;
+        }
+        add_port([&tap](const CanFrame& f) { tap.record(f); });
+    }
+
+    std::unique_ptr<TcpClient> client;
+    if (scenario.connect) {
+        client = std::make_unique<TcpClient>(io, scenario.connect->host, scenario.connect->port);
+        Transport& port = add_port([&client](const CanFrame& f) { client->send(f); });
+        client->set_handler([&port](const CanFrame& f) { port.send(f); });
+        client->start();
+    }
+    std::unique_ptr<socketcan::SocketCanPort> can;
+    if (!scenario.socketcan.empty()) {
+        can = std::make_unique<socketcan::SocketCanPort>(io);
+        if (const auto failed = can->open(scenario.socketcan)) {
+            std::cerr << "simnode: " << failed->message << "\n";
+            return kExitRuntime;
+        }
+        Transport& port = add_port([&can](const CanFrame& f) { can->send(f); });
+        can->set_handler([&port](const CanFrame& f) { port.send(f); });
+    }
+
+    StackDriver driver(io, node_port);
+    for (auto& node : nodes) driver.attach(node->stack());
+
+    const auto stop = [&] {
+        if (hub) hub->stop();
+        if (client) client->stop();
+        if (can) can->close();
+        io.stop();
+    };
+    boost::asio::signal_set signals(io, SIGINT, SIGTERM);
+    signals.async_wait([&](const boost::system::error_code& ec, int) {
+        if (!ec) stop();
+    });
+    boost::asio::steady_timer run_timer(io);
+    if (scenario.run_for) {
+        run_timer.expires_after(std::chrono::duration_cast<Clock::duration>(
+            std::chrono::duration<double>(*scenario.run_for)));
+        run_timer.async_wait([&](const boost::system::error_code& ec) {
+            if (!ec) stop();
+        });
+    }
+
+    if (hub) say("listening on " + HostPort{scenario.listen->host, hub->port()}.to_string());
+    const auto started = Clock::now();
+    driver.start_all();
+
+    // One line once every node holds an alias and sent Initialization Complete: start-up time
+    // and memory for scripts and benchmarks.
+    boost::asio::steady_timer startup_timer(io);
+    std::function<void(const boost::system::error_code&)> check_startup =
+        [&](const boost::system::error_code& ec) {
+            if (ec) return;
+            std::size_t ready = 0;
+            for (const auto& node : nodes) ready += node->stack().initialized() ? 1 : 0;
+            if (ready == nodes.size()) {
+                const auto ms =
+                    std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - started)
+                        .count();
+                say(std::to_string(nodes.size()) + " node(s) initialized in " + std::to_string(ms) +
+                    " ms, RSS " + std::to_string(rss_kib() / 1024) + " MiB");
+                return;
+            }
+            startup_timer.expires_after(kStartupPoll);
+            startup_timer.async_wait(check_startup);
+        };
+    startup_timer.expires_after(kStartupPoll);
+    startup_timer.async_wait(check_startup);
+
+    io.run();
+    say("stopped");
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    const auto defaults = default_scenarios();
+    std::string error;
+    const auto parsed = parse_arguments(args, defaults, error);
+    if (!parsed) {
+        std::cerr << "simnode: " << error << "\n";
+        return kExitUsage;
+    }
+    if (parsed->help) {
+        std::cout << help_text();
+        return 0;
+    }
+    if (parsed->list_faults) {
+        for (const auto& name : fault_names()) std::cout << name << "\n";
+        return 0;
+    }
+    // A peer closing its socket must not kill the process.
+    ::signal(SIGPIPE, SIG_IGN);
+    return run(parsed->scenario);
+}

@@ -1,0 +1,130 @@
+// The memory of a simulated node, built from its CDI: space 0xFF (the CDI and one NUL), one
+// writable space per CDI segment space sized to its layout, ACDI 252/251, persisted as one image
+// per writable space, with the storage faults of FaultSet layered on top as MemorySpace wrappers.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "cdi/document.hpp"
+#include "cdi/layout.hpp"
+#include "memory/acdi.hpp"
+#include "memory/image_file.hpp"
+#include "memory/memory_config_server.hpp"
+#include "memory/memory_space.hpp"
+#include "memory/snip.hpp"
+#include "openlcb/node_id.hpp"
+#include "simnode/event_roles.hpp"
+#include "simnode/faults.hpp"
+
+namespace olcb::simnode {
+
+/// Largest space a node builds (bounded memory whatever the CDI's replication says).
+inline constexpr std::uint64_t kMaxSpaceSize = 16u << 20;
+/// Most variables a CDI may have for a node to build its default images.
+inline constexpr std::uint64_t kMaxVariables = 1u << 22;
+/// Most event IDs a node advertises.
+inline constexpr std::size_t kMaxEvents = 1024;
+
+/// A parsed and laid-out CDI, shared (read-only) by every node serving the same text.
+struct CdiModel {
+    std::string text;                   ///< the CDI text as given
+    cdi::Document document;             ///< the model (the layout points into it)
+    std::optional<cdi::Layout> layout;  ///< addresses of every variable
+    bool valid = false;                 ///< schema, semantic and layout checks found no error
+    std::string first_error;            ///< the first validation error ("" when valid)
+    std::vector<EventSlot> events;      ///< eventid variables and their roles, document order
+};
+
+/// Parses, lays out and validates text; one model per distinct text is kept while in use.
+/// nullptr with `error` set when the text cannot be parsed or laid out (validity is reported in
+/// CdiModel::valid, not as an error). Thread-safe.
+std::shared_ptr<const CdiModel> load_cdi_model(const std::string& text, std::string& error);
+
+/// Everything NodeMemory is built from.
+struct MemoryOptions {
+    std::shared_ptr<const CdiModel> model;  ///< must not be null
+    NodeId node_id;                         ///< source of default event IDs
+    std::filesystem::path image_dir;        ///< empty: RAM only
+    memory::AcdiManufacturer identity;      ///< space 252 strings (version taken from the CDI)
+    std::string user_name;                  ///< space 251 name of a fresh image
+    std::string user_description;           ///< space 251 description of a fresh image
+    FaultSet faults;                        ///< storage faults to apply
+};
+
+/// File name of the image of a space ("space-253.img").
+std::string image_file_name(std::uint8_t space);
+
+/// The spaces of one node.
+class NodeMemory {
+public:
+    /// Builds the spaces, opening or creating the images; nullptr with `error` set on failure.
+    static std::unique_ptr<NodeMemory> open(MemoryOptions options, std::string& error);
+    ~NodeMemory();
+    NodeMemory(const NodeMemory&) = delete;
+    NodeMemory& operator=(const NodeMemory&) = delete;
+
+    /// Registers every served space with server (0xFF, CDI spaces, 252/251 with <acdi/>).
+    void serve(memory::MemoryConfigServer& server) const;
+    /// The space served as number (faults included), or null.
+    memory::MemorySpace* space(std::uint8_t number) const;
+    /// Numbers of the served spaces, ascending.
+    std::vector<std::uint8_t> served_spaces() const;
+    /// Up to length bytes of a space read as a client would (empty when not there).
+    std::vector<std::uint8_t> read(std::uint8_t number, std::uint32_t address,
+                                   std::uint32_t length) const;
+    /// SNIP content from spaces 252 and 251 as served (so SNIP and ACDI agree).
+    memory::Snip snip() const;
+    /// True when the CDI has <acdi/> (252 and 251 served).
+    bool has_acdi() const;
+    /// The factory content of a writable space (CDI defaults, default event IDs, user strings).
+    std::vector<std::uint8_t> factory_image(std::uint8_t number) const;
+    /// Restores every writable space to its factory content; false with `error` on I/O failure.
+    bool factory_reset(std::string& error);
+    /// Power cycle: forgets what only RAM held (write-not-persisted, readonly-writable).
+    void reboot();
+    /// The persisted Get Unique ID counter (never below the default event IDs handed out).
+    std::uint32_t unique_id_counter() const { return unique_id_counter_; }
+    /// Persists a new Get Unique ID counter; false on I/O failure.
+    bool store_unique_id_counter(std::uint32_t counter);
+    /// The CDI model.
+    const CdiModel& model() const { return *options_.model; }
+    /// Event IDs and roles as the node reads them from its memory now (zero IDs skipped).
+    std::vector<std::pair<EventId, EventRole>> events() const;
+    /// The event slots a written range touches (for re-advertising).
+    std::vector<EventSlot> events_in(std::uint8_t space, std::uint32_t address,
+                                     std::uint32_t length) const;
+
+private:
+    struct Slot;
+    explicit NodeMemory(MemoryOptions options);
+    bool build(std::string& error);
+    bool add_writable(std::uint8_t number, std::uint64_t size, bool served, std::string& error);
+    void add_constant(std::uint8_t number, std::vector<std::uint8_t> bytes);
+    Slot* slot(std::uint8_t number) const;
+
+    MemoryOptions options_;
+    std::vector<std::unique_ptr<Slot>> slots_;
+    std::array<Slot*, 256> by_number_{};
+    std::unique_ptr<memory::ImageFile> unique_id_image_;
+    std::uint32_t unique_id_counter_ = 0;
+    std::uint32_t default_event_count_ = 0;
+};
+
+/// The CDI bytes a node serves in space 0xFF: text up to its first NUL plus one NUL, changed by
+/// the cdi-unterminated, cdi-padding and cdi-invalid faults.
+std::vector<std::uint8_t> served_cdi_bytes(std::string_view text, const FaultSet& faults);
+
+/// Applies the encoding faults (int/eventid byte order, unterminated strings, float width) to
+/// the stored bytes of one variable.
+void apply_encoding_faults(const FaultSet& faults, const cdi::Element& element,
+                           std::span<std::uint8_t> bytes);
+
+}  // namespace olcb::simnode

@@ -1,0 +1,528 @@
+#include "simnode/scenario.hpp"
+
+#include <boost/program_options.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unordered_set>
+
+#include "cdi/parser.hpp"
+
+namespace olcb::simnode {
+namespace {
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+// Keys a node group may set (top level, or a [node.NAME] section).
+constexpr std::string_view kNodeKeys[] = {
+    "node-id",
+    "count",
+    "cdi",
+    "image-dir",
+    "manufacturer",
+    "model",
+    "hardware-version",
+    "software-version",
+    "user-name",
+    "user-description",
+    "fault",
+};
+// Keys of the whole process (top level only).
+constexpr std::string_view kProcessKeys[] = {"listen", "connect", "socketcan",
+                                             "trace",  "candump", "run-for"};
+// A network of this many nodes is already far beyond any real CAN segment.
+constexpr std::uint64_t kMaxCount = 100000;
+constexpr std::string_view kSectionPrefix = "node.";
+
+bool contains(std::span<const std::string_view> keys, std::string_view key) {
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+struct Value {
+    std::vector<std::string> items;
+    fs::path base;  // directory relative paths are resolved against (empty: as given)
+};
+using Keys = std::map<std::string, Value, std::less<>>;
+
+// Options from one source (file or command line), before merging.
+struct Raw {
+    Keys top;
+    std::vector<std::pair<std::string, Keys>> sections;  // in file order
+
+    Keys& section(const std::string& name) {
+        for (auto& [n, keys] : sections) {
+            if (n == name) return keys;
+        }
+        sections.emplace_back(name, Keys{});
+        return sections.back().second;
+    }
+};
+
+bool add_option(Raw& raw, const std::string& key, std::vector<std::string> values,
+                const fs::path& base, std::string_view where, std::string& error) {
+    Keys* keys = &raw.top;
+    std::string field = key;
+    if (key.starts_with(kSectionPrefix)) {
+        const auto dot = key.rfind('.');
+        const std::string name = key.substr(kSectionPrefix.size(), dot - kSectionPrefix.size());
+        field = key.substr(dot + 1);
+        if (dot < kSectionPrefix.size() || name.empty()) {
+            error = std::string(where) + ": '" + key + "' is not a key of a [node.NAME] section";
+            return false;
+        }
+        if (!contains(kNodeKeys, field)) {
+            error =
+                std::string(where) + ": unknown key '" + field + "' in section [node." + name + "]";
+            return false;
+        }
+        keys = &raw.section(name);
+    } else if (!contains(kNodeKeys, key) && !contains(kProcessKeys, key)) {
+        error = std::string(where) + ": unknown key '" + key + "'";
+        return false;
+    }
+    if (values.empty()) values.emplace_back();
+    auto [it, fresh] = keys->try_emplace(field, Value{{}, base});
+    if (!fresh && field != "fault") {
+        error = std::string(where) + ": '" + key + "' is given twice";
+        return false;
+    }
+    for (auto& v : values) it->second.items.push_back(std::move(v));
+    return true;
+}
+
+po::options_description cli_options() {
+    po::options_description general("General");
+    general.add_options()("help,h", "print this help and exit")(
+        "list-faults", "print the names of every fault and exit")(
+        "scenario", po::value<std::string>()->value_name("FILE"),
+        "scenario .ini file (also accepted as the only positional argument)")(
+        "run-for", po::value<std::string>()->value_name("SECONDS"),
+        "stop cleanly after SECONDS (default: run until SIGINT/SIGTERM)");
+    po::options_description node("Node (top level, or a [node.NAME] section)");
+    node.add_options()("node-id", po::value<std::string>()->value_name("ID"),
+                       "node ID, e.g. 05.01.01.01.22.00 (the first one when count > 1)")(
+        "count", po::value<std::string>()->value_name("N"),
+        "run N nodes with consecutive node IDs (default 1)")(
+        "cdi", po::value<std::string>()->value_name("FILE"), "CDI XML file the node serves")(
+        "image-dir", po::value<std::string>()->value_name("DIR"),
+        "memory images go to DIR/<node id>/ (default: $TMPDIR/simnode-images/<scenario>)")(
+        "manufacturer", po::value<std::string>(), "identity (default: CDI <identification>)")(
+        "model", po::value<std::string>(), "identity (default: CDI <identification>)")(
+        "hardware-version", po::value<std::string>(), "identity (default: CDI <identification>)")(
+        "software-version", po::value<std::string>(), "identity (default: CDI <identification>)")(
+        "user-name", po::value<std::string>(),
+        "initial user name of a fresh image ({n} = index, {id} = node ID)")(
+        "user-description", po::value<std::string>(),
+        "initial user description of a fresh image ({n}, {id} as above)")(
+        "fault", po::value<std::vector<std::string>>()->value_name("NAME"),
+        "misbehave as NAME (repeatable; see --list-faults, docs/faults.md)");
+    po::options_description transport("Transports and logs (top level)");
+    transport.add_options()("listen", po::value<std::string>()->value_name("HOST:PORT"),
+                            "run a GridConnect TCP hub (port 0 = any free port; "
+                            "a bare PORT binds 127.0.0.1)")(
+        "connect", po::value<std::string>()->value_name("HOST:PORT"),
+        "join a GridConnect TCP hub (reconnects when it goes away)")(
+        "socketcan", po::value<std::string>()->value_name("IF"), "join SocketCAN interface IF")(
+        "trace", po::value<std::string>()->value_name("FILE"), "write decoded traffic to FILE")(
+        "candump", po::value<std::string>()->value_name("FILE"),
+        "write traffic to FILE as candump -L lines");
+    po::options_description all;
+    all.add(general).add(node).add(transport);
+    return all;
+}
+
+struct CommandLine {
+    Raw raw;
+    std::optional<std::string> scenario;
+    bool help = false;
+    bool list_faults = false;
+};
+
+std::optional<CommandLine> parse_command_line(std::span<const std::string> args,
+                                              std::string& error) {
+    CommandLine cl;
+    po::positional_options_description positional;
+    positional.add("scenario", 1);
+    const auto desc = cli_options();
+    po::parsed_options parsed(&desc);
+    try {
+        parsed = po::command_line_parser(std::vector<std::string>(args.begin(), args.end()))
+                     .options(desc)
+                     .positional(positional)
+                     .allow_unregistered()
+                     .run();
+    } catch (const po::error& e) {
+        error = e.what();
+        return std::nullopt;
+    }
+    for (const auto& opt : parsed.options) {
+        if (opt.string_key == "help") {
+            cl.help = true;
+        } else if (opt.string_key == "list-faults") {
+            cl.list_faults = true;
+        } else if (opt.string_key == "scenario") {
+            if (cl.scenario) {
+                error = "more than one scenario file given";
+                return std::nullopt;
+            }
+            cl.scenario = opt.value.empty() ? std::string() : opt.value.front();
+        } else if (opt.unregistered && !opt.string_key.starts_with(kSectionPrefix)) {
+            error = "unknown option '" +
+                    (opt.original_tokens.empty() ? opt.string_key : opt.original_tokens.front()) +
+                    "' (see --help)";
+            return std::nullopt;
+        } else if (!add_option(cl.raw, opt.string_key, opt.value, {}, "command line", error)) {
+            return std::nullopt;
+        }
+    }
+    return cl;
+}
+
+std::optional<Raw> parse_ini(std::string_view text, const fs::path& base, std::string_view where,
+                             std::string& error) {
+    Raw raw;
+    const po::options_description none;
+    std::istringstream in{std::string(text)};
+    po::parsed_options parsed(&none);
+    try {
+        parsed = po::parse_config_file(in, none, true);
+    } catch (const po::error& e) {
+        error = std::string(where) + ": " + e.what();
+        return std::nullopt;
+    }
+    for (const auto& opt : parsed.options) {
+        if (!add_option(raw, opt.string_key, opt.value, base, where, error)) return std::nullopt;
+    }
+    return raw;
+}
+
+// The command line replaces a file's values key by key; faults accumulate.
+void merge_keys(Keys& into, const Keys& over) {
+    for (const auto& [key, value] : over) {
+        auto [it, fresh] = into.try_emplace(key, value);
+        if (fresh) continue;
+        if (key == "fault") {
+            it->second.items.insert(it->second.items.end(), value.items.begin(), value.items.end());
+        } else {
+            it->second = value;
+        }
+    }
+}
+
+const std::string* single(const Keys& keys, std::string_view key) {
+    const auto it = keys.find(key);
+    if (it == keys.end() || it->second.items.empty()) return nullptr;
+    return &it->second.items.back();
+}
+
+fs::path path_of(const Keys& keys, std::string_view key) {
+    const auto it = keys.find(key);
+    if (it == keys.end() || it->second.items.empty()) return {};
+    fs::path p = it->second.items.back();
+    if (p.is_relative() && !it->second.base.empty()) p = it->second.base / p;
+    return p.lexically_normal();
+}
+
+std::string expand(std::string text, std::uint64_t index, NodeId id) {
+    const auto replace_all = [&text](std::string_view what, const std::string& with) {
+        for (auto pos = text.find(what); pos != std::string::npos;
+             pos = text.find(what, pos + with.size())) {
+            text.replace(pos, what.size(), with);
+        }
+    };
+    replace_all("{n}", std::to_string(index));
+    replace_all("{id}", id.to_string());
+    return text;
+}
+
+std::optional<std::uint64_t> parse_count(const std::string& text) {
+    std::uint64_t v = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || ptr != text.data() + text.size() || v == 0 || v > kMaxCount) {
+        return std::nullopt;
+    }
+    return v;
+}
+
+class Builder {
+public:
+    Builder(Scenario& scenario, std::string& error) : scenario_(scenario), error_(error) {}
+
+    bool group(const std::string& name, const Keys& keys, const fs::path& default_root) {
+        const std::string where = name.empty() ? "node" : "[node." + name + "]";
+        const std::string* id_text = single(keys, "node-id");
+        if (!id_text) return fail(where + ": node-id is missing");
+        std::string why;
+        const auto base = NodeId::parse(*id_text, &why);
+        if (!base || base->is_zero()) {
+            return fail(where + ": node-id '" + *id_text +
+                        "': " + (why.empty() ? "must not be zero" : why));
+        }
+        std::uint64_t count = 1;
+        if (const auto* c = single(keys, "count")) {
+            const auto v = parse_count(*c);
+            if (!v) {
+                return fail(where + ": count '" + *c + "' must be a whole number 1.." +
+                            std::to_string(kMaxCount));
+            }
+            count = *v;
+        }
+        if (base->value() + (count - 1) > NodeId::kMask) {
+            return fail(where + ": node IDs run past FF.FF.FF.FF.FF.FF");
+        }
+        const fs::path cdi_path = path_of(keys, "cdi");
+        if (cdi_path.empty()) return fail(where + ": cdi is missing");
+        const std::string* cdi = read_cdi(cdi_path);
+        if (!cdi) return fail(where + ": cannot read CDI file " + cdi_path.string());
+        fs::path root = path_of(keys, "image-dir");
+        if (root.empty()) root = default_root;
+
+        std::optional<Identity> identity;
+        if (single(keys, "manufacturer") || single(keys, "model") ||
+            single(keys, "hardware-version") || single(keys, "software-version")) {
+            identity = identity_of(*cdi, keys);
+        }
+        std::vector<std::string> fault_list;
+        if (const auto it = keys.find("fault"); it != keys.end()) {
+            for (const auto& f : it->second.items) {
+                if (!f.empty()) fault_list.push_back(f);
+            }
+        }
+        std::string fault_error;
+        const auto faults = parse_faults(fault_list, fault_error);
+        if (!faults) return fail(where + ": " + fault_error);
+
+        const std::string* user_name = single(keys, "user-name");
+        const std::string* user_description = single(keys, "user-description");
+        for (std::uint64_t k = 0; k < count; ++k) {
+            NodeConfig config;
+            config.node_id = NodeId(base->value() + k);
+            if (!ids_.insert(config.node_id).second) {
+                return fail(where + ": node ID " + config.node_id.to_string() +
+                            " is used by another node");
+            }
+            config.cdi = *cdi;
+            config.image_dir = root / config.node_id.to_string();
+            config.identity = identity;
+            if (user_name) config.user_name = expand(*user_name, k + 1, config.node_id);
+            if (user_description) {
+                config.user_description = expand(*user_description, k + 1, config.node_id);
+            }
+            config.faults = *faults;
+            scenario_.nodes.push_back(std::move(config));
+        }
+        return true;
+    }
+
+    bool process(const Keys& keys) {
+        std::string why;
+        if (const auto* v = single(keys, "listen")) {
+            scenario_.listen = parse_host_port(*v, why);
+            if (!scenario_.listen) return fail("listen: " + why);
+        }
+        if (const auto* v = single(keys, "connect")) {
+            scenario_.connect = parse_host_port(*v, why);
+            if (!scenario_.connect) return fail("connect: " + why);
+            if (scenario_.connect->port == 0) return fail("connect: port 0 is not a port");
+        }
+        if (const auto* v = single(keys, "socketcan")) scenario_.socketcan = *v;
+        scenario_.trace = path_of(keys, "trace");
+        scenario_.candump = path_of(keys, "candump");
+        if (const auto* v = single(keys, "run-for")) {
+            double seconds = -1;
+            try {
+                std::size_t used = 0;
+                seconds = std::stod(*v, &used);
+                if (used != v->size()) seconds = -1;
+            } catch (const std::exception&) {
+                seconds = -1;
+            }
+            if (!(seconds >= 0) || !std::isfinite(seconds)) {
+                return fail("run-for '" + *v + "' must be a number of seconds >= 0");
+            }
+            scenario_.run_for = seconds;
+        }
+        return true;
+    }
+
+private:
+    bool fail(std::string message) {
+        error_ = std::move(message);
+        return false;
+    }
+
+    const std::string* read_cdi(const fs::path& path) {
+        const auto key = path.string();
+        if (const auto it = cdis_.find(key); it != cdis_.end()) return &it->second;
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return nullptr;
+        std::ostringstream text;
+        text << in.rdbuf();
+        if (in.bad()) return nullptr;
+        return &cdis_.emplace(key, text.str()).first->second;
+    }
+
+    // Identity keys given override the CDI's <identification>; the rest come from it.
+    static Identity identity_of(const std::string& cdi, const Keys& keys) {
+        Identity id;
+        if (const auto parsed = cdi::parse(cdi);
+            parsed.document && parsed.document->identification) {
+            const auto& ident = *parsed.document->identification;
+            id.manufacturer = ident.manufacturer;
+            id.model = ident.model;
+            id.hardware_version = ident.hardware_version;
+            id.software_version = ident.software_version;
+        }
+        if (const auto* v = single(keys, "manufacturer")) id.manufacturer = *v;
+        if (const auto* v = single(keys, "model")) id.model = *v;
+        if (const auto* v = single(keys, "hardware-version")) id.hardware_version = *v;
+        if (const auto* v = single(keys, "software-version")) id.software_version = *v;
+        return id;
+    }
+
+    Scenario& scenario_;
+    std::string& error_;
+    std::map<std::string, std::string> cdis_;
+    std::unordered_set<NodeId> ids_;
+};
+
+std::optional<Scenario> build(const Raw& file, const Raw& cli, const fs::path& scenario_file,
+                              std::string& error) {
+    Raw merged = file;
+    merge_keys(merged.top, cli.top);
+    for (const auto& [name, keys] : cli.sections) merge_keys(merged.section(name), keys);
+
+    Scenario scenario;
+    scenario.scenario_file = scenario_file;
+    const std::string stem = scenario_file.empty() ? "inline" : scenario_file.stem().string();
+    std::error_code ec;
+    fs::path tmp = fs::temp_directory_path(ec);
+    if (ec) tmp = "/tmp";
+    const fs::path default_root = tmp / "simnode-images" / stem;
+
+    Builder builder(scenario, error);
+    if (!builder.process(merged.top)) return std::nullopt;
+    if (merged.sections.empty()) {
+        if (!builder.group("", merged.top, default_root)) return std::nullopt;
+    } else {
+        // Top-level node keys are defaults of every section.
+        for (const auto& [name, keys] : merged.sections) {
+            Keys group;
+            for (const auto& [key, value] : merged.top) {
+                if (contains(kNodeKeys, key)) group.emplace(key, value);
+            }
+            merge_keys(group, keys);
+            if (!builder.group(name, group, default_root)) return std::nullopt;
+        }
+    }
+    return scenario;
+}
+
+}  // namespace
+
+std::string HostPort::to_string() const {
+    const bool v6 = host.find(':') != std::string::npos;
+    return (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
+}
+
+std::optional<HostPort> parse_host_port(std::string_view text, std::string& error) {
+    HostPort hp;
+    std::string_view port_text = text;
+    if (const auto colon = text.rfind(':'); colon != std::string_view::npos) {
+        std::string_view host = text.substr(0, colon);
+        if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
+            host = host.substr(1, host.size() - 2);
+        }
+        if (host.empty()) {
+            error = "'" + std::string(text) + "' has an empty host";
+            return std::nullopt;
+        }
+        hp.host = std::string(host);
+        port_text = text.substr(colon + 1);
+    }
+    unsigned port = 0;
+    const auto [ptr, ec] =
+        std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+    if (port_text.empty() || ec != std::errc() || ptr != port_text.data() + port_text.size() ||
+        port > 65535) {
+        error = "'" + std::string(text) + "' is not HOST:PORT (port 0..65535)";
+        return std::nullopt;
+    }
+    hp.port = static_cast<std::uint16_t>(port);
+    return hp;
+}
+
+std::string help_text() {
+    std::ostringstream out;
+    out << "usage: simnode [--scenario] [FILE.ini] [OPTIONS]\n"
+           "Runs simulated OpenLCB nodes. Without a scenario file and without --node-id it runs\n"
+           "scenarios/default.ini. Every option is also a key of the .ini file; keys of a\n"
+           "[node.NAME] section are given on the command line as --node.NAME.KEY=VALUE.\n"
+           "See docs/scenarios.md.\n";
+    out << cli_options();
+    return out.str();
+}
+
+std::optional<Arguments> parse_arguments(std::span<const std::string> args,
+                                         std::span<const fs::path> default_scenarios,
+                                         std::string& error) {
+    auto cl = parse_command_line(args, error);
+    if (!cl) return std::nullopt;
+    Arguments result;
+    result.help = cl->help;
+    result.list_faults = cl->list_faults;
+    if (result.help || result.list_faults) return result;
+
+    fs::path file;
+    if (cl->scenario) {
+        file = *cl->scenario;
+    } else if (!cl->raw.top.contains("node-id") && cl->raw.sections.empty()) {
+        for (const auto& candidate : default_scenarios) {
+            std::error_code ec;
+            if (fs::is_regular_file(candidate, ec)) {
+                file = candidate;
+                break;
+            }
+        }
+        if (file.empty()) {
+            error = "no scenario: give a scenario file, or --node-id and --cdi (see --help)";
+            return std::nullopt;
+        }
+    }
+    Raw file_raw;
+    if (!file.empty()) {
+        std::ifstream in(file, std::ios::binary);
+        if (!in) {
+            error = "cannot read scenario file " + file.string();
+            return std::nullopt;
+        }
+        std::ostringstream text;
+        text << in.rdbuf();
+        std::error_code ec;
+        fs::path base = fs::absolute(file, ec).parent_path();
+        auto raw = parse_ini(text.str(), base, file.string(), error);
+        if (!raw) return std::nullopt;
+        file_raw = std::move(*raw);
+    }
+    auto scenario = build(file_raw, cl->raw, file, error);
+    if (!scenario) return std::nullopt;
+    result.scenario = std::move(*scenario);
+    return result;
+}
+
+std::optional<Scenario> parse_scenario_text(std::string_view ini, const fs::path& base_dir,
+                                            std::span<const std::string> overrides,
+                                            std::string& error) {
+    auto raw = parse_ini(ini, base_dir, "scenario", error);
+    if (!raw) return std::nullopt;
+    auto cl = parse_command_line(overrides, error);
+    if (!cl) return std::nullopt;
+    return build(*raw, cl->raw, {}, error);
+}
+
+}  // namespace olcb::simnode

@@ -1,0 +1,67 @@
+// What one simnode process runs: its nodes and its transports, read from a scenario .ini file
+// and the command line (every .ini key is also an option; docs/scenarios.md lists them all).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "simnode/sim_node.hpp"
+
+namespace olcb::simnode {
+
+/// A TCP address as HOST:PORT.
+struct HostPort {
+    std::string host = "127.0.0.1";  ///< numeric address; 127.0.0.1 when only a port is given
+    std::uint16_t port = 0;          ///< 0 lets the system pick a free port (listen only)
+
+    /// "HOST:PORT".
+    std::string to_string() const;
+    /// Same host and port.
+    friend bool operator==(const HostPort&, const HostPort&) = default;
+};
+
+/// Parses "HOST:PORT", "[V6]:PORT" or a bare "PORT" (host 127.0.0.1); nullopt plus a sentence.
+std::optional<HostPort> parse_host_port(std::string_view text, std::string& error);
+
+/// Everything one simnode process runs.
+struct Scenario {
+    std::vector<NodeConfig> nodes;        ///< every node, in scenario order; IDs are distinct
+    std::optional<HostPort> listen;       ///< run a GridConnect TCP hub here
+    std::optional<HostPort> connect;      ///< join this GridConnect TCP hub
+    std::string socketcan;                ///< join this SocketCAN interface (empty: none)
+    std::filesystem::path trace;          ///< decoded traffic log (empty: none)
+    std::filesystem::path candump;        ///< candump -L traffic log (empty: none)
+    std::optional<double> run_for;        ///< stop after this many seconds
+    std::filesystem::path scenario_file;  ///< the .ini read (empty: everything inline)
+};
+
+/// What the command line asks for.
+struct Arguments {
+    bool help = false;         ///< --help: print help_text() and exit
+    bool list_faults = false;  ///< --list-faults: print fault_names() and exit
+    Scenario scenario;         ///< filled unless help or list_faults
+};
+
+/// The --help text (usage line and every option).
+std::string help_text();
+
+/// Parses the command line (args without the program name). The scenario file is --scenario,
+/// else a positional path, else (when no node-id is given inline) the first existing file of
+/// default_scenarios. Command-line values override the file's (fault values are added).
+std::optional<Arguments> parse_arguments(std::span<const std::string> args,
+                                         std::span<const std::filesystem::path> default_scenarios,
+                                         std::string& error);
+
+/// Reads a scenario from .ini text whose relative paths are relative to base_dir, then applies
+/// overrides (command-line style arguments, e.g. {"--listen", "127.0.0.1:0"}).
+std::optional<Scenario> parse_scenario_text(std::string_view ini,
+                                            const std::filesystem::path& base_dir,
+                                            std::span<const std::string> overrides,
+                                            std::string& error);
+
+}  // namespace olcb::simnode

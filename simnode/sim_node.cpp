@@ -1,0 +1,334 @@
+#include "simnode/sim_node.hpp"
+
+#include <set>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+#include "memory/memory_config_codec.hpp"
+#include "openlcb/datagram_defs.hpp"
+#include "openlcb/error_codes.hpp"
+
+namespace olcb::simnode {
+namespace {
+
+// How far space-info-short undercuts the real highest address.
+constexpr std::uint32_t kSpaceInfoShortBy = 16;
+
+Protocol pip_protocol(PipBit bit) {
+    switch (bit) {
+        case PipBit::kCdi:
+            return Protocol::kCdi;
+        case PipBit::kAcdi:
+            return Protocol::kAcdi;
+        case PipBit::kSnip:
+            return Protocol::kSnip;
+        case PipBit::kDatagram:
+            return Protocol::kDatagram;
+        case PipBit::kMemoryConfiguration:
+            return Protocol::kMemoryConfiguration;
+        case PipBit::kEvents:
+            return Protocol::kEventExchange;
+    }
+    return Protocol::kCdi;
+}
+
+// The other form for a short-form-capable space; byte-6-only spaces keep theirs.
+memory::SpaceForm other_form(memory::Space space, memory::SpaceForm form) {
+    if (!memory::has_short_form(space)) return form;
+    return memory::resolve_form(space, form) == memory::SpaceForm::kShort
+               ? memory::SpaceForm::kByte6
+               : memory::SpaceForm::kShort;
+}
+
+}  // namespace
+
+std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) {
+    if (config.node_id.is_zero()) {
+        error = "node ID must not be zero";
+        return nullptr;
+    }
+    auto model = load_cdi_model(config.cdi, error);
+    if (!model) {
+        error = "CDI: " + error;
+        return nullptr;
+    }
+    // Real firmware serves CDIs that break the schema (a third of the device files of the corpus
+    // do); refusing them would make the node useless for testing tools against such devices.
+    // The owner reports cdi_problem() to the user instead.
+    if (!config.identity) {
+        Identity id;
+        if (const auto& ident = model->document.identification) {
+            id = Identity{ident->manufacturer, ident->model, ident->hardware_version,
+                          ident->software_version};
+        }
+        config.identity = id;
+    }
+
+    MemoryOptions options;
+    options.model = model;
+    options.node_id = config.node_id;
+    options.image_dir = config.image_dir;
+    options.identity.manufacturer = config.identity->manufacturer;
+    options.identity.model = config.identity->model;
+    options.identity.hardware_version = config.identity->hardware_version;
+    options.identity.software_version = config.identity->software_version;
+    options.user_name = config.user_name;
+    options.user_description = config.user_description;
+    options.faults = config.faults;
+    auto memory = NodeMemory::open(std::move(options), error);
+    if (!memory) return nullptr;
+
+    // PIP says what the node really serves (fact sheet 3.1).
+    ProtocolSet served{Protocol::kDatagram, Protocol::kMemoryConfiguration, Protocol::kSnip,
+                       Protocol::kCdi};
+    if (!model->events.empty()) served.set(Protocol::kEventExchange);
+    if (memory->has_acdi()) served.set(Protocol::kAcdi);
+
+    NodeStackConfig sc;
+    sc.node_id = config.node_id;
+    sc.protocols = served;
+    if (config.faults.pip_missing)
+        sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
+    sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
+
+    return std::unique_ptr<SimNode>(
+        new SimNode(std::move(config), std::move(sc), std::move(memory), served));
+}
+
+SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
+                 std::unique_ptr<NodeMemory> memory, ProtocolSet served)
+    : config_(std::move(config)),
+      stack_(std::move(stack_config)),
+      memory_(std::move(memory)),
+      server_([&] {
+          memory::MemoryConfigServer::Config c;
+          c.node_id = config_.node_id.value();
+          c.unique_id_counter = memory_->unique_id_counter();
+          return c;
+      }()),
+      served_protocols_(served) {
+    memory_->serve(server_);
+    stack_.set_message_handler([this](const Message& m) { return on_message(m); });
+    stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
+    stack_.set_initialized_handler([this] { on_initialized(); });
+}
+
+SimNode::~SimNode() = default;
+
+memory::Snip SimNode::snip() const {
+    memory::Snip s = memory_->snip();
+    if (config_.faults.snip_mismatch) {
+        // Still a valid SNIP string, just not the one ACDI and the CDI hold.
+        constexpr std::string_view kSuffix = " (SNIP)";
+        s.model =
+            std::string(memory::clamp_utf8(s.model, memory::kSnipModelMax - 1 - kSuffix.size())) +
+            std::string(kSuffix);
+    }
+    return s;
+}
+
+std::vector<std::uint8_t> SimNode::snip_payload() const {
+    return memory::encode_snip(snip());
+}
+
+// ---------------- messages ----------------
+
+bool SimNode::on_message(const Message& msg) {
+    switch (msg.mti) {
+        case Mti::kIdentifyEventsGlobal:
+        case Mti::kIdentifyEventsAddressed:
+            advertise_all();
+            return true;
+        case Mti::kIdentifyProducer:
+        case Mti::kIdentifyConsumer: {
+            const auto asked = EventId::from_bytes(msg.payload);
+            if (!asked) return true;  // malformed: nothing of ours to identify
+            const bool producer = msg.mti == Mti::kIdentifyProducer;
+            for (const auto& [id, role] : events()) {
+                if (id == *asked && (producer ? produces(role) : consumes(role))) {
+                    identified(id, producer);
+                    break;
+                }
+            }
+            return true;
+        }
+        case Mti::kSnipRequest: {
+            Message reply;
+            reply.mti = Mti::kSnipReply;
+            reply.destination = NodeHandle{msg.source.id, msg.source.alias};
+            reply.payload = snip_payload();
+            stack_.send_message(std::move(reply));
+            return true;
+        }
+        default:
+            return false;
+    }
+}
+
+void SimNode::identified(EventId id, bool producer) {
+    Message m;
+    m.mti = producer ? Mti::kProducerIdentifiedUnknown : Mti::kConsumerIdentifiedUnknown;
+    const auto raw = id.to_bytes();
+    m.payload.assign(raw.begin(), raw.end());
+    stack_.send_message(std::move(m));
+}
+
+void SimNode::advertise_all() {
+    std::set<EventId> producers;
+    std::set<EventId> consumers;
+    for (const auto& [id, role] : events()) {
+        if (produces(role) && producers.insert(id).second) identified(id, true);
+        if (consumes(role) && consumers.insert(id).second) identified(id, false);
+    }
+}
+
+void SimNode::advertise(const EventSlot* begin, const EventSlot* end) {
+    for (const EventSlot* e = begin; e != end; ++e) {
+        const auto raw = memory_->read(static_cast<std::uint8_t>(e->space),
+                                       static_cast<std::uint32_t>(e->address), 8);
+        const auto id = EventId::from_bytes(raw);
+        if (!id || id->value() == 0) continue;
+        if (produces(e->role)) identified(*id, true);
+        if (consumes(e->role)) identified(*id, false);
+    }
+}
+
+void SimNode::on_initialized() {
+    advertise_all();
+    if (config_.faults.unsolicited_period.count() > 0 && !unsolicited_started_) {
+        unsolicited_started_ = true;
+        schedule_unsolicited(stack_.now() + config_.faults.unsolicited_period);
+    }
+}
+
+void SimNode::schedule_unsolicited(TimePoint at) {
+    stack_.schedule(at, [this](TimePoint now) {
+        if (stack_.initialized())
+            stack_.send_message(Message{Mti::kVerifyNodeIdGlobal, {}, {}, {}});
+        schedule_unsolicited(now + config_.faults.unsolicited_period);
+    });
+}
+
+// ---------------- datagrams ----------------
+
+void SimNode::on_datagram(const ReceivedDatagram& d) {
+    ++counters_.datagrams;
+    const std::uint16_t src = d.source_alias;
+    if (counters_.temporary_rejects < config_.faults.reject_temporary) {
+        ++counters_.temporary_rejects;
+        stack_.reject_datagram(src, error_code::kBufferUnavailable);
+        return;
+    }
+    if (d.payload.empty() || d.payload[0] != memory::kDatagramType) {
+        stack_.reject_datagram(src, error_code::kCommandUnknown);
+        return;
+    }
+    memory::Source source;
+    source.alias = src;
+    source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
+    memory::Decision decision = server_.handle(source, d.payload);
+    apply_reply_faults(decision, d.payload);
+    const memory::SideEffects& fx = decision.effects;
+    if (decision.accepted && fx.unique_id_counter &&
+        !memory_->store_unique_id_counter(*fx.unique_id_counter)) {
+        ++counters_.storage_errors;
+        decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
+    }
+    if (!decision.accepted) {
+        stack_.reject_datagram(src, memory::to_u16(decision.reject_error));
+        return;
+    }
+
+    const std::uint8_t flags =
+        datagram::ok_flags(decision.reply_pending, decision.reply_timeout_exponent);
+    if (decision.reply.empty()) {
+        stack_.accept_datagram(src, flags);
+    } else if (config_.faults.no_datagram_ack) {
+        send_reply(src, std::move(decision.reply));
+        stack_.accept_datagram(src, flags);
+    } else if (config_.faults.slow_reply.count() > 0) {
+        stack_.accept_datagram(src, flags);
+        const std::uint32_t generation = boot_generation_;
+        stack_.schedule(stack_.now() + config_.faults.slow_reply,
+                        [this, generation, src, reply = std::move(decision.reply)](TimePoint) {
+                            if (generation == boot_generation_) send_reply(src, reply);
+                        });
+    } else {
+        stack_.accept_datagram(src, flags);
+        send_reply(src, std::move(decision.reply));
+    }
+
+    if (fx.reboot || fx.factory_reset) {
+        if (fx.factory_reset) {
+            std::string error;
+            if (!memory_->factory_reset(error)) ++counters_.storage_errors;
+            ++counters_.factory_resets;
+        } else {
+            ++counters_.reboots;
+        }
+        memory_->reboot();
+        server_.reset();
+        ++boot_generation_;
+        // The transport is untouched: TCP clients stay connected and see a fresh start-up.
+        stack_.restart(stack_.now());
+        return;
+    }
+    if (fx.written && fx.written->changed) {
+        if (fx.identification_changed) {
+            stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
+        } else {
+            const auto touched = memory_->events_in(memory::to_u8(fx.written->space),
+                                                    fx.written->address, fx.written->length);
+            advertise(touched.data(), touched.data() + touched.size());
+        }
+    }
+}
+
+void SimNode::send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply) {
+    stack_.send_datagram(dest, reply, stack_.now());
+}
+
+void SimNode::apply_reply_faults(memory::Decision& decision,
+                                 std::span<const std::uint8_t> request) {
+    const FaultSet& f = config_.faults;
+    if (decision.reply.empty() || !(f.read_past_end || f.space_info_short || f.reply_form)) return;
+    memory::DecodeResult reply = memory::decode(decision.reply);
+    if (!reply.ok()) return;
+    bool changed = false;
+    if (f.read_past_end) {
+        const auto* fail = std::get_if<memory::ReadReplyFail>(&reply.message);
+        const memory::DecodeResult asked = memory::decode(request);
+        const auto* read = std::get_if<memory::Read>(&asked.message);
+        if (fail != nullptr && read != nullptr && fail->error == memory::ErrorCode::kOutOfBounds) {
+            reply.message =
+                memory::ReadReply{read->space, read->address,
+                                  std::vector<std::uint8_t>(read->count & 0x7F, 0), read->form};
+            changed = true;
+        }
+    }
+    if (f.space_info_short) {
+        if (auto* info = std::get_if<memory::SpaceInfoReply>(&reply.message)) {
+            info->highest_address -= std::min(info->highest_address, kSpaceInfoShortBy);
+            changed = true;
+        }
+    }
+    if (f.reply_form) {
+        std::visit(
+            [&](auto& m) {
+                using T = std::decay_t<decltype(m)>;
+                if constexpr (std::is_same_v<T, memory::ReadReply> ||
+                              std::is_same_v<T, memory::ReadReplyFail> ||
+                              std::is_same_v<T, memory::WriteReply> ||
+                              std::is_same_v<T, memory::WriteReplyFail>) {
+                    const auto form = other_form(m.space, m.form);
+                    changed = changed || form != m.form;
+                    m.form = form;
+                }
+            },
+            reply.message);
+    }
+    if (changed) decision.reply = memory::encode(reply.message);
+}
+
+}  // namespace olcb::simnode

@@ -1,0 +1,113 @@
+// A simulated OpenLCB node built from a CDI: a NodeStack answering Verify, PIP, SNIP, event
+// identification and the whole Memory Configuration Protocol from NodeMemory, with the faults of
+// docs/faults.md. Sans-I/O like the stack: drive stack() with SimNetwork or StackDriver.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "memory/memory_config_server.hpp"
+#include "memory/snip.hpp"
+#include "openlcb/node_id.hpp"
+#include "openlcb/node_stack.hpp"
+#include "openlcb/pip.hpp"
+#include "simnode/event_roles.hpp"
+#include "simnode/faults.hpp"
+#include "simnode/node_memory.hpp"
+
+namespace olcb::simnode {
+
+/// The four manufacturer strings of SNIP and ACDI space 252.
+struct Identity {
+    std::string manufacturer, model, hardware_version, software_version;
+};
+
+/// Everything a SimNode is built from.
+struct NodeConfig {
+    NodeId node_id;                    ///< must not be zero
+    std::string cdi;                   ///< the CDI text as read from the file
+    std::filesystem::path image_dir;   ///< empty: RAM-only images (nothing persisted)
+    std::optional<Identity> identity;  ///< default: from the CDI <identification>
+    std::string user_name;             ///< initial 251 name, for a FRESH image only
+    std::string user_description;      ///< initial 251 description, for a FRESH image only
+    FaultSet faults;                   ///< misbehaviours (none by default)
+};
+
+/// Counters of what a node did, for tests and the program's statistics.
+struct NodeCounters {
+    std::uint32_t reboots = 0;            ///< Reset/Reboot commands obeyed
+    std::uint32_t factory_resets = 0;     ///< Factory Reset commands obeyed
+    std::uint64_t datagrams = 0;          ///< datagrams received
+    std::uint64_t temporary_rejects = 0;  ///< datagrams rejected by reject-temporary
+    std::uint32_t storage_errors = 0;     ///< factory reset or counter writes that failed
+};
+
+/// One simulated node.
+class SimNode {
+public:
+    /// Loads the CDI (parse + layout; a CDI that parses and lays out but fails validation is
+    /// served as it is, see cdi_problem()), opens or creates the images, builds spaces; nullptr with
+    /// `error` set on failure.
+    static std::unique_ptr<SimNode> create(NodeConfig config, std::string& error);
+    SimNode(const SimNode&) = delete;
+    SimNode& operator=(const SimNode&) = delete;
+    ~SimNode();
+
+    /// The protocol stack; drive with SimNetwork (tests) or StackDriver (program).
+    NodeStack& stack() { return stack_; }
+    /// The protocol stack.
+    const NodeStack& stack() const { return stack_; }
+    /// The configuration the node was created with.
+    const NodeConfig& config() const { return config_; }
+    /// Our node ID.
+    NodeId node_id() const { return config_.node_id; }
+    /// The SNIP content the node sends now (faults included).
+    memory::Snip snip() const;
+    /// The SNIP reply payload the node sends now.
+    std::vector<std::uint8_t> snip_payload() const;
+    /// The protocols the node serves (what PIP announces, before pip-missing-bit).
+    ProtocolSet served_protocols() const { return served_protocols_; }
+    /// The node's memory spaces.
+    NodeMemory& memory() { return *memory_; }
+    /// The node's memory spaces.
+    const NodeMemory& memory() const { return *memory_; }
+    /// The Memory Configuration server.
+    memory::MemoryConfigServer& server() { return server_; }
+    /// Event IDs and roles the node advertises now.
+    std::vector<std::pair<EventId, EventRole>> events() const { return memory_->events(); }
+    /// What the node did so far.
+    const NodeCounters& counters() const { return counters_; }
+    /// Reset/Reboot commands obeyed.
+    std::uint32_t reboot_count() const { return counters_.reboots; }
+    /// The first validation error of the served CDI ("" when it is valid).
+    const std::string& cdi_problem() const { return memory().model().first_error; }
+
+private:
+    SimNode(NodeConfig config, NodeStackConfig stack_config, std::unique_ptr<NodeMemory> memory,
+            ProtocolSet served);
+    bool on_message(const Message& msg);
+    void on_datagram(const ReceivedDatagram& datagram);
+    void on_initialized();
+    void advertise(const EventSlot* only_begin, const EventSlot* only_end);
+    void advertise_all();
+    void identified(EventId id, bool producer);
+    void send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply);
+    void apply_reply_faults(memory::Decision& decision, std::span<const std::uint8_t> request);
+    void schedule_unsolicited(TimePoint at);
+
+    NodeConfig config_;
+    NodeStack stack_;
+    std::unique_ptr<NodeMemory> memory_;
+    memory::MemoryConfigServer server_;
+    ProtocolSet served_protocols_;
+    NodeCounters counters_;
+    std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
+    bool unsolicited_started_ = false;
+};
+
+}  // namespace olcb::simnode

@@ -1,0 +1,71 @@
+// Fault names: parsing, parameters, errors and the catalogue.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "simnode/faults.hpp"
+
+namespace olcb::simnode {
+namespace {
+
+TEST(ParseFaults, CommaListsAndParametersCompose) {
+    std::string error;
+    auto f = parse_faults(
+        {"int-byte-order, reject-temporary=5", "slow-reply", "pip-missing-bit=snip"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_TRUE(f->int_byte_order);
+    EXPECT_EQ(f->reject_temporary, 5u);
+    EXPECT_EQ(f->slow_reply, std::chrono::milliseconds(1200));
+    EXPECT_EQ(f->pip_missing, PipBit::kSnip);
+    EXPECT_FALSE(f->write_dropped);
+    EXPECT_FALSE(f->none());
+}
+
+TEST(ParseFaults, DefaultsOfParameters) {
+    std::string error;
+    auto f = parse_faults({"reject-temporary", "unsolicited-traffic", "pip-missing-bit"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->reject_temporary, 3u);
+    EXPECT_EQ(f->unsolicited_period, std::chrono::milliseconds(1000));
+    EXPECT_EQ(f->pip_missing, PipBit::kCdi);
+}
+
+TEST(ParseFaults, EmptyIsAGoodNode) {
+    std::string error;
+    auto f = parse_faults({"", " , "}, error);
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->none());
+}
+
+TEST(ParseFaults, Errors) {
+    std::string error;
+    EXPECT_FALSE(parse_faults({"no-such-fault"}, error));
+    EXPECT_NE(error.find("no-such-fault"), std::string::npos);
+    EXPECT_NE(error.find("slow-reply"), std::string::npos) << "lists the known names";
+    EXPECT_FALSE(parse_faults({"reject-temporary=x"}, error));
+    EXPECT_FALSE(parse_faults({"reject-temporary=0"}, error));
+    EXPECT_FALSE(parse_faults({"slow-reply=99999999999"}, error));
+    EXPECT_FALSE(parse_faults({"write-dropped=1"}, error));
+    EXPECT_NE(error.find("takes no value"), std::string::npos);
+    EXPECT_FALSE(parse_faults({"pip-missing-bit=foo"}, error));
+}
+
+TEST(ParseFaults, NamesRoundTrip) {
+    std::string error;
+    const auto all = parse_faults(fault_names(), error);
+    ASSERT_TRUE(all) << error;
+    const auto again = parse_faults(to_names(*all), error);
+    ASSERT_TRUE(again) << error;
+    EXPECT_EQ(*again, *all);
+    EXPECT_EQ(to_names(*all).size(), fault_names().size());
+}
+
+TEST(ParseFaults, CatalogHasEveryFaultOnce) {
+    const auto names = fault_names();
+    EXPECT_EQ(names.size(), 21u);
+    EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
+    for (const auto& info : fault_catalog()) EXPECT_FALSE(info.summary.empty()) << info.name;
+}
+
+}  // namespace
+}  // namespace olcb::simnode

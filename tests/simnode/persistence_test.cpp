@@ -1,0 +1,92 @@
+// Images in image_dir: one file per writable space, created with the defaults, written before the
+// acknowledgement, found again by a node re-created on the same directory.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "memory/snip.hpp"
+#include "sim_node_test_util.hpp"
+
+namespace olcb::simnode::test {
+namespace {
+
+class PersistenceTest : public SimNodeTest {};
+
+TEST_F(PersistenceTest, ImagesSurviveRecreation) {
+    TempDir dir;
+    NodeConfig c = default_config();
+    c.image_dir = dir.path();
+    start(c);
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "space-253.img"));
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "space-251.img"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "space-255.img"));
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / "space-252.img"));
+    EXPECT_EQ(std::filesystem::file_size(dir.path() / "space-253.img"), 179u);
+    EXPECT_EQ(std::filesystem::file_size(dir.path() / "space-251.img"), 128u);
+    write_ok(0xFD, 15, {3});
+    write_ok(0xFB, 1, {'K', 'e', 'p', 't', 0});
+    const auto ids = exchange({0x20, 0x8C, 1}).reply;
+    node_.reset();  // closes the images (releases their locks)
+
+    // Same directory, different initial strings: the image wins over the config.
+    SimNetwork net2;
+    c.user_name = "Ignored";
+    std::string error;
+    auto again = SimNode::create(c, error);
+    ASSERT_TRUE(again) << error;
+    EXPECT_EQ(again->memory().read(0xFD, 15, 1), (std::vector<std::uint8_t>{3}));
+    EXPECT_EQ(again->snip().user_name, "Kept");
+    // The Get Unique ID counter is persisted too: no ID is handed out twice.
+    EXPECT_EQ(again->memory().unique_id_counter(), 9u);
+    ASSERT_TRUE(ids);
+    EXPECT_EQ(ids->back(), 8);
+}
+
+TEST_F(PersistenceTest, SecondNodeOnTheSameImagesIsRefused) {
+    TempDir dir;
+    NodeConfig c = default_config();
+    c.image_dir = dir.path();
+    std::string error;
+    auto first = SimNode::create(c, error);
+    ASSERT_TRUE(first) << error;
+    auto second = SimNode::create(c, error);
+    EXPECT_EQ(second, nullptr);
+    EXPECT_FALSE(error.empty());
+}
+
+TEST_F(PersistenceTest, ImageOfAnotherSizeIsRefused) {
+    TempDir dir;
+    NodeConfig c = default_config();
+    c.image_dir = dir.path();
+    std::string error;
+    ASSERT_TRUE(SimNode::create(c, error)) << error;
+    std::filesystem::resize_file(dir.path() / "space-253.img", 10);
+    EXPECT_EQ(SimNode::create(c, error), nullptr);
+    EXPECT_NE(error.find("253"), std::string::npos) << error;
+}
+
+TEST_F(PersistenceTest, FactoryResetRewritesTheImage) {
+    TempDir dir;
+    NodeConfig c = default_config();
+    c.image_dir = dir.path();
+    start(c);
+    write_ok(0xFD, 15, {3});
+    EXPECT_TRUE(exchange({0x20, 0xAA, 5, 1, 1, 1, 0x22, 0x00}).ok);
+    net_.run_for(1s);
+    node_.reset();
+    std::string error;
+    auto again = SimNode::create(c, error);
+    ASSERT_TRUE(again) << error;
+    EXPECT_EQ(again->memory().read(0xFD, 15, 1), (std::vector<std::uint8_t>{2}));
+}
+
+TEST_F(PersistenceTest, MissingImageDirectoryIsAnError) {
+    NodeConfig c = default_config();
+    c.image_dir = "/nonexistent/simnode/images";
+    std::string error;
+    EXPECT_EQ(SimNode::create(c, error), nullptr);
+    EXPECT_FALSE(error.empty());
+}
+
+}  // namespace
+}  // namespace olcb::simnode::test
