@@ -247,7 +247,7 @@ void SimNode::on_datagram(const ReceivedDatagram& d) {
     } else if (config_.faults.no_datagram_ack) {
         send_reply(src, std::move(decision.reply));
         stack_.accept_datagram(src, flags);
-    } else if (config_.faults.slow_reply.count() > 0) {
+    } else if (config_.faults.slow_reply.count() > 0 && replies_++ % kSlowReplyEvery == 0) {
         stack_.accept_datagram(src, flags);
         const std::uint32_t generation = boot_generation_;
         stack_.schedule(stack_.now() + config_.faults.slow_reply,

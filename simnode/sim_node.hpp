@@ -47,6 +47,10 @@ struct NodeCounters {
     std::uint32_t storage_errors = 0;     ///< factory reset or counter writes that failed
 };
 
+/// slow-reply holds back the first reply datagram and then every this-many-th: like firmware
+/// that stalls now and then (a flash erase), and a client's run stays bounded in time.
+inline constexpr std::uint64_t kSlowReplyEvery = 32;
+
 /// One simulated node.
 class SimNode {
 public:
@@ -84,6 +88,8 @@ public:
     const NodeCounters& counters() const { return counters_; }
     /// Reset/Reboot commands obeyed.
     std::uint32_t reboot_count() const { return counters_.reboots; }
+    /// Reply datagrams sent or scheduled since creation.
+    std::uint64_t replies() const { return replies_; }
     /// The first validation error of the served CDI ("" when it is valid).
     const std::string& cdi_problem() const { return memory().model().first_error; }
 
@@ -106,6 +112,7 @@ private:
     memory::MemoryConfigServer server_;
     ProtocolSet served_protocols_;
     NodeCounters counters_;
+    std::uint64_t replies_ = 0;  // numbers replies for slow-reply
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;
 };

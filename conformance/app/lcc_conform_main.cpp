@@ -1,0 +1,212 @@
+// lcc-conform: checks an OpenLCB node's CDI, SNIP, ACDI and memory configuration against the
+// standards, leaving its memory as it found it.
+#include <boost/program_options.hpp>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "conformance/config_backup.hpp"
+#include "conformance/link.hpp"
+#include "conformance/protocol_checks.hpp"
+#include "conformance/report.hpp"
+#include "conformance/runner.hpp"
+#include "conformance/session.hpp"
+#include "memory/snip.hpp"
+
+namespace po = boost::program_options;
+using namespace olcb;
+using namespace olcb::conform;
+
+namespace {
+
+constexpr int kUsage = 2;
+// The tool's own node ID: a self-assigned ID of the experimental range.
+constexpr std::uint64_t kToolId = 0x0501'0101'3F00ull;
+
+std::unique_ptr<Link> open_link(const po::variables_map& vm, std::string& error) {
+    NodeId tool(kToolId);
+    if (vm.count("connect")) {
+        std::string spec = vm["connect"].as<std::string>();
+        auto colon = spec.rfind(':');
+        if (colon == std::string::npos) {
+            error = "--connect wants host:port";
+            return nullptr;
+        }
+        int port = 0;
+        try {
+            port = std::stoi(spec.substr(colon + 1));
+        } catch (...) {
+            port = -1;
+        }
+        if (port <= 0 || port > 65535) {
+            error = "bad port in --connect " + spec;
+            return nullptr;
+        }
+        return connect_tcp(spec.substr(0, colon), static_cast<std::uint16_t>(port), tool, error);
+    }
+    if (vm.count("socketcan"))
+        return open_socketcan(vm["socketcan"].as<std::string>(), tool, error);
+    error = "say where the node is: --connect host:port or --socketcan IF";
+    return nullptr;
+}
+
+void print_help(const po::options_description& opts) {
+    std::cout
+        << "usage: lcc-conform (--connect HOST:PORT | --socketcan IF) [options]\n"
+           "       lcc-conform backup --node ID FILE   save every CDI variable (JMRI format)\n"
+           "       lcc-conform restore FILE            put a safety or JMRI backup back\n\n"
+           "Checks every node found (or --node ID) and prints one line per check.\n"
+           "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
+           "error.\n\n"
+        << opts;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    po::options_description opts("options");
+    opts.add_options()("help,h", "this text")("connect", po::value<std::string>(),
+                                              "GridConnect TCP hub, host:port")(
+        "socketcan", po::value<std::string>(), "SocketCAN interface, e.g. vcan0")(
+        "node", po::value<std::string>(), "node ID to check (default: every node found)")(
+        "list", "list every node with its SNIP names, check nothing")(
+        "read-only", "never write (encoding checks are skipped)")(
+        "sample", po::value<std::size_t>()->default_value(3),
+        "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
+        "reboot", "reset the node and check written values persist")(
+        "backup", po::value<std::string>(),
+        "safety backup file (default ./lcc-conform-backup-<node>.txt)")(
+        "json", po::value<std::string>(), "write the JSON report to FILE")(
+        "junit", po::value<std::string>(), "write the JUnit XML report to FILE")(
+        "no-color", "no colour even on a terminal");
+    po::options_description hidden;
+    hidden.add_options()("args", po::value<std::vector<std::string>>(), "subcommand and file");
+    po::options_description all;
+    all.add(opts).add(hidden);
+    po::positional_options_description pos;
+    pos.add("args", -1);
+    po::variables_map vm;
+    try {
+        po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
+        po::notify(vm);
+    } catch (const std::exception& e) {
+        std::cerr << "lcc-conform: " << e.what() << "\n";
+        return kUsage;
+    }
+    if (vm.count("help")) {
+        print_help(opts);
+        return 0;
+    }
+    std::vector<std::string> args;
+    if (vm.count("args")) args = vm["args"].as<std::vector<std::string>>();
+    std::string command = args.empty() ? "check" : args[0];
+    if (command != "check" && command != "restore" && command != "backup") {
+        std::cerr << "lcc-conform: unknown command '" << command << "' (see --help)\n";
+        return kUsage;
+    }
+    if ((command == "restore" || command == "backup") && args.size() != 2) {
+        std::cerr << "lcc-conform: " << command << " wants exactly one FILE\n";
+        return kUsage;
+    }
+    if (command == "backup" && !vm.count("node")) {
+        std::cerr << "lcc-conform: backup wants --node ID\n";
+        return kUsage;
+    }
+
+    std::string error;
+    auto link = open_link(vm, error);
+    if (!link) {
+        std::cerr << "lcc-conform: " << error << "\n";
+        return kUsage;
+    }
+    Session session(*link);
+    if (!session.start()) {
+        std::cerr << "lcc-conform: could not join the network (no alias)\n";
+        return kUsage;
+    }
+
+    if (command == "backup") {
+        return run_config_backup(session, vm["node"].as<std::string>(), args[1], std::cout,
+                                 std::cerr);
+    }
+    if (command == "restore") {
+        const std::string node = vm.count("node") ? vm["node"].as<std::string>() : "";
+        return run_restore(session, args[1], node, std::cout, std::cerr);
+    }
+
+    std::vector<NodeInfo> nodes;
+    if (vm.count("node")) {
+        auto id = NodeId::parse(vm["node"].as<std::string>(), &error);
+        if (!id) {
+            std::cerr << "lcc-conform: --node: " << error << "\n";
+            return kUsage;
+        }
+        auto found = session.find_node(*id);
+        if (!found) {
+            std::cerr << "lcc-conform: node " << id->to_string() << " does not answer\n";
+            return kUsage;
+        }
+        nodes.push_back(*found);
+    } else {
+        nodes = session.discover();
+        if (nodes.empty()) {
+            std::cerr << "lcc-conform: no node answered Verify Node ID\n";
+            return kUsage;
+        }
+    }
+
+    if (vm.count("list")) {
+        for (const NodeInfo& n : nodes) {
+            std::cout << n.id.to_string();
+            if (auto p = session.snip_payload(n)) {
+                memory::Snip s = memory::decode_snip(*p);
+                std::cout << "  " << s.manufacturer << " | " << s.model << " | "
+                          << s.hardware_version << " | " << s.software_version << " | "
+                          << s.user_name << " | " << s.user_description;
+            }
+            std::cout << "\n";
+        }
+        return 0;
+    }
+
+    RunOptions ro;
+    ro.read_only = vm.count("read-only") > 0;
+    ro.sample = vm["sample"].as<std::size_t>();
+    ro.blob = vm.count("blob") > 0;
+    ro.reboot = vm.count("reboot") > 0;
+    if (vm.count("backup")) ro.backup_path = vm["backup"].as<std::string>();
+    ro.progress = is_terminal(2);
+    bool colour = is_terminal(1) && !vm.count("no-color");
+
+    ProtocolChecks protocol = [&](Session& s, const NodeInfo& n) {
+        ProtocolOptions po_opts;
+        po_opts.read_only = ro.read_only;
+        CheckContext ctx;
+        return run_protocol_checks(s, n, po_opts, ctx);
+    };
+    install_stop_handlers();
+    std::vector<NodeReport> reports;
+    for (const NodeInfo& n : nodes) {
+        RunOptions one = ro;
+        if (nodes.size() > 1 && !ro.backup_path.empty()) {
+            one.backup_path = ro.backup_path + "." + n.id.to_string();
+        }
+        reports.push_back(run_node(session, n, one, protocol, std::cerr));
+        write_text(std::cout, reports.back(), colour);
+        if (stop_requested()) break;
+    }
+    if (vm.count("json") && !write_file(vm["json"].as<std::string>(), to_json(reports), error)) {
+        std::cerr << "lcc-conform: " << error << "\n";
+        return kUsage;
+    }
+    if (vm.count("junit") && !write_file(vm["junit"].as<std::string>(), to_junit(reports), error)) {
+        std::cerr << "lcc-conform: " << error << "\n";
+        return kUsage;
+    }
+    if (stop_requested()) {
+        std::cerr << "lcc-conform: interrupted; node memory restored (see the restore line)\n";
+        return kUsage;
+    }
+    return exit_code(reports);
+}

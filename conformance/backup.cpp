@@ -1,0 +1,271 @@
+#include "conformance/backup.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace olcb::conform {
+namespace {
+
+constexpr const char* kHeader = "# lcc-conform safety backup v1";
+// A backup never holds more than a whole 32-bit space; refuse absurd files instead of allocating.
+constexpr std::size_t kMaxRangeBytes = std::size_t{1} << 24;
+
+int hex_digit(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
+std::string plain_hex(std::span<const std::uint8_t> bytes) {
+    static const char* kDigits = "0123456789ABCDEF";
+    std::string out;
+    out.reserve(bytes.size() * 2);
+    for (std::uint8_t b : bytes) {
+        out.push_back(kDigits[b >> 4]);
+        out.push_back(kDigits[b & 0xF]);
+    }
+    return out;
+}
+
+std::string where(std::uint8_t space, std::uint32_t address) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "space %u @0x%08X", static_cast<unsigned>(space), address);
+    return buf;
+}
+
+}  // namespace
+
+std::string hex_bytes(std::span<const std::uint8_t> bytes, std::size_t max) {
+    static const char* kDigits = "0123456789ABCDEF";
+    std::string out;
+    for (std::size_t i = 0; i < bytes.size() && i < max; ++i) {
+        if (i) out.push_back(' ');
+        out.push_back(kDigits[bytes[i] >> 4]);
+        out.push_back(kDigits[bytes[i] & 0xF]);
+    }
+    if (bytes.size() > max) out += " ...";
+    return out;
+}
+
+std::vector<RangeRequest> merge_ranges(std::vector<RangeRequest> requests) {
+    std::erase_if(requests, [](const RangeRequest& r) { return r.length == 0; });
+    std::sort(requests.begin(), requests.end(), [](const RangeRequest& a, const RangeRequest& b) {
+        return a.space != b.space ? a.space < b.space : a.address < b.address;
+    });
+    std::vector<RangeRequest> out;
+    for (const RangeRequest& r : requests) {
+        if (!out.empty() && out.back().space == r.space) {
+            RangeRequest& last = out.back();
+            std::uint64_t last_end = std::uint64_t{last.address} + last.length;
+            if (r.address <= last_end) {
+                std::uint64_t end = std::max(last_end, std::uint64_t{r.address} + r.length);
+                last.length = static_cast<std::uint32_t>(end - last.address);
+                continue;
+            }
+        }
+        out.push_back(r);
+    }
+    return out;
+}
+
+bool SafetyBackup::capture(MemoryAccess& memory, const std::vector<RangeRequest>& requests,
+                           std::string& error) {
+    for (const RangeRequest& r : merge_ranges(requests)) {
+        AccessResult got = memory.read(r.space, r.address, r.length);
+        if (!got.ok || got.data.size() != r.length) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf,
+                          "cannot read %u bytes at %s for the backup (error 0x%04X)", r.length,
+                          where(r.space, r.address).c_str(), got.error);
+            error = buf;
+            return false;
+        }
+        ranges_.push_back({r.space, r.address, std::move(got.data)});
+    }
+    return save(error);
+}
+
+std::string SafetyBackup::to_text() const {
+    std::ostringstream out;
+    out << kHeader << "\n";
+    out << "# Bytes lcc-conform saved before writing; put them back with: lcc-conform restore "
+           "FILE\n";
+    out << "node " << node_id_ << "\n";
+    for (const BackupRange& r : ranges_) {
+        char head[64];
+        std::snprintf(head, sizeof head, "range %u 0x%08X %zu ", static_cast<unsigned>(r.space),
+                      r.address, r.bytes.size());
+        out << head << plain_hex(r.bytes) << "\n";
+    }
+    out << "end\n";
+    return out.str();
+}
+
+bool SafetyBackup::save(std::string& error) const {
+    std::string tmp = path_ + ".tmp";
+    std::string text = to_text();
+    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        error = "cannot create backup file " + tmp;
+        return false;
+    }
+    std::size_t done = 0;
+    while (done < text.size()) {
+        ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+        if (n <= 0) {
+            ::close(fd);
+            error = "cannot write backup file " + tmp;
+            return false;
+        }
+        done += static_cast<std::size_t>(n);
+    }
+    bool synced = ::fsync(fd) == 0;
+    ::close(fd);
+    if (!synced || std::rename(tmp.c_str(), path_.c_str()) != 0) {
+        error = "cannot store backup file " + path_;
+        return false;
+    }
+    return true;
+}
+
+bool SafetyBackup::is_safety_backup(const std::string& text) {
+    return text.rfind(kHeader, 0) == 0;
+}
+
+std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::string& error) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        error = "cannot open " + path;
+        return std::nullopt;
+    }
+    std::string line;
+    if (!std::getline(in, line) || line.rfind(kHeader, 0) != 0) {
+        error = path + " is not an lcc-conform safety backup";
+        return std::nullopt;
+    }
+    SafetyBackup backup(path, "");
+    bool ended = false;
+    std::size_t line_no = 1;
+    while (std::getline(in, line)) {
+        ++line_no;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty() || line[0] == '#') continue;
+        auto bad = [&](const std::string& why) {
+            error = path + ":" + std::to_string(line_no) + ": " + why;
+            return std::nullopt;
+        };
+        if (line.rfind("node ", 0) == 0) {
+            backup.node_id_ = line.substr(5);
+        } else if (line == "end") {
+            ended = true;
+        } else if (line.rfind("range ", 0) == 0) {
+            unsigned space = 0;
+            unsigned long address = 0;
+            std::size_t length = 0;
+            int used = 0;
+            if (std::sscanf(line.c_str(), "range %u %lx %zu %n", &space, &address, &length,
+                            &used) != 3 ||
+                space > 255 || address > 0xFFFFFFFFul || length > kMaxRangeBytes) {
+                return bad("malformed range line");
+            }
+            std::string hex = line.substr(static_cast<std::size_t>(used));
+            if (hex.size() != length * 2) return bad("range length does not match its bytes");
+            BackupRange r{
+                static_cast<std::uint8_t>(space), static_cast<std::uint32_t>(address), {}};
+            r.bytes.reserve(length);
+            for (std::size_t i = 0; i < length; ++i) {
+                int hi = hex_digit(hex[2 * i]), lo = hex_digit(hex[2 * i + 1]);
+                if (hi < 0 || lo < 0) return bad("bad hex digit");
+                r.bytes.push_back(static_cast<std::uint8_t>(hi << 4 | lo));
+            }
+            backup.ranges_.push_back(std::move(r));
+        } else {
+            return bad("unknown line");
+        }
+    }
+    if (!ended) {
+        error = path + " is incomplete (no 'end' line)";
+        return std::nullopt;
+    }
+    if (backup.node_id_.empty()) {
+        error = path + " names no node";
+        return std::nullopt;
+    }
+    return backup;
+}
+
+void SafetyBackup::remove_file() const {
+    std::remove(path_.c_str());
+}
+
+std::string RestoreOutcome::summary() const {
+    if (identical) {
+        return "node memory byte-identical to before (" + std::to_string(bytes) +
+               " bytes restored and read back)";
+    }
+    std::string s = "node memory NOT identical to before:";
+    for (const std::string& d : differences) s += " " + d + ";";
+    if (!s.empty() && s.back() == ';') s.pop_back();
+    return s;
+}
+
+RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
+    RestoreOutcome outcome;
+    for (const BackupRange& r : backup.ranges()) {
+        AccessResult w = memory.write(r.space, r.address, r.bytes);
+        if (!w.ok) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, " (error 0x%04X)", w.error);
+            outcome.differences.push_back("write of " + std::to_string(r.bytes.size()) +
+                                          " bytes at " + where(r.space, r.address) + " failed" +
+                                          buf);
+        }
+        outcome.bytes += r.bytes.size();
+    }
+    // Read back only after every write: a node may mirror one space into another (251 and 253).
+    for (const BackupRange& r : backup.ranges()) {
+        AccessResult got = memory.read(r.space, r.address, r.bytes.size());
+        if (!got.ok) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, " (error 0x%04X)", got.error);
+            outcome.differences.push_back("read back at " + where(r.space, r.address) + " failed" +
+                                          buf);
+            continue;
+        }
+        if (got.data == r.bytes) continue;
+        std::size_t first = 0, count = 0;
+        bool found = false;
+        for (std::size_t i = 0; i < r.bytes.size(); ++i) {
+            if (i >= got.data.size() || got.data[i] != r.bytes[i]) {
+                if (!found) first = i;
+                found = true;
+                ++count;
+            }
+        }
+        auto at = static_cast<std::uint32_t>(r.address + first);
+        std::span<const std::uint8_t> want(r.bytes);
+        std::span<const std::uint8_t> seen(got.data);
+        outcome.differences.push_back(
+            std::to_string(count) + " bytes differ from " + where(r.space, at) + ": expected " +
+            hex_bytes(want.subspan(first), 8) + ", seen " +
+            hex_bytes(first < seen.size() ? seen.subspan(first) : seen.subspan(0, 0), 8));
+    }
+    outcome.identical = outcome.differences.empty();
+    return outcome;
+}
+
+std::string default_backup_path(const std::string& node_id) {
+    std::string compact;
+    for (char c : node_id) {
+        if (c != '.') compact.push_back(c);
+    }
+    return "./lcc-conform-backup-" + compact + ".txt";
+}
+
+}  // namespace olcb::conform

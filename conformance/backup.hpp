@@ -1,0 +1,106 @@
+// The safety backup of lcc-conform: every byte a run will write is saved to a file before the
+// first write, put back at the end (or on SIGINT/SIGTERM, or later by `lcc-conform restore FILE`)
+// and read again to prove the node's memory is byte-identical to before.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace olcb::conform {
+
+/// Outcome of one memory access.
+struct AccessResult {
+    bool ok = false;
+    std::uint16_t error = 0;         ///< the node's error code when !ok (0x2010 on timeout)
+    std::vector<std::uint8_t> data;  ///< read data (may be short at the end of a space)
+};
+
+/// Byte access to one node's memory spaces. The runner adapts its Session to it; tests use a fake.
+class MemoryAccess {
+public:
+    virtual ~MemoryAccess() = default;
+    /// Reads `count` bytes from (space, address); any count (split into protocol-sized reads).
+    virtual AccessResult read(std::uint8_t space, std::uint32_t address, std::size_t count) = 0;
+    /// Writes `data` at (space, address); any length (split into protocol-sized writes).
+    virtual AccessResult write(std::uint8_t space, std::uint32_t address,
+                               std::span<const std::uint8_t> data) = 0;
+};
+
+/// A run of bytes of one space, as they were before the run touched them.
+struct BackupRange {
+    std::uint8_t space = 0;
+    std::uint32_t address = 0;
+    std::vector<std::uint8_t> bytes;
+    friend bool operator==(const BackupRange&, const BackupRange&) = default;
+};
+
+/// Where a range to save lies, before its bytes are known.
+struct RangeRequest {
+    std::uint8_t space = 0;
+    std::uint32_t address = 0;
+    std::uint32_t length = 0;
+};
+
+/// Sorts requests and merges the overlapping or adjacent ones of the same space.
+std::vector<RangeRequest> merge_ranges(std::vector<RangeRequest> requests);
+
+/// The saved bytes of one node, and their file.
+class SafetyBackup {
+public:
+    /// An empty backup of node `node_id` (dotted hex) kept in `path`.
+    SafetyBackup(std::string path, std::string node_id)
+        : path_(std::move(path)), node_id_(std::move(node_id)) {}
+
+    /// Reads every requested range from the node and saves the file (synced to disk) before
+    /// returning; false with `error` set when a read fails or the file cannot be written, in
+    /// which case nothing may be written to the node.
+    bool capture(MemoryAccess& memory, const std::vector<RangeRequest>& requests,
+                 std::string& error);
+    /// Writes the file atomically (temporary file, fsync, rename).
+    bool save(std::string& error) const;
+    /// Loads a backup file; nullopt with `error` set when it is missing or malformed.
+    static std::optional<SafetyBackup> load(const std::string& path, std::string& error);
+    /// True when the file text is a safety backup (first line is the header).
+    static bool is_safety_backup(const std::string& text);
+    /// Deletes the file (after a verified restore).
+    void remove_file() const;
+
+    /// The saved ranges.
+    const std::vector<BackupRange>& ranges() const { return ranges_; }
+    /// Adds a range already read by the caller.
+    void add(BackupRange range) { ranges_.push_back(std::move(range)); }
+    /// The node this backup belongs to (dotted hex).
+    const std::string& node_id() const { return node_id_; }
+    /// The file path.
+    const std::string& path() const { return path_; }
+    /// The whole file text.
+    std::string to_text() const;
+
+private:
+    std::string path_;
+    std::string node_id_;
+    std::vector<BackupRange> ranges_;
+};
+
+/// What a restore found when reading the bytes back.
+struct RestoreOutcome {
+    bool identical = false;                ///< every saved byte reads back as saved
+    std::size_t bytes = 0;                 ///< bytes restored
+    std::vector<std::string> differences;  ///< one line per range that differs or failed
+    /// "node memory byte-identical to before (N bytes in M ranges restored)" or what differs.
+    std::string summary() const;
+};
+
+/// Writes every saved range back and reads it again.
+RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory);
+
+/// The default backup file name for a node: ./lcc-conform-backup-<node id without dots>.txt.
+std::string default_backup_path(const std::string& node_id);
+
+/// Bytes as spaced upper-case hex ("0A 0B"), at most `max` bytes then "...".
+std::string hex_bytes(std::span<const std::uint8_t> bytes, std::size_t max = 16);
+
+}  // namespace olcb::conform

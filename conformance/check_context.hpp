@@ -1,0 +1,43 @@
+// What the protocol checks learn about a node and later checks (encoding, backup) reuse.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cdi/document.hpp"
+#include "cdi/layout.hpp"
+#include "memory/memory_config_codec.hpp"
+#include "memory/snip.hpp"
+#include "openlcb/pip.hpp"
+
+namespace olcb::conform {
+
+/// Get Address Space Information result for one space.
+struct SpaceInfo {
+    bool answered = false;              ///< a 0x86/0x87 reply came
+    bool present = false;               ///< 0x87
+    bool read_only = false;             ///< flag bit 0
+    std::uint32_t highest_address = 0;  ///< inclusive
+    std::optional<std::uint32_t> lowest_address;
+};
+
+/// Knowledge gathered by run_protocol_checks(); empty members mean "not learned".
+struct CheckContext {
+    std::optional<ProtocolSet> pip;           ///< Protocol Support Reply
+    std::optional<memory::Snip> snip;         ///< decoded SNIP reply
+    std::vector<std::uint8_t> cdi_bytes;      ///< space 0xFF up to (excluding) the NUL
+    bool cdi_nul_found = false;               ///< the download ended at a NUL
+    std::unique_ptr<cdi::Document> document;  ///< parsed CDI (when it parsed)
+    std::optional<cdi::Layout> layout;        ///< its layout (when without errors)
+    std::optional<std::vector<std::uint8_t>> acdi_manufacturer;  ///< space 252, 125 bytes
+    std::optional<std::vector<std::uint8_t>> acdi_user;          ///< space 251, 128 bytes
+    std::optional<memory::ConfigOptionsReply> options;  ///< Get Configuration Options reply
+    std::map<std::uint8_t, SpaceInfo> spaces;           ///< Space Info per space asked
+    unsigned temporary_rejects = 0;                     ///< temporary rejects retried so far
+};
+
+}  // namespace olcb::conform

@@ -1,0 +1,53 @@
+// Where the runner's own node lives: a NodeStack on a simulated or real CAN segment, plus a tap
+// that sees every frame and can put raw frames on the segment (for the frame-level checks).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "openlcb/can_frame.hpp"
+#include "openlcb/clock.hpp"
+#include "openlcb/node_id.hpp"
+#include "openlcb/node_stack.hpp"
+
+namespace olcb {
+class SimNetwork;
+}
+
+namespace olcb::conform {
+
+/// Called with every frame seen on the segment (received, sent by our stack, or injected).
+using FrameObserver = std::function<void(const CanFrame&, TimePoint)>;
+
+/// The runner's node on one segment; the factories start its stack.
+class Link {
+public:
+    virtual ~Link() = default;
+    /// The runner's NodeStack (own node ID and alias).
+    virtual NodeStack& stack() = 0;
+    /// Current time of the segment (simulated or steady clock).
+    virtual TimePoint now() = 0;
+    /// Drives the network (simulated clock, or the io_context in real time) until pred() is true or
+    /// `max` elapses; returns pred()'s final value. Every wait of the runner goes through this.
+    virtual bool run_until(const std::function<bool()>& pred, Duration max) = 0;
+    /// Puts a raw frame on the segment; our own stack does not see it (as with a real transport).
+    virtual void send_frame(const CanFrame& frame) = 0;
+    /// Sets the observer of every frame (replaces any previous one).
+    virtual void set_frame_observer(FrameObserver observer) = 0;
+};
+
+/// In-process link on a simulated network (tests); the stack starts at network.now().
+std::unique_ptr<Link> make_sim_link(SimNetwork& network, NodeId tool_id);
+/// GridConnect TCP link to a hub; nullptr with `error` set when the connection fails (2 s).
+std::unique_ptr<Link> connect_tcp(const std::string& host, std::uint16_t port, NodeId tool_id,
+                                  std::string& error);
+/// SocketCAN link on `interface`; nullptr with `error` set when it cannot be opened.
+std::unique_ptr<Link> open_socketcan(const std::string& interface, NodeId tool_id,
+                                     std::string& error);
+
+/// The NodeStack configuration the runner's node uses (datagram resends, acks).
+NodeStackConfig tool_stack_config(NodeId tool_id);
+
+}  // namespace olcb::conform

@@ -1,0 +1,34 @@
+// The frame, message, PIP, SNIP, ACDI, datagram, memory and CDI checks of docs/checks.md.
+#pragma once
+
+#include <chrono>
+#include <vector>
+
+#include "conformance/check_context.hpp"
+#include "conformance/check_result.hpp"
+#include "conformance/session.hpp"
+
+namespace olcb::conform {
+
+/// Knobs of run_protocol_checks().
+struct ProtocolOptions {
+    /// Window in which silence (or an answer) is awaited.
+    Duration window = std::chrono::milliseconds(250);
+    /// Shortest span over which the node must send nothing unsolicited (the run counts).
+    Duration quiet_window = std::chrono::milliseconds(1200);
+    /// Largest reply latency that passes.
+    Duration max_reply_latency = std::chrono::milliseconds(750);
+    /// Skip the writes to read-only spaces (they rewrite the byte already there).
+    bool read_only = false;
+    /// Upper bound of the CDI download when Space Info gives none.
+    std::uint32_t max_cdi_bytes = 1024 * 1024;
+};
+
+/// Runs every protocol check against node, filling ctx for later checks.
+std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
+                                             const ProtocolOptions& options, CheckContext& ctx);
+
+/// True when bytes are valid UTF-8 (no overlongs, surrogates or values past U+10FFFF).
+bool is_valid_utf8(std::span<const std::uint8_t> bytes);
+
+}  // namespace olcb::conform

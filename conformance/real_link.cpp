@@ -1,0 +1,68 @@
+#include "conformance/real_link.hpp"
+
+#include <algorithm>
+
+namespace olcb::conform {
+
+TapTransport::TapTransport(Transport& inner) : inner_(inner) {
+    inner_.set_handler([this](const CanFrame& frame) {
+        if (observer_) observer_(frame, Clock::now());
+        if (handler_) handler_(frame);
+    });
+}
+
+void TapTransport::send(const CanFrame& frame) {
+    if (observer_) observer_(frame, Clock::now());
+    inner_.send(frame);
+}
+
+void TapTransport::set_handler(FrameHandler handler) {
+    handler_ = std::move(handler);
+}
+
+RealLink::RealLink(std::unique_ptr<boost::asio::io_context> io, NodeId tool_id)
+    : io_(std::move(io)), stack_(tool_stack_config(tool_id)) {}
+
+RealLink::~RealLink() {
+    detach();
+}
+
+void RealLink::detach() {
+    driver_.reset();
+    if (inner_) inner_->set_handler({});
+    inner_ = nullptr;
+}
+
+void RealLink::attach(Transport& transport) {
+    inner_ = &transport;
+    tap_ = std::make_unique<TapTransport>(transport);
+    tap_->set_observer([this](const CanFrame& frame, TimePoint at) {
+        if (observer_) observer_(frame, at);
+    });
+    driver_ = std::make_unique<StackDriver>(*io_, *tap_);
+    driver_->attach(stack_);
+    stack_.start(Clock::now());
+    driver_->kick();
+}
+
+bool RealLink::run_until(const std::function<bool()>& pred, Duration max) {
+    const TimePoint limit = Clock::now() + max;
+    for (;;) {
+        if (pred && pred()) return true;
+        const TimePoint t = Clock::now();
+        if (t >= limit) return pred && pred();
+        if (io_->stopped()) io_->restart();
+        io_->run_one_for(std::min<Duration>(limit - t, std::chrono::milliseconds(20)));
+    }
+}
+
+void RealLink::send_frame(const CanFrame& frame) {
+    if (observer_) observer_(frame, Clock::now());
+    if (inner_) inner_->send(frame);
+}
+
+void RealLink::set_frame_observer(FrameObserver observer) {
+    observer_ = std::move(observer);
+}
+
+}  // namespace olcb::conform

@@ -1,0 +1,73 @@
+// Reports of a conformance run: a text line per check for people, JSON and JUnit XML for machines,
+// and a progress bar on a terminal while long reads run.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "conformance/check_result.hpp"
+
+namespace olcb::conform {
+
+/// Totals over every node of a run.
+struct Summary {
+    std::size_t pass = 0;
+    std::size_t fail = 0;
+    std::size_t warn = 0;
+    std::size_t skip = 0;
+    /// Number of checks counted.
+    std::size_t total() const { return pass + fail + warn + skip; }
+};
+
+/// The totals of some node reports.
+Summary summarize(const std::vector<NodeReport>& reports);
+
+/// One line for a check: "PASS  id  message", failures followed by expected/seen and the section;
+/// ANSI colour on the status word when colour is true. No trailing newline.
+std::string format_check(const CheckResult& check, bool colour);
+
+/// The whole text report of one node: a header, one line per check, the restore outcome and the
+/// totals.
+void write_text(std::ostream& out, const NodeReport& report, bool colour);
+
+/// The JSON report: {"node":{...},"checks":[...],"summary":{...}} for one node; for several nodes
+/// {"nodes":[<one node object each>],"summary":{...}}.
+std::string to_json(const std::vector<NodeReport>& reports);
+
+/// The JUnit XML report: one <testsuite> per node, one <testcase> per check (classname = category,
+/// name = id), FAIL as <failure>, SKIP as <skipped>, WARN as a passing case with <system-out>.
+std::string to_junit(const std::vector<NodeReport>& reports);
+
+/// Writes text to path; false with error set when the file cannot be written.
+bool write_file(const std::string& path, const std::string& text, std::string& error);
+
+/// True when file descriptor fd is a terminal (colour and progress bars only then).
+bool is_terminal(int fd);
+
+/// A one-line progress bar with bytes and ETA, redrawn in place (for stderr on a terminal).
+class ProgressBar {
+public:
+    /// A bar writing to out; disabled bars print nothing.
+    ProgressBar(std::ostream& out, bool enabled) : out_(out), enabled_(enabled) {}
+    /// Starts a new task of `total` bytes (0 when unknown) at time now.
+    void start(std::string label, std::size_t total, std::chrono::steady_clock::time_point now);
+    /// Redraws for `done` bytes at time now.
+    void update(std::size_t done, std::chrono::steady_clock::time_point now);
+    /// Clears the line.
+    void finish();
+    /// The text update() draws (without the carriage return), for tests.
+    std::string render(std::size_t done, std::chrono::steady_clock::time_point now) const;
+
+private:
+    std::ostream& out_;
+    bool enabled_;
+    std::string label_;
+    std::size_t total_ = 0;
+    std::chrono::steady_clock::time_point started_{};
+    bool drawn_ = false;
+};
+
+}  // namespace olcb::conform

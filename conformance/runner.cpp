@@ -1,0 +1,206 @@
+#include "conformance/runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <ostream>
+
+#include "cdi/layout.hpp"
+#include "cdi/parser.hpp"
+#include "conformance/encoding_checks.hpp"
+#include "conformance/report.hpp"
+#include "memory/snip.hpp"
+
+namespace olcb::conform {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+extern "C" void on_stop_signal(int) {
+    g_stop = 1;
+}
+
+constexpr std::size_t kChunk = 64;
+// A CDI larger than this is not downloaded for the encoding checks (protocol checks judge it).
+constexpr std::uint32_t kMaxCdi = 4u << 20;
+
+AccessResult to_access(const MemResult& r) {
+    return {r.ok, r.error, r.data};
+}
+
+}  // namespace
+
+AccessResult SessionMemory::read(std::uint8_t space, std::uint32_t address, std::size_t count) {
+    AccessResult out{true, 0, {}};
+    out.data.reserve(count);
+    while (out.data.size() < count) {
+        auto n = static_cast<std::uint8_t>(std::min(kChunk, count - out.data.size()));
+        auto at = static_cast<std::uint32_t>(address + out.data.size());
+        MemResult r = session_.read(node_, static_cast<memory::Space>(space), at, n);
+        if (!r.ok) return to_access(r);
+        if (r.data.empty()) return {false, 0x1082, std::move(out.data)};
+        out.data.insert(out.data.end(), r.data.begin(), r.data.end());
+        if (r.data.size() < n) break;  // short read at the end of the space
+    }
+    return out;
+}
+
+AccessResult SessionMemory::write(std::uint8_t space, std::uint32_t address,
+                                  std::span<const std::uint8_t> data) {
+    for (std::size_t done = 0; done < data.size(); done += kChunk) {
+        auto part = data.subspan(done, std::min(kChunk, data.size() - done));
+        MemResult r = session_.write(node_, static_cast<memory::Space>(space),
+                                     static_cast<std::uint32_t>(address + done), part);
+        if (!r.ok) return to_access(r);
+    }
+    return {true, 0, {}};
+}
+
+NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& options,
+                    const ProtocolChecks& protocol_checks, std::ostream& progress) {
+    NodeReport report;
+    report.node_id = node.id.to_string();
+    if (auto snip = session.snip_payload(node)) {
+        memory::Snip s = memory::decode_snip(*snip);
+        report.name = s.manufacturer + " " + s.model;
+        if (!s.user_name.empty()) report.name += " \"" + s.user_name + "\"";
+    }
+    if (protocol_checks) report.checks = protocol_checks(session, node);
+    if (options.read_only) {
+        for (auto& c : skipped_encoding_checks("--read-only: no write")) report.checks.push_back(c);
+        report.restore_summary = "nothing written (--read-only)";
+        return report;
+    }
+    if (stop_requested()) {
+        for (auto& c : skipped_encoding_checks("interrupted")) report.checks.push_back(c);
+        report.restore_summary = "nothing written (interrupted)";
+        return report;
+    }
+
+    // The encoding checks need the CDI's layout.
+    ProgressBar bar(progress, options.progress);
+    auto wall = [] { return std::chrono::steady_clock::now(); };
+    bar.start("reading CDI", 0, wall());
+    MemResult cdi_bytes = session.read_range(node, memory::Space::kCdi, 0, kMaxCdi, true,
+                                             [&](std::size_t n) { bar.update(n, wall()); });
+    bar.finish();
+    std::string xml(cdi_bytes.data.begin(), cdi_bytes.data.end());
+    if (auto nul = xml.find('\0'); nul != std::string::npos) xml.resize(nul);
+    auto parsed = cdi::parse(xml);
+    std::optional<cdi::LayoutResult> layout;
+    if (parsed.document) layout = cdi::build_layout(*parsed.document);
+    if (!cdi_bytes.ok || !layout || !layout->layout) {
+        for (auto& c : skipped_encoding_checks("no usable CDI layout (see the cdi checks)")) {
+            report.checks.push_back(c);
+        }
+        report.restore_summary = "nothing written";
+        return report;
+    }
+
+    EncodingOptions eo;
+    eo.sample = options.sample;
+    eo.blob = options.blob;
+    eo.reboot = options.reboot;
+    eo.acdi_user = parsed.document->acdi.has_value();
+    std::vector<Probe> probes = plan_encoding(*layout->layout, eo);
+
+    SessionMemory memory(session, node);
+    SafetyBackup backup(
+        options.backup_path.empty() ? default_backup_path(report.node_id) : options.backup_path,
+        report.node_id);
+    std::string error;
+    if (!backup.capture(memory, ranges_to_backup(probes, eo), error)) {
+        for (auto& c : skipped_encoding_checks("no safety backup, nothing written: " + error)) {
+            report.checks.push_back(c);
+        }
+        report.restore_summary = "nothing written (" + error + ")";
+        return report;
+    }
+
+    EncodingHooks hooks;
+    hooks.stop = [] { return stop_requested(); };
+    hooks.reboot = [&] {
+        std::size_t mark = session.message_mark();
+        const std::uint8_t reset[] = {0x20, 0xA9};
+        session.command(node, reset);
+        auto is_init = [&](const Message& m) {
+            return (m.mti == Mti::kInitializationComplete ||
+                    m.mti == Mti::kInitializationCompleteSimple) &&
+                   m.source.id == node.id;
+        };
+        for (const auto& r : session.messages_since(mark)) {
+            if (is_init(r.message)) return true;
+        }
+        return session.wait_for(is_init, std::chrono::seconds(3)).has_value();
+    };
+    hooks.snip_user_name = [&]() -> std::optional<std::string> {
+        auto payload = session.snip_payload(node);
+        if (!payload) return std::nullopt;
+        return memory::decode_snip(*payload).user_name;
+    };
+    bar.start("encoding checks", 0, wall());
+    hooks.progress = [&](std::size_t done, std::size_t total) {
+        (void)total;
+        bar.update(done, wall());
+    };
+    auto results = run_encoding_checks(probes, memory, eo, hooks);
+    bar.finish();
+    report.checks.insert(report.checks.end(), results.begin(), results.end());
+
+    RestoreOutcome outcome = restore(backup, memory);
+    report.restore_summary = outcome.summary();
+    CheckResult restored{"encoding.restore",
+                         Category::kEncoding,
+                         outcome.identical ? Status::kPass : Status::kFail,
+                         outcome.summary(),
+                         "lcc-conform safety rule",
+                         "",
+                         ""};
+    if (outcome.identical) {
+        backup.remove_file();
+    } else {
+        restored.message += "; backup kept in " + backup.path();
+    }
+    report.checks.push_back(std::move(restored));
+    return report;
+}
+
+std::optional<RestoreOutcome> restore_file(Session& session, const std::string& path,
+                                           std::string& error) {
+    auto backup = SafetyBackup::load(path, error);
+    if (!backup) return std::nullopt;
+    auto id = NodeId::parse(backup->node_id(), &error);
+    if (!id) return std::nullopt;
+    auto node = session.find_node(*id);
+    if (!node) {
+        error = "node " + backup->node_id() + " does not answer";
+        return std::nullopt;
+    }
+    SessionMemory memory(session, *node);
+    return restore(*backup, memory);
+}
+
+int exit_code(const std::vector<NodeReport>& reports) {
+    for (const NodeReport& r : reports) {
+        if (r.count(Status::kFail) > 0) return 1;
+    }
+    return 0;
+}
+
+void install_stop_handlers() {
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool stop_requested() {
+    return g_stop != 0;
+}
+
+void request_stop(bool on) {
+    g_stop = on ? 1 : 0;
+}
+
+}  // namespace olcb::conform

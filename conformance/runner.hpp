@@ -1,0 +1,63 @@
+// The whole conformance run for one node: protocol checks, then encoding checks under the safety
+// backup, then the restore; and the exit code of a run.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "conformance/backup.hpp"
+#include "conformance/check_result.hpp"
+#include "conformance/session.hpp"
+
+namespace olcb::conform {
+
+/// What the user asked for.
+struct RunOptions {
+    bool read_only = false;   ///< no write at all (encoding checks SKIP)
+    std::size_t sample = 3;   ///< replicas per replicated group in the encoding checks
+    bool blob = false;        ///< also write <blob> variables
+    bool reboot = false;      ///< reset the node and check persistence
+    std::string backup_path;  ///< safety backup file; empty: default_backup_path(node)
+    bool progress = false;    ///< draw progress bars on the progress stream
+};
+
+/// The protocol checks (J1's run_protocol_checks, bound by the program); may be empty.
+using ProtocolChecks = std::function<std::vector<CheckResult>(Session&, const NodeInfo&)>;
+
+/// MemoryAccess over a Session: splits reads and writes into 64-byte datagrams.
+class SessionMemory : public MemoryAccess {
+public:
+    /// Access to node's memory through session.
+    SessionMemory(Session& session, NodeInfo node) : session_(session), node_(node) {}
+    AccessResult read(std::uint8_t space, std::uint32_t address, std::size_t count) override;
+    AccessResult write(std::uint8_t space, std::uint32_t address,
+                       std::span<const std::uint8_t> data) override;
+
+private:
+    Session& session_;
+    NodeInfo node_;
+};
+
+/// Runs every check against one node; `progress` receives progress bars when enabled.
+NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& options,
+                    const ProtocolChecks& protocol_checks, std::ostream& progress);
+
+/// Restores a safety backup file onto its node (found on the session's link); the outcome, or
+/// nullopt with `error` when the file or node is unusable.
+std::optional<RestoreOutcome> restore_file(Session& session, const std::string& path,
+                                           std::string& error);
+
+/// 0 when every check passed (or warned/skipped) and restores were identical, 1 otherwise.
+int exit_code(const std::vector<NodeReport>& reports);
+
+/// Makes SIGINT and SIGTERM request a stop (the run restores, then exits) instead of killing.
+void install_stop_handlers();
+/// True once SIGINT/SIGTERM arrived (or request_stop() was called).
+bool stop_requested();
+/// Requests a stop as a signal would (tests).
+void request_stop(bool on = true);
+
+}  // namespace olcb::conform

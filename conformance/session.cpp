@@ -1,0 +1,366 @@
+#include "conformance/session.hpp"
+
+#include <algorithm>
+#include <variant>
+
+#include "memory/snip.hpp"
+#include "openlcb/error_codes.hpp"
+
+namespace olcb::conform {
+namespace {
+
+// A run against a chatty node must not grow without bound; beyond these, records are dropped.
+constexpr std::size_t kMaxFrames = 1'000'000;
+constexpr std::size_t kMaxMessages = 200'000;
+
+bool is_short_form(std::span<const std::uint8_t> payload) {
+    return payload.size() >= 2 && payload[1] < 0x80 && (payload[1] & 0x03) != 0;
+}
+
+bool is_reply(const memory::Message& m) {
+    return std::holds_alternative<memory::ReadReply>(m) ||
+           std::holds_alternative<memory::ReadReplyFail>(m) ||
+           std::holds_alternative<memory::WriteReply>(m) ||
+           std::holds_alternative<memory::WriteReplyFail>(m) ||
+           std::holds_alternative<memory::ReadStreamReply>(m) ||
+           std::holds_alternative<memory::ReadStreamReplyFail>(m) ||
+           std::holds_alternative<memory::WriteStreamReply>(m) ||
+           std::holds_alternative<memory::WriteStreamReplyFail>(m) ||
+           std::holds_alternative<memory::ConfigOptionsReply>(m) ||
+           std::holds_alternative<memory::SpaceInfoReply>(m) ||
+           std::holds_alternative<memory::SpaceInfoNotPresent>(m) ||
+           std::holds_alternative<memory::LockReply>(m) ||
+           std::holds_alternative<memory::UniqueIdReply>(m);
+}
+
+// Commands after which the node owes no reply datagram.
+bool expects_no_reply(std::span<const std::uint8_t> payload) {
+    if (payload.size() < 2 || payload[0] != memory::kDatagramType) return true;
+    const std::uint8_t c = payload[1];
+    return c == 0xA0 || c == 0xA1 || c == 0xA8 || c == 0xA9 || c == 0xAA || c == 0xAB;
+}
+
+bool is_write_command(std::span<const std::uint8_t> payload) {
+    return payload.size() >= 2 && (payload[1] & 0xC0) == 0x00;
+}
+
+}  // namespace
+
+Session::Session(Link& link) : link_(link) {
+    NodeStack& stack = link_.stack();
+    stack.set_message_handler([this](const Message& msg) {
+        if (messages_.size() < kMaxMessages) messages_.push_back({msg, link_.now(), ++seq_});
+        return true;  // a tool answers nothing it did not ask for
+    });
+    stack.set_datagram_handler([this](const ReceivedDatagram& d) {
+        Message msg;
+        msg.mti = Mti::kDatagram;
+        msg.source = NodeHandle{NodeId{}, d.source_alias};
+        msg.destination = NodeHandle{link_.stack().node_id(), d.dest_alias};
+        msg.payload = d.payload;
+        if (messages_.size() < kMaxMessages) messages_.push_back({msg, link_.now(), ++seq_});
+        link_.stack().accept_datagram(d.source_alias);
+    });
+    stack.set_outcome_handler([this](const DatagramOutcome& o) {
+        outcomes_[o.id] = OutcomeRecord{o, link_.now(), ++seq_};
+    });
+    link_.set_frame_observer([this](const CanFrame& f, TimePoint) {
+        if (frames_.size() < kMaxFrames) frames_.push_back(f);
+    });
+}
+
+bool Session::start(Duration timeout) {
+    return link_.run_until([this] { return link_.stack().initialized(); }, timeout);
+}
+
+std::vector<NodeInfo> Session::discover(Duration window) {
+    Message msg;
+    msg.mti = Mti::kVerifyNodeIdGlobal;
+    const std::size_t mark = messages_.size();
+    send(msg);
+    wait(window);
+    std::vector<NodeInfo> out;
+    for (std::size_t i = mark; i < messages_.size(); ++i) {
+        const Message& m = messages_[i].message;
+        if (m.mti != Mti::kVerifiedNodeId && m.mti != Mti::kVerifiedNodeIdSimple) continue;
+        auto id = NodeId::from_bytes(m.payload);
+        if (!id) continue;
+        const bool dup =
+            std::any_of(out.begin(), out.end(), [&](const NodeInfo& n) { return n.id == *id; });
+        if (!dup) out.push_back({*id, m.source.alias});
+    }
+    std::sort(out.begin(), out.end(),
+              [](const NodeInfo& a, const NodeInfo& b) { return a.id < b.id; });
+    return out;
+}
+
+std::optional<NodeInfo> Session::find_node(NodeId id, Duration timeout) {
+    Message msg;
+    msg.mti = Mti::kVerifyNodeIdGlobal;
+    auto bytes = id.to_bytes();
+    msg.payload.assign(bytes.begin(), bytes.end());
+    auto verified = [&](const Message& m) {
+        if (m.mti != Mti::kVerifiedNodeId && m.mti != Mti::kVerifiedNodeIdSimple) return false;
+        auto got = NodeId::from_bytes(m.payload);
+        return got && *got == id;
+    };
+    const std::size_t mark = messages_.size();
+    send(msg);
+    std::optional<NodeInfo> found;
+    link_.run_until(
+        [&] {
+            for (std::size_t i = mark; i < messages_.size(); ++i) {
+                if (verified(messages_[i].message)) {
+                    found = NodeInfo{id, messages_[i].message.source.alias};
+                    return true;
+                }
+            }
+            return false;
+        },
+        timeout);
+    return found;
+}
+
+SendStatus Session::send(Message msg) {
+    return link_.stack().send_message(std::move(msg));
+}
+
+std::vector<Message> Session::collect(const std::function<bool(const Message&)>& match,
+                                      Duration window) {
+    const std::size_t mark = messages_.size();
+    wait(window);
+    std::vector<Message> out;
+    for (std::size_t i = mark; i < messages_.size(); ++i) {
+        if (!match || match(messages_[i].message)) out.push_back(messages_[i].message);
+    }
+    return out;
+}
+
+std::optional<Message> Session::wait_for(const std::function<bool(const Message&)>& match,
+                                         Duration timeout) {
+    const std::size_t mark = messages_.size();
+    std::size_t scanned = mark;
+    std::optional<Message> found;
+    link_.run_until(
+        [&] {
+            for (; scanned < messages_.size(); ++scanned) {
+                if (!match || match(messages_[scanned].message)) {
+                    found = messages_[scanned].message;
+                    return true;
+                }
+            }
+            return false;
+        },
+        timeout);
+    return found;
+}
+
+std::vector<CanFrame> Session::frames_since(std::size_t mark) const {
+    if (mark >= frames_.size()) return {};
+    return {frames_.begin() + static_cast<std::ptrdiff_t>(mark), frames_.end()};
+}
+
+std::vector<ReceivedMessage> Session::messages_since(std::size_t mark) const {
+    std::vector<ReceivedMessage> out;
+    for (std::size_t i = mark; i < messages_.size(); ++i) {
+        out.push_back({messages_[i].message, messages_[i].at});
+    }
+    return out;
+}
+
+std::optional<ProtocolSet> Session::protocol_support(const NodeInfo& node) {
+    Message msg;
+    msg.mti = Mti::kProtocolSupportInquiry;
+    msg.destination = NodeHandle{node.id, node.alias};
+    auto reply = [&](const Message& m) {
+        return m.mti == Mti::kProtocolSupportReply && m.source.alias == node.alias;
+    };
+    const std::size_t mark = messages_.size();
+    if (send(msg) != SendStatus::kSent) return std::nullopt;
+    std::size_t scanned = mark;
+    std::optional<ProtocolSet> out;
+    link_.run_until(
+        [&] {
+            for (; scanned < messages_.size(); ++scanned) {
+                if (reply(messages_[scanned].message)) {
+                    out = ProtocolSet::decode(messages_[scanned].message.payload);
+                    return true;
+                }
+            }
+            return false;
+        },
+        std::chrono::seconds(1));
+    return out;
+}
+
+std::optional<std::vector<std::uint8_t>> Session::snip_payload(const NodeInfo& node) {
+    Message msg;
+    msg.mti = Mti::kSnipRequest;
+    msg.destination = NodeHandle{node.id, node.alias};
+    const std::size_t mark = messages_.size();
+    if (send(msg) != SendStatus::kSent) return std::nullopt;
+    std::vector<std::uint8_t> bytes;
+    bool any = false;
+    std::size_t scanned = mark;
+    // Legacy nodes send each frame as its own message: concatenate until six NULs are in.
+    link_.run_until(
+        [&] {
+            for (; scanned < messages_.size(); ++scanned) {
+                const Message& m = messages_[scanned].message;
+                if (m.mti != Mti::kSnipReply || m.source.alias != node.alias) continue;
+                any = true;
+                bytes.insert(bytes.end(), m.payload.begin(), m.payload.end());
+                if (bytes.size() > memory::kSnipMaxPayload * 2) return true;
+            }
+            return any && memory::is_complete_snip(bytes);
+        },
+        std::chrono::seconds(1));
+    if (!any) return std::nullopt;
+    return bytes;
+}
+
+MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
+                            bool always_reply, memory::Message* reply) {
+    MemResult result;
+    const bool request_short = is_short_form(payload);
+    const std::size_t mark = messages_.size();
+    const TimePoint sent_at = link_.now();
+    auto id = link_.stack().send_datagram(node.alias, payload, sent_at);
+    if (!id) {
+        result.error = error_code::kTemporaryError;
+        result.rejected = true;
+        return result;
+    }
+    std::size_t scanned = mark;
+    std::optional<std::size_t> reply_index;
+    std::optional<memory::Message> decoded;
+    auto find_reply = [&] {
+        for (; !reply_index && scanned < messages_.size(); ++scanned) {
+            const Message& m = messages_[scanned].message;
+            if (m.mti != Mti::kDatagram || m.source.alias != node.alias) continue;
+            auto d = memory::decode(m.payload);
+            if (!d.ok() || !is_reply(d.message)) continue;
+            reply_index = scanned;
+            decoded = d.message;
+        }
+        return reply_index.has_value();
+    };
+    auto outcome = [&]() -> const OutcomeRecord* {
+        auto it = outcomes_.find(*id);
+        return it == outcomes_.end() ? nullptr : &it->second;
+    };
+    // The ack may sit behind an earlier unacknowledged datagram to the same node (sender timeout).
+    const Duration ack_wait =
+        link_.stack().config().datagram_sender.ack_timeout * 2 + std::chrono::milliseconds(500);
+    link_.run_until([&] { return outcome() != nullptr || find_reply(); }, ack_wait);
+    const OutcomeRecord* oc = outcome();
+    if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
+    if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !reply_index) {
+        result.rejected = true;
+        result.error = oc->outcome.error_code;
+        return result;
+    }
+    if (oc && oc->outcome.status == DatagramOutcome::Status::kAccepted) {
+        result.reply_pending = datagram::is_reply_pending(oc->outcome.flags);
+        const bool reply_expected = always_reply || result.reply_pending;
+        if (!reply_expected && !find_reply()) {
+            result.ok = true;
+            return result;
+        }
+    }
+    if (!reply_index) {
+        link_.run_until(find_reply, reply_timeout_);
+    }
+    if (!reply_index) {
+        result.timed_out = true;
+        result.error = error_code::kTimeout;
+        return result;
+    }
+    const Event& ev = messages_[*reply_index];
+    oc = outcome();
+    result.datagram_ok_seen =
+        oc && oc->outcome.status == DatagramOutcome::Status::kAccepted && oc->seq < ev.seq;
+    if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
+    result.reply_latency = ev.at - sent_at;
+    result.reply_in_request_form = is_short_form(ev.message.payload) == request_short;
+    if (reply) *reply = *decoded;
+    std::visit(
+        [&](const auto& m) {
+            using T = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<T, memory::ReadReply>) {
+                result.ok = true;
+                result.data = m.data;
+            } else if constexpr (std::is_same_v<T, memory::ReadReplyFail> ||
+                                 std::is_same_v<T, memory::WriteReplyFail> ||
+                                 std::is_same_v<T, memory::ReadStreamReplyFail> ||
+                                 std::is_same_v<T, memory::WriteStreamReplyFail>) {
+                result.error = memory::to_u16(m.error);
+            } else {
+                result.ok = true;
+            }
+        },
+        *decoded);
+    return result;
+}
+
+MemResult Session::read(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                        std::uint8_t count, memory::SpaceForm form) {
+    const auto payload = memory::encode(memory::Read{space, address, count, form});
+    return exchange(node, payload, true, nullptr);
+}
+
+MemResult Session::write(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                         std::span<const std::uint8_t> data, memory::SpaceForm form) {
+    memory::Write w{space, address, {data.begin(), data.end()}, form};
+    const auto payload = memory::encode(w);
+    return exchange(node, payload, false, nullptr);
+}
+
+MemResult Session::command(const NodeInfo& node, std::span<const std::uint8_t> payload,
+                           memory::Message* reply) {
+    const bool always = !expects_no_reply(payload) && !is_write_command(payload);
+    return exchange(node, payload, always, reply);
+}
+
+MemResult Session::read_range(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                              std::uint32_t length, bool stop_at_nul,
+                              const std::function<void(std::size_t)>& progress) {
+    MemResult total;
+    total.ok = true;
+    total.datagram_ok_seen = true;
+    total.reply_pending = true;
+    std::uint32_t done = 0;
+    while (done < length) {
+        const auto count = static_cast<std::uint8_t>(std::min<std::uint32_t>(length - done, 64));
+        MemResult r = read(node, space, address + done, count);
+        total.temporary_rejects += r.temporary_rejects;
+        total.reply_latency = std::max(total.reply_latency, r.reply_latency);
+        if (!r.ok) {
+            if (!r.rejected && !r.timed_out && r.error == error_code::kOutOfBounds) break;
+            total.ok = false;
+            total.error = r.error;
+            total.rejected = r.rejected;
+            total.timed_out = r.timed_out;
+            break;
+        }
+        total.datagram_ok_seen = total.datagram_ok_seen && r.datagram_ok_seen;
+        total.reply_pending = total.reply_pending && r.reply_pending;
+        total.reply_in_request_form = total.reply_in_request_form && r.reply_in_request_form;
+        if (r.data.size() > count) r.data.resize(count);  // never trust the node's length
+        bool nul = false;
+        if (stop_at_nul) {
+            auto it = std::find(r.data.begin(), r.data.end(), std::uint8_t{0});
+            if (it != r.data.end()) {
+                r.data.erase(it + 1, r.data.end());
+                nul = true;
+            }
+        }
+        total.data.insert(total.data.end(), r.data.begin(), r.data.end());
+        done += static_cast<std::uint32_t>(r.data.size());
+        if (progress) progress(total.data.size());
+        if (nul || r.data.size() < count || r.data.empty()) break;
+    }
+    return total;
+}
+
+}  // namespace olcb::conform

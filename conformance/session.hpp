@@ -1,0 +1,136 @@
+// Synchronous-looking operations on a Link: discovery, messages, SNIP, PIP and the memory
+// configuration client the checks are written with. Everything received is recorded.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "conformance/link.hpp"
+#include "memory/memory_config_codec.hpp"
+#include "openlcb/datagram_transport.hpp"
+#include "openlcb/message.hpp"
+#include "openlcb/pip.hpp"
+
+namespace olcb::conform {
+
+/// A node found on the segment.
+struct NodeInfo {
+    NodeId id;
+    std::uint16_t alias = 0;
+};
+
+/// Outcome of one memory-configuration exchange.
+struct MemResult {
+    bool ok = false;                    ///< reply OK (read data / write done)
+    std::uint16_t error = 0;            ///< reject or fail code when !ok (0x2010 on timeout)
+    bool rejected = false;              ///< Datagram Rejected (vs Reply Fail)
+    bool timed_out = false;             ///< no answer in time
+    std::vector<std::uint8_t> data;     ///< read data
+    bool datagram_ok_seen = false;      ///< Datagram Received OK arrived before the reply
+    bool reply_pending = false;         ///< its Reply Pending flag
+    bool reply_in_request_form = true;  ///< reply used the same short/byte-6 form as the request
+    Duration reply_latency{};           ///< request sent -> reply datagram received
+    unsigned temporary_rejects = 0;     ///< 0x2xxx rejects that were retried
+};
+
+/// One received message with its arrival time.
+struct ReceivedMessage {
+    Message message;
+    TimePoint at;
+};
+
+/// Blocking-style client on a Link; all waits go through Link::run_until.
+class Session {
+public:
+    /// Hooks into the link's stack (message, datagram and outcome handlers) and frame tap.
+    explicit Session(Link& link);
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    /// Waits for our alias and Initialization Complete.
+    bool start(Duration timeout = std::chrono::seconds(2));
+    /// Sends Verify Node ID global and lists every node answering within window.
+    std::vector<NodeInfo> discover(Duration window = std::chrono::milliseconds(500));
+    /// Sends Verify Node ID global with id and waits for that node's Verified Node ID.
+    std::optional<NodeInfo> find_node(NodeId id, Duration timeout = std::chrono::seconds(1));
+
+    /// Sends a message from our node.
+    SendStatus send(Message msg);
+    /// Every message arriving (from now on) within window that matches.
+    std::vector<Message> collect(const std::function<bool(const Message&)>& match, Duration window);
+    /// The first message arriving (from now on) within timeout that matches.
+    std::optional<Message> wait_for(const std::function<bool(const Message&)>& match,
+                                    Duration timeout);
+    /// Frames seen on the segment since a mark (ours, received and injected).
+    std::vector<CanFrame> frames_since(std::size_t mark) const;
+    /// Mark for frames_since().
+    std::size_t frame_mark() const { return frames_.size(); }
+    /// Messages received since a mark (see message_mark()).
+    std::vector<ReceivedMessage> messages_since(std::size_t mark) const;
+    /// Mark for messages_since().
+    std::size_t message_mark() const { return messages_.size(); }
+    /// Puts a raw frame on the segment (our own stack does not see it).
+    void inject(const CanFrame& frame) { link_.send_frame(frame); }
+    /// Drives the network for d (silence windows).
+    void wait(Duration d) { link_.run_until({}, d); }
+    /// The link under this session.
+    Link& link() { return link_; }
+    /// Our node ID.
+    NodeId tool_id() { return link_.stack().node_id(); }
+    /// Our alias.
+    std::uint16_t tool_alias() { return link_.stack().alias(); }
+
+    /// Protocol Support Inquiry -> the reply's flags; nullopt without a reply.
+    std::optional<ProtocolSet> protocol_support(const NodeInfo& node);
+    /// SNIP request -> the reassembled payload (multi-frame or legacy); nullopt without a reply.
+    std::optional<std::vector<std::uint8_t>> snip_payload(const NodeInfo& node);
+    /// Reads count (1..64) bytes.
+    MemResult read(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                   std::uint8_t count, memory::SpaceForm form = memory::SpaceForm::kAuto);
+    /// Writes 1..64 bytes.
+    MemResult write(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                    std::span<const std::uint8_t> data,
+                    memory::SpaceForm form = memory::SpaceForm::kAuto);
+    /// Any memory-config command; returns the decoded reply datagram when one came.
+    MemResult command(const NodeInfo& node, std::span<const std::uint8_t> payload,
+                      memory::Message* reply = nullptr);
+    /// Reads [address, address+length) in 64-byte reads, stopping at a NUL (stop_at_nul; the NUL
+    /// is kept as the last data byte), a short reply, or 0x1082 (ok stays true for these);
+    /// progress(bytes_so_far) is called after each read.
+    MemResult read_range(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                         std::uint32_t length, bool stop_at_nul,
+                         const std::function<void(std::size_t)>& progress = {});
+
+    /// How long to wait for the reply datagram after Datagram Received OK.
+    void set_reply_timeout(Duration d) { reply_timeout_ = d; }
+
+private:
+    struct Event {
+        Message message;
+        TimePoint at;
+        std::uint64_t seq = 0;
+    };
+    struct OutcomeRecord {
+        DatagramOutcome outcome;
+        TimePoint at;
+        std::uint64_t seq = 0;
+    };
+
+    MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
+                       bool always_reply, memory::Message* reply);
+
+    Link& link_;
+    std::vector<Event> messages_;
+    std::vector<CanFrame> frames_;
+    std::map<std::uint32_t, OutcomeRecord> outcomes_;
+    std::uint64_t seq_ = 0;
+    Duration reply_timeout_ = std::chrono::milliseconds(3000);
+};
+
+}  // namespace olcb::conform

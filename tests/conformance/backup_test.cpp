@@ -1,0 +1,111 @@
+#include "conformance/backup.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "conformance/fake_memory.hpp"
+
+namespace olcb::conform {
+namespace {
+
+std::string temp_path(const std::string& name) {
+    return (std::filesystem::temp_directory_path() /
+            ("j2-" + std::to_string(::getpid()) + "-" + name))
+        .string();
+}
+
+TEST(MergeRanges, MergesOverlappingAndAdjacentOfOneSpaceOnly) {
+    auto out = merge_ranges({{253, 10, 4}, {253, 0, 10}, {251, 0, 4}, {253, 20, 2}, {253, 12, 4}});
+    ASSERT_EQ(out.size(), 3u);
+    EXPECT_EQ(out[0].space, 251);
+    EXPECT_EQ(out[1].address, 0u);
+    EXPECT_EQ(out[1].length, 16u);
+    EXPECT_EQ(out[2].address, 20u);
+}
+
+TEST(SafetyBackup, CaptureSavesFileThatLoadsBackIdentically) {
+    testing::FakeMemory mem;
+    mem.spaces[253] = {1, 2, 3, 4, 5, 6, 7, 8};
+    std::string path = temp_path("cap.txt");
+    SafetyBackup b(path, "05.01.01.01.22.00");
+    std::string error;
+    ASSERT_TRUE(b.capture(mem, {{253, 2, 3}}, error)) << error;
+    std::string load_error;
+    auto loaded = SafetyBackup::load(path, load_error);
+    ASSERT_TRUE(loaded) << load_error;
+    EXPECT_EQ(loaded->node_id(), "05.01.01.01.22.00");
+    ASSERT_EQ(loaded->ranges().size(), 1u);
+    EXPECT_EQ(loaded->ranges()[0], (BackupRange{253, 2, {3, 4, 5}}));
+    std::filesystem::remove(path);
+}
+
+TEST(SafetyBackup, CaptureFailsWithoutWritingWhenReadFails) {
+    testing::FakeMemory mem;
+    SafetyBackup b(temp_path("fail.txt"), "05.01.01.01.22.00");
+    std::string error;
+    EXPECT_FALSE(b.capture(mem, {{253, 0, 4}}, error));
+    EXPECT_NE(error.find("0x1081"), std::string::npos) << error;
+    EXPECT_FALSE(std::filesystem::exists(b.path()));
+}
+
+TEST(SafetyBackup, LoadRejectsTruncatedAndMalformedFiles) {
+    std::string path = temp_path("bad.txt");
+    std::string error;
+    {
+        std::ofstream f(path);
+        f << "# lcc-conform safety backup v1\nnode 05.01.01.01.22.00\nrange 253 0x10 2 0A0B\n";
+    }
+    EXPECT_FALSE(SafetyBackup::load(path, error));
+    EXPECT_NE(error.find("incomplete"), std::string::npos);
+    {
+        std::ofstream f(path);
+        f << "# lcc-conform safety backup v1\nnode 1\nrange 253 0x10 3 0A0B\nend\n";
+    }
+    EXPECT_FALSE(SafetyBackup::load(path, error));
+    {
+        std::ofstream f(path);
+        f << "# lcc-conform safety backup v1\nnode 1\nrange 253 0x10 99999999999 00\nend\n";
+    }
+    EXPECT_FALSE(SafetyBackup::load(path, error));
+    {
+        std::ofstream f(path);
+        f << "hello\n";
+    }
+    EXPECT_FALSE(SafetyBackup::load(path, error));
+    EXPECT_FALSE(SafetyBackup::load(temp_path("missing.txt"), error));
+    std::filesystem::remove(path);
+}
+
+TEST(Restore, PutsBytesBackAndReportsIdentical) {
+    testing::FakeMemory mem;
+    mem.spaces[253] = {1, 2, 3, 4};
+    SafetyBackup b("unused", "n");
+    b.add({253, 1, {2, 3}});
+    mem.spaces[253] = {1, 9, 9, 4};
+    RestoreOutcome r = restore(b, mem);
+    EXPECT_TRUE(r.identical);
+    EXPECT_EQ(mem.spaces[253], (std::vector<std::uint8_t>{1, 2, 3, 4}));
+    EXPECT_NE(r.summary().find("byte-identical"), std::string::npos);
+}
+
+TEST(Restore, ReportsWhatDiffersWhenTheNodeDropsWrites) {
+    testing::FakeMemory mem;
+    mem.spaces[253] = {1, 9, 9, 4};
+    mem.drop_writes = true;
+    SafetyBackup b("unused", "n");
+    b.add({253, 1, {2, 3}});
+    RestoreOutcome r = restore(b, mem);
+    EXPECT_FALSE(r.identical);
+    ASSERT_EQ(r.differences.size(), 1u);
+    EXPECT_NE(r.differences[0].find("2 bytes differ"), std::string::npos) << r.differences[0];
+    EXPECT_NE(r.summary().find("NOT identical"), std::string::npos);
+}
+
+TEST(DefaultBackupPath, NamesTheNode) {
+    EXPECT_EQ(default_backup_path("05.01.01.01.22.00"), "./lcc-conform-backup-050101012200.txt");
+}
+
+}  // namespace
+}  // namespace olcb::conform

@@ -1,0 +1,296 @@
+// lcc-conform as a user runs it, against the simnode program over GridConnect TCP: the default
+// scenario passes, every fault scenario fails in the fault's category, the node's image files
+// are untouched after a full and an interrupted run, and the JMRI backup/restore round trip.
+#include <gtest/gtest.h>
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "e2e/e2e_util.hpp"
+
+#if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
+
+namespace olcb::e2e {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr const char* kNode = "05.01.01.01.22.00";
+
+std::string read_text(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Every image file (except journals) under dir with its contents.
+std::map<std::string, std::string> snapshot_images(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file() || e.path().extension() == ".journal") continue;
+        out[fs::relative(e.path(), dir).string()] = read_text(e.path());
+    }
+    return out;
+}
+
+/// The image files once they equal `expected`, or as they are after a bounded wait: simnode
+/// applies journaled writes to its images in the background, so the last restore may lag a bit.
+std::map<std::string, std::string> settled_images(
+    const fs::path& dir, const std::map<std::string, std::string>& expected) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    auto now = snapshot_images(dir);
+    while (now != expected && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(milliseconds(20));
+        now = snapshot_images(dir);
+    }
+    return now;
+}
+
+/// A simnode program serving one scenario on an ephemeral port; killed when destroyed.
+struct Simnode {
+    TempDir images{"lcc-conform-e2e-img"};
+    std::unique_ptr<Child> child;
+    std::uint16_t port = 0;
+
+    explicit Simnode(const fs::path& scenario) {
+        child = Child::spawn(SIMNODE_PATH, {"--scenario", scenario.string(), "--listen",
+                                            "127.0.0.1:0", "--image-dir", images.str()});
+        if (!child) return;
+        if (auto p = child->wait_listening()) port = *p;
+    }
+    std::string connect() const { return "127.0.0.1:" + std::to_string(port); }
+};
+
+/// Runs lcc-conform with args; exit code and stdout (bounded).
+std::pair<int, std::string> conform(const std::vector<std::string>& args,
+                                    milliseconds timeout = milliseconds(60000)) {
+    return run_program(LCC_CONFORM_PATH, args, timeout);
+}
+
+/// The status of every check line "STATUS  id  message" of the text report.
+std::vector<std::pair<std::string, std::string>> check_lines(const std::string& out) {
+    std::vector<std::pair<std::string, std::string>> lines;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream words(line);
+        std::string status, id;
+        words >> status >> id;
+        if (status == "PASS" || status == "FAIL" || status == "WARN" || status == "SKIP")
+            lines.emplace_back(status, id);
+    }
+    return lines;
+}
+
+TEST(LccConformE2e, DefaultScenarioPassesWithValidJsonAndJunit) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-out");
+    const auto before = snapshot_images(sim.images.path());
+    ASSERT_FALSE(before.empty()) << "simnode wrote no image files";
+    const std::string json = (out.path() / "r.json").string();
+    const std::string junit = (out.path() / "r.xml").string();
+    const auto [code, text] =
+        conform({"--connect", sim.connect(), "--node", kNode, "--backup",
+                 (out.path() / "safety.txt").string(), "--json", json, "--junit", junit});
+    EXPECT_EQ(code, 0) << text;
+    const auto lines = check_lines(text);
+    ASSERT_FALSE(lines.empty()) << text;
+    for (const auto& [status, id] : lines) EXPECT_NE(status, "FAIL") << id;
+
+    const auto j = nlohmann::json::parse(read_text(json), nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << "JSON report does not parse";
+    ASSERT_TRUE(j.contains("checks") && j["checks"].is_array());
+    ASSERT_TRUE(j.contains("summary"));
+    EXPECT_EQ(j["checks"].size(), lines.size());
+    EXPECT_EQ(j["summary"]["fail"], 0);
+    for (const auto& c : j["checks"]) {
+        for (const char* key : {"id", "category", "status", "message", "section"})
+            EXPECT_TRUE(c.contains(key)) << key;
+    }
+
+    pugi::xml_document doc;
+    const auto parsed = doc.load_file(junit.c_str());
+    ASSERT_TRUE(parsed) << "JUnit XML not well-formed: " << parsed.description();
+    std::size_t testcases = 0;
+    for (auto tc : doc.select_nodes("//testcase")) {
+        (void)tc;
+        ++testcases;
+    }
+    EXPECT_EQ(testcases, lines.size());
+    EXPECT_EQ(doc.select_nodes("//failure").size(), 0u);
+
+    // Restore proven: the images are byte-identical after the full run.
+    EXPECT_EQ(settled_images(sim.images.path(), before), before);
+}
+
+TEST(LccConformE2e, SigintDuringEncodingChecksRestoresTheImages) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-out");
+    const auto before = snapshot_images(sim.images.path());
+    const fs::path backup = out.path() / "safety.txt";
+    auto run = Child::spawn(LCC_CONFORM_PATH, {"--connect", sim.connect(), "--node", kNode,
+                                               "--backup", backup.string()});
+    ASSERT_TRUE(run);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!fs::exists(backup) && std::chrono::steady_clock::now() < deadline &&
+           !run->wait_for(milliseconds(2))) {
+    }
+    ASSERT_TRUE(fs::exists(backup)) << "the safety backup file never appeared";
+    run->signal(SIGINT);
+    ASSERT_TRUE(run->wait_for(milliseconds(30000))) << "lcc-conform did not stop after SIGINT";
+    EXPECT_NE(run->wait(), 0) << "an interrupted run must not report success";
+    EXPECT_EQ(settled_images(sim.images.path(), before), before);
+}
+
+TEST(LccConformE2e, ListShowsTheNodeWithItsSnipNames) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    const auto [code, text] = conform({"--connect", sim.connect(), "--list"});
+    EXPECT_EQ(code, 0) << text;
+    EXPECT_NE(text.find(kNode), std::string::npos) << text;
+    EXPECT_NE(text.find("OpenLCB Tools"), std::string::npos) << text;
+    EXPECT_NE(text.find("simnode default"), std::string::npos) << text;
+}
+
+TEST(LccConformE2e, JmriBackupRestoreRoundTripOverTcp) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-out");
+    const std::string file = (out.path() / "config.txt").string();
+    auto [code, text] = conform({"--connect", sim.connect(), "backup", "--node", kNode, file});
+    ASSERT_EQ(code, 0) << text;
+    const std::string saved = read_text(file);
+    ASSERT_NE(saved.find("\nSettings.Trim=-5\n"), std::string::npos) << saved;
+    ASSERT_NE(saved.find("\nNode identity.User Name=simnode default\n"), std::string::npos);
+
+    // Change two values with a JMRI-format file, then check the backup shows them.
+    const std::string change = (out.path() / "change.txt").string();
+    std::ofstream(change) << "# node " << kNode
+                          << "\nSettings.Trim=7\nNode identity.User Name=changed\\x003D\n";
+    std::tie(code, text) = conform({"--connect", sim.connect(), "restore", change});
+    ASSERT_EQ(code, 0) << text;
+    const std::string changed_file = (out.path() / "changed.txt").string();
+    std::tie(code, text) =
+        conform({"--connect", sim.connect(), "backup", "--node", kNode, changed_file});
+    ASSERT_EQ(code, 0) << text;
+    const std::string changed = read_text(changed_file);
+    EXPECT_NE(changed.find("\nSettings.Trim=7\n"), std::string::npos) << changed;
+    EXPECT_NE(changed.find("\nNode identity.User Name=changed\\x003D\n"), std::string::npos);
+
+    // Restore the first backup: every value is back.
+    std::tie(code, text) = conform({"--connect", sim.connect(), "restore", file});
+    ASSERT_EQ(code, 0) << text;
+    std::tie(code, text) =
+        conform({"--connect", sim.connect(), "backup", "--node", kNode, changed_file});
+    ASSERT_EQ(code, 0) << text;
+    EXPECT_EQ(read_text(changed_file), saved);
+}
+
+// ---- fault x check matrix ----
+
+/// One row of the table of docs/faults.md.
+struct FaultRow {
+    std::string category;     ///< the check category that should flag it
+    bool breaks_rule = true;  ///< false for "none broken by itself" (a good client copes)
+};
+
+/// Fault name -> its row, from the table of docs/faults.md.
+std::map<std::string, FaultRow> fault_categories() {
+    std::map<std::string, FaultRow> out;
+    std::istringstream in(read_text(source_path("docs/faults.md")));
+    for (std::string line; std::getline(in, line);) {
+        if (!line.starts_with("| `")) continue;
+        const auto end = line.find('`', 3);
+        const auto last = line.find_last_not_of(" |");
+        const auto bar = line.rfind('|', last);
+        if (end == std::string::npos || bar == std::string::npos) continue;
+        std::string cat = line.substr(bar + 1, last - bar);
+        cat.erase(0, cat.find_first_not_of(' '));
+        out[line.substr(3, end - 3)] = {cat, line.find("| none broken") == std::string::npos};
+    }
+    return out;
+}
+
+/// The fault named by a scenario's "fault = NAME" line.
+std::string scenario_fault(const fs::path& ini) {
+    std::istringstream in(read_text(ini));
+    for (std::string line; std::getline(in, line);) {
+        if (!line.starts_with("fault")) continue;
+        auto v = line.substr(line.find('=') + 1);
+        v.erase(0, v.find_first_not_of(' '));
+        return v.substr(0, v.find_first_of(" ,="));
+    }
+    return {};
+}
+
+std::vector<std::string> fault_scenarios() {
+    std::vector<std::string> out;
+    const fs::path dir = source_path("scenarios/faults");
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        if (e.path().extension() == ".ini") out.push_back(e.path().stem().string());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+class LccConformFault : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
+    const fs::path ini = source_path("scenarios/faults") / (GetParam() + ".ini");
+    const std::string fault = scenario_fault(ini);
+    ASSERT_FALSE(fault.empty()) << ini << " names no fault";
+    const auto categories = fault_categories();
+    const auto cat = categories.find(fault);
+    ASSERT_NE(cat, categories.end()) << "docs/faults.md has no row for " << fault;
+
+    Simnode sim(ini);
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-out");
+    const std::string json = (out.path() / "r.json").string();
+    std::vector<std::string> args = {"--connect", sim.connect(),
+                                     "--node",    kNode,
+                                     "--backup",  (out.path() / "safety.txt").string(),
+                                     "--json",    json};
+    if (fault == "write-not-persisted") args.push_back("--reboot");
+    const auto [code, text] = conform(args, milliseconds(30000));
+    if (!cat->second.breaks_rule) {
+        // Nothing is wrong with such a node: a good client copes and every check passes.
+        EXPECT_EQ(code, 0) << text;
+        return;
+    }
+    EXPECT_EQ(code, 1) << text;
+    const auto j = nlohmann::json::parse(read_text(json), nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << "no JSON report\n" << text;
+    std::vector<std::string> failing;
+    bool found = false;
+    for (const auto& c : j["checks"]) {
+        if (c["status"] != "FAIL") continue;
+        failing.push_back(c["id"].get<std::string>() + " (" + c["category"].get<std::string>() +
+                          ")");
+        if (c["category"] == cat->second.category) found = true;
+    }
+    std::string list;
+    for (const auto& f : failing) list += "\n  " + f;
+    EXPECT_TRUE(found) << "fault " << fault << ": no FAIL in category " << cat->second.category
+                       << "; failing:" << list;
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenarios, LccConformFault, ::testing::ValuesIn(fault_scenarios()),
+                         [](const auto& info) {
+                             std::string name = info.param;
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(LccConformFault);
+
+}  // namespace
+}  // namespace olcb::e2e
+
+#endif  // SIMNODE_PATH && LCC_CONFORM_PATH
