@@ -212,6 +212,16 @@ TEST_F(FaultTest, SlowReply) {
     EXPECT_GT(a.reply_at - a.ok_at, std::chrono::milliseconds(750));
 }
 
+TEST_F(FaultTest, SlowReplyHoldsBackEveryThirtySecondReply) {
+    start_with({"slow-reply"});
+    for (std::uint64_t i = 0; i <= kSlowReplyEvery; ++i) {
+        const Answer a = exchange(read_cmd(0xFD, 15, 1), 5s);
+        ASSERT_TRUE(a.reply) << i;
+        const bool slow = a.reply_at - a.ok_at >= std::chrono::milliseconds(1200);
+        EXPECT_EQ(slow, i % kSlowReplyEvery == 0) << "reply " << i;
+    }
+}
+
 TEST_F(FaultTest, SlowReplyDroppedByReboot) {
     start_with({"slow-reply=2000"});
     const Answer probe = exchange(read_cmd(0xFD, 15, 1), 100ms);
