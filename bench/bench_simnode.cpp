@@ -21,6 +21,7 @@
 #include "openlcb/stack_driver.hpp"
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/tcp_hub_server.hpp"
+#include "simnode/resident_memory.hpp"
 #include "simnode/sim_node.hpp"
 
 namespace {
@@ -85,20 +86,6 @@ NodeStackConfig tool_config() {
     c.node_id = kToolId;
     c.protocols = {Protocol::kDatagram, Protocol::kMemoryConfiguration};
     return c;
-}
-
-long rss_kib() {
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmRSS:") {
-            long kib = 0;
-            status >> kib;
-            return kib;
-        }
-        status.ignore(1 << 16, '\n');
-    }
-    return 0;
 }
 
 // Tool side: reads space 0xFF in 64-byte reads, one at a time, from callbacks.
@@ -303,7 +290,7 @@ void BM_Startup1000(benchmark::State& state) {
     const std::string cdi = default_cdi();
     for (auto _ : state) {
         TempDir dir;
-        const long rss0 = rss_kib();
+        const long rss0 = simnode::resident_kib();
         const auto t0 = std::chrono::steady_clock::now();
         std::vector<std::unique_ptr<SimNode>> nodes;
         for (std::size_t i = 0; i < kNetworkSize; ++i) {
@@ -329,7 +316,7 @@ void BM_Startup1000(benchmark::State& state) {
         state.counters["create_s"] = std::chrono::duration<double>(t1 - t0).count();
         state.counters["init_wall_s"] = std::chrono::duration<double>(t2 - t1).count();
         state.counters["init_sim_s"] = std::chrono::duration<double>(net.bus().now()).count();
-        state.counters["rss_MiB"] = static_cast<double>(rss_kib() - rss0) / 1024.0;
+        state.counters["rss_MiB"] = static_cast<double>(simnode::resident_kib() - rss0) / 1024.0;
     }
 }
 BENCHMARK(BM_Startup1000)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);

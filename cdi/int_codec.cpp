@@ -72,16 +72,7 @@ CodecResult<WideInt> decode_int(std::span<const std::uint8_t> bytes, bool is_sig
 }
 
 std::string format_int(WideInt value) {
-    // The magnitude of the most negative value only fits unsigned.
-    UWide magnitude = value < 0 ? UWide{0} - static_cast<UWide>(value) : static_cast<UWide>(value);
-    char buf[48];
-    char* p = buf + sizeof buf;
-    do {
-        *--p = static_cast<char>('0' + static_cast<int>(magnitude % 10));
-        magnitude /= 10;
-    } while (magnitude != 0);
-    if (value < 0) *--p = '-';
-    return std::string(p, buf + sizeof buf);
+    return to_string(value);
 }
 
 CodecResult<WideInt> parse_int_text(std::string_view text) {

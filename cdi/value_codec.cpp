@@ -18,28 +18,7 @@ using Bytes = std::vector<std::uint8_t>;
 constexpr std::size_t kMaxListedProperties = 8;
 
 const char* tag_of(const Element& e) {
-    if (!e.tag.empty()) return e.tag.c_str();
-    switch (e.kind) {
-        case ElementKind::kGroup:
-            return "group";
-        case ElementKind::kInt:
-            return "int";
-        case ElementKind::kString:
-            return "string";
-        case ElementKind::kEventId:
-            return "eventid";
-        case ElementKind::kFloat:
-            return "float";
-        case ElementKind::kAction:
-            return "action";
-        case ElementKind::kBlob:
-            return "blob";
-        case ElementKind::kBit:
-            return "bit";
-        case ElementKind::kUnknown:
-            break;
-    }
-    return "unknown";
+    return e.tag.empty() ? kind_name(e.kind) : e.tag.c_str();
 }
 
 // How messages name an element: by its <name>, else by its tag and line.

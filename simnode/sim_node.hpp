@@ -55,8 +55,8 @@ inline constexpr std::uint64_t kSlowReplyEvery = 32;
 class SimNode {
 public:
     /// Loads the CDI (parse + layout; a CDI that parses and lays out but fails validation is
-    /// served as it is, see cdi_problem()), opens or creates the images, builds spaces; nullptr with
-    /// `error` set on failure.
+    /// served as it is, see cdi_problem()), opens or creates the images, builds spaces; nullptr
+    /// with `error` set on failure.
     static std::unique_ptr<SimNode> create(NodeConfig config, std::string& error);
     SimNode(const SimNode&) = delete;
     SimNode& operator=(const SimNode&) = delete;
@@ -112,7 +112,7 @@ private:
     memory::MemoryConfigServer server_;
     ProtocolSet served_protocols_;
     NodeCounters counters_;
-    std::uint64_t replies_ = 0;  // numbers replies for slow-reply
+    std::uint64_t replies_ = 0;          // numbers replies for slow-reply
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;
 };

@@ -22,6 +22,7 @@
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/tcp_hub_server.hpp"
 #include "openlcb/traffic_log.hpp"
+#include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
 #include "simnode/sim_node.hpp"
 
@@ -50,20 +51,6 @@ std::vector<fs::path> default_scenarios() {
     }
     out.push_back(fs::path("scenarios") / "default.ini");
     return out;
-}
-
-long rss_kib() {
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmRSS:") {
-            long kib = 0;
-            status >> kib;
-            return kib;
-        }
-        status.ignore(1 << 16, '\n');
-    }
-    return 0;
 }
 
 void say(const std::string& line) {
@@ -223,7 +210,7 @@ int run(const Scenario& scenario) {
                     std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - started)
                         .count();
                 say(std::to_string(nodes.size()) + " node(s) initialized in " + std::to_string(ms) +
-                    " ms, RSS " + std::to_string(rss_kib() / 1024) + " MiB");
+                    " ms, RSS " + std::to_string(resident_kib() / 1024) + " MiB");
                 return;
             }
             startup_timer.expires_after(kStartupPoll);

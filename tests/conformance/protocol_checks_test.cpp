@@ -1,7 +1,7 @@
 // The protocol checks against the simulated node: no false failure on the default node, and each
 // fault of docs/faults.md (J1's share) caught with its category.
-#include <algorithm>
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <filesystem>
 #include <fstream>
