@@ -297,8 +297,30 @@ private:
         add("acdi.user-version", Category::kAcdi, u.ok && !u.data.empty() && u.data[0] == a.var,
             "CDI 5.1.2", "space 251 byte 0 equals <acdi var>", std::to_string(a.var),
             u.ok && !u.data.empty() ? std::to_string(u.data[0]) : "unreadable");
+        // A CDI that lays its own variables over the ACDI blocks (some real devices put
+        // configuration in space 252) makes the node disagree with ACDI whatever it does: that
+        // is the CDI's fault, reported once here, and the ACDI size check is moot.
+        std::string conflict;
+        if (ctx_.layout) {
+            for (const auto& ext : ctx_.layout->extents()) {
+                if (ext.begin == ext.end) continue;
+                if (ext.space == 0xFC || (ext.space == 0xFB && (ext.begin < 1 || ext.end > 128))) {
+                    conflict += (conflict.empty() ? "" : ", ") + std::string("space ") +
+                                std::to_string(ext.space) + " bytes " + std::to_string(ext.begin) +
+                                ".." + std::to_string(ext.end - 1);
+                }
+            }
+        }
+        add("cdi.acdi-spaces", Category::kCdi, conflict.empty(), "CDI 5.1.2",
+            "CDI segments leave the ACDI blocks of spaces 252/251 to <acdi/>",
+            "no variable in 252; 251 variables within 1..127", conflict);
         const SpaceInfo& fc = ctx_.spaces[0xFC];
         const SpaceInfo& fb = ctx_.spaces[0xFB];
+        if (!conflict.empty()) {
+            add_status("acdi.space-info", Category::kAcdi, Status::kSkip, "CDI 5.1.2",
+                       "skipped: the CDI's own segments overlap the ACDI blocks (cdi.acdi-spaces)");
+            return;
+        }
         add("acdi.space-info", Category::kAcdi,
             fc.present && fc.read_only && fc.highest_address == 124 && fb.present &&
                 fb.highest_address == 127,

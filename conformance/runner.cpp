@@ -103,6 +103,11 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
     eo.reboot = options.reboot;
     eo.acdi_user = parsed.document->acdi.has_value();
     std::vector<Probe> probes = plan_encoding(*layout->layout, eo);
+    // Spaces the standard makes read-only (CDI, ACDI manufacturer) are never written, even when
+    // a CDI lays variables there: cdi.acdi-spaces reports such a CDI.
+    const std::size_t planned = probes.size();
+    std::erase_if(probes, [](const Probe& p) { return p.space == 0xFF || p.space == 0xFC; });
+    const std::size_t read_only_skipped = planned - probes.size();
 
     SessionMemory memory(session, node);
     SafetyBackup backup(
@@ -146,6 +151,13 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
     auto results = run_encoding_checks(probes, memory, eo, hooks);
     bar.finish();
     report.checks.insert(report.checks.end(), results.begin(), results.end());
+    if (read_only_skipped != 0) {
+        report.checks.push_back(CheckResult{
+            "encoding.read-only-spaces", Category::kEncoding, Status::kSkip,
+            std::to_string(read_only_skipped) +
+                " variables in the read-only spaces 252/255 not written (see cdi.acdi-spaces)",
+            "MemoryConfigurationS 4.2", "", ""});
+    }
 
     RestoreOutcome outcome = restore(backup, memory);
     report.restore_summary = outcome.summary();
