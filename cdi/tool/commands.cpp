@@ -3,6 +3,7 @@
 #include <charconv>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include <boost/program_options.hpp>
@@ -22,8 +23,8 @@ namespace {
 // Parses `args` with `options` plus positional FILEs; prints help and returns true on --help.
 bool parse_args(const std::vector<std::string>& args, po::options_description& options,
                 const char* synopsis, po::variables_map& vm) {
-    options.add_options()("help,h", "show this help")(
-        "file", po::value<std::vector<std::string>>(), "CDI file");
+    options.add_options()("help,h", "show this help")("file", po::value<std::vector<std::string>>(),
+                                                      "CDI file");
     po::positional_options_description positional;
     positional.add("file", -1);
     po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
@@ -40,10 +41,11 @@ std::vector<std::string> files_of(const po::variables_map& vm) {
                                  : std::vector<std::string>{};
 }
 
-// Reads, parses and lays out one CDI; prints every error to stderr and returns nullopt on failure.
+// Reads, parses and lays out one CDI; prints every finding to stderr and returns nullopt on
+// errors. The document is on the heap because the layout points into it.
 struct Loaded {
-    Document document;
-    Diagnostics diagnostics;
+    std::unique_ptr<Document> document;
+    Layout layout;
 };
 
 std::optional<Loaded> load(const std::string& path) {
@@ -58,7 +60,11 @@ std::optional<Loaded> load(const std::string& path) {
         for (const auto& d : parsed.diagnostics) std::cerr << format_diagnostic(path, d) << "\n";
         return std::nullopt;
     }
-    return Loaded{std::move(*parsed.document), std::move(parsed.diagnostics)};
+    auto document = std::make_unique<Document>(std::move(*parsed.document));
+    LayoutResult result = build_layout(*document);
+    for (const auto& d : result.diagnostics) std::cerr << format_diagnostic(path, d) << "\n";
+    if (!result.layout) return std::nullopt;
+    return Loaded{std::move(document), std::move(*result.layout)};
 }
 
 nlohmann::json int_json(WideInt v) {
@@ -164,32 +170,29 @@ int run_validate(const std::vector<std::string>& args) {
 
 int run_layout(const std::vector<std::string>& args) {
     po::options_description options("lcc-cdi layout options");
-    options.add_options()("json", "print JSON: {\"variables\":[{\"path\",\"type\",\"space\","
-                                  "\"address\",\"size\",...}]}");
+    options.add_options()("json",
+                          "print JSON: {\"variables\":[{\"path\",\"type\",\"space\","
+                          "\"address\",\"size\",...}]}");
     po::variables_map vm;
     if (parse_args(args, options, "lcc-cdi layout [--json] FILE", vm)) return kExitOk;
     const auto files = files_of(vm);
     if (files.size() != 1) throw po::error("layout takes exactly one FILE");
     auto loaded = load(files.front());
     if (!loaded) return kExitErrors;
-    LayoutResult result = build_layout(loaded->document);
-    for (const auto& d : result.diagnostics) {
-        std::cerr << format_diagnostic(files.front(), d) << "\n";
-    }
-    if (!result.layout) return kExitErrors;
     const bool json = vm.count("json") != 0;
     std::ostream& out = std::cout;
     // Streamed one variable at a time: a 10^6-replication CDI never builds a whole JSON tree.
     if (json) out << "{\"variables\":[";
     bool first = true;
-    result.layout->visit([&](const Cursor& c) {
+    loaded->layout.visit([&](const Cursor& c) {
         const Element& e = c.element();
         if (json) {
-            nlohmann::json v = {{"path", c.path()},
-                                {"type", e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind)},
-                                {"space", c.space()},
-                                {"address", c.address()},
-                                {"size", c.size()}};
+            nlohmann::json v = {
+                {"path", c.path()},
+                {"type", e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind)},
+                {"space", c.space()},
+                {"address", c.address()},
+                {"size", c.size()}};
             add_details(e, v);
             out << (first ? "\n" : ",\n") << v.dump();
         } else {
@@ -213,12 +216,7 @@ int run_render(const std::vector<std::string>& args) {
     if (files.size() != 1) throw po::error("render takes exactly one FILE");
     auto loaded = load(files.front());
     if (!loaded) return kExitErrors;
-    LayoutResult result = build_layout(loaded->document);
-    for (const auto& d : result.diagnostics) {
-        std::cerr << format_diagnostic(files.front(), d) << "\n";
-    }
-    if (!result.layout) return kExitErrors;
-    render(*result.layout, std::cout);
+    render(loaded->layout, std::cout);
     return kExitOk;
 }
 
