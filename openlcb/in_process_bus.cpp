@@ -1,4 +1,5 @@
 #include "openlcb/in_process_bus.hpp"
+#include "openlcb/flag_guard.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -20,19 +21,7 @@ private:
     HandlerSlot handler_;
 };
 
-namespace {
-// Keeps a flag set for a scope, even when a handler throws.
-class FlagGuard {
-public:
-    explicit FlagGuard(bool& flag) : flag_(flag) { flag_ = true; }
-    ~FlagGuard() { flag_ = false; }
-    FlagGuard(const FlagGuard&) = delete;
-    FlagGuard& operator=(const FlagGuard&) = delete;
-
-private:
-    bool& flag_;
-};
-}  // namespace
+namespace {}  // namespace
 
 InProcessBus::InProcessBus() = default;
 

@@ -1,4 +1,5 @@
 #include "openlcb/node_stack.hpp"
+#include "openlcb/flag_guard.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -14,18 +15,6 @@ namespace {
 constexpr std::uint16_t cmti_of(Mti mti) {
     return to_u16(mti) & 0xFFF;
 }
-
-// Keeps a flag set for a scope, even when a callback throws.
-class FlagGuard {
-public:
-    explicit FlagGuard(bool& flag) : flag_(flag) { flag_ = true; }
-    ~FlagGuard() { flag_ = false; }
-    FlagGuard(const FlagGuard&) = delete;
-    FlagGuard& operator=(const FlagGuard&) = delete;
-
-private:
-    bool& flag_;
-};
 
 std::optional<TimePoint> earliest(std::optional<TimePoint> a, std::optional<TimePoint> b) {
     if (!a) return b;

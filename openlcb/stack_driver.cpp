@@ -1,4 +1,5 @@
 #include "openlcb/stack_driver.hpp"
+#include "openlcb/flag_guard.hpp"
 
 #include <utility>
 
@@ -7,17 +8,6 @@ namespace {
 
 // Frames handled in one go before yielding to other io_context work (bounds a ping-pong).
 constexpr std::size_t kMaxFramesPerBatch = 100'000;
-
-class FlagGuard {
-public:
-    explicit FlagGuard(bool& flag) : flag_(flag) { flag_ = true; }
-    ~FlagGuard() { flag_ = false; }
-    FlagGuard(const FlagGuard&) = delete;
-    FlagGuard& operator=(const FlagGuard&) = delete;
-
-private:
-    bool& flag_;
-};
 
 }  // namespace
 
