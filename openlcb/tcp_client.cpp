@@ -4,12 +4,17 @@
 #include <string_view>
 #include <utility>
 
+#include "openlcb/echo_filter.hpp"
 #include "openlcb/gridconnect.hpp"
 
 namespace olcb {
 
 namespace {
 using boost::asio::ip::tcp;
+
+// Frames are recorded when queued; the filter must hold every frame between then and its echo,
+// a burst of a bulk sender included.
+constexpr std::size_t kEchoCapacity = 4096;
 }  // namespace
 
 std::chrono::milliseconds reconnect_delay(const TcpClientOptions& options, unsigned failures) {
@@ -28,7 +33,8 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
           timer(io_context),
           host(std::move(h)),
           port(p),
-          options(o) {}
+          options(o),
+          echo(kEchoCapacity) {}
 
     void connect() {
         if (stopped) return;
@@ -80,6 +86,7 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
         failures = 0;
         ++stats.connects;
         parser.reset();
+        echo.clear();
         if (connection_handler) connection_handler(true);
         read(conn_generation);
     }
@@ -91,6 +98,7 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
         ++conn_generation;  // stale handlers of this connection do nothing
         pending.clear();
         write_active = false;
+        echo.clear();
         boost::system::error_code ignored;
         socket.close(ignored);
         if (connection_handler) connection_handler(false);
@@ -107,13 +115,18 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
                     return;
                 }
                 const auto errors_before = self->parser.errors();
-                self->parser.feed(std::string_view(self->read_buf.data(), n),
-                                  [&](const CanFrame& frame) {
-                                      // The handler may have stopped or broken the connection.
-                                      if (generation != self->conn_generation) return;
-                                      ++self->stats.frames_received;
-                                      self->handler(frame);
-                                  });
+                const auto now = Clock::now();
+                self->parser.feed(
+                    std::string_view(self->read_buf.data(), n), [&](const CanFrame& frame) {
+                        // The handler may have stopped or broken the connection.
+                        if (generation != self->conn_generation) return;
+                        if (self->options.drop_echoes && self->echo.is_echo(frame, now)) {
+                            ++self->stats.echoes_dropped;
+                            return;
+                        }
+                        ++self->stats.frames_received;
+                        self->handler(frame);
+                    });
                 self->stats.parse_errors += self->parser.errors() - errors_before;
                 if (generation == self->conn_generation) self->read(generation);
             });
@@ -127,6 +140,7 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
         gridconnect::format_to(frame, pending);
         pending.push_back('\n');
         ++stats.frames_sent;
+        if (options.drop_echoes) echo.sent(frame, Clock::now());
         if (pending.size() > options.max_queue_bytes) {
             disconnect();
             return;
@@ -176,6 +190,7 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
     TcpClientOptions options;
     Stats stats;
     gridconnect::Parser parser;
+    EchoFilter echo;
     std::array<char, 4096> read_buf{};
     std::string pending;
     std::string writing;

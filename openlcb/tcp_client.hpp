@@ -20,6 +20,7 @@ struct TcpClientOptions {
     unsigned backoff_factor = 2;                     ///< delay multiplier per failed attempt
     unsigned max_attempts = 0;  ///< consecutive failed connects before giving up; 0 = never
     std::size_t max_queue_bytes = 256 * 1024;  ///< unsent output beyond this drops the connection
+    bool drop_echoes = true;  ///< drop frames that echo our own (hubs that echo; EchoFilter)
 };
 
 /// Delay before reconnect attempt `failures` + 1: initial * factor^failures, capped at max_backoff.
@@ -41,6 +42,7 @@ public:
         std::uint64_t frames_received = 0;
         std::uint64_t frames_dropped = 0;  ///< sent while disconnected
         std::uint64_t parse_errors = 0;
+        std::uint64_t echoes_dropped = 0;  ///< received frames recognised as our own echo
     };
 
     /// A client of host:port running on `io`; call start() to connect.

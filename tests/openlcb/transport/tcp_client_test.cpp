@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 
+#include "openlcb/gridconnect.hpp"
 #include "openlcb/tcp_hub_server.hpp"
 #include "openlcb/transport/tcp_test_util.hpp"
 
@@ -124,6 +128,87 @@ TEST(TcpClient, StopEndsReconnecting) {
         io, [] { return false; }, 30ms);
     EXPECT_EQ(client.stats().connect_attempts, attempts);
     EXPECT_FALSE(client.connected());
+}
+
+// A hub that echoes: writes back everything a client sends, and one frame of its own after the
+// first bytes.
+class EchoingServer {
+public:
+    EchoingServer(boost::asio::io_context& io, CanFrame foreign)
+        : acceptor_(io, {boost::asio::ip::make_address("127.0.0.1"), 0}),
+          socket_(io),
+          foreign_(foreign) {
+        acceptor_.async_accept(socket_, [this](const boost::system::error_code& ec) {
+            if (!ec) read();
+        });
+    }
+    std::uint16_t port() const { return acceptor_.local_endpoint().port(); }
+
+private:
+    void read() {
+        socket_.async_read_some(boost::asio::buffer(buf_),
+                                [this](const boost::system::error_code& ec, std::size_t n) {
+                                    if (ec) return;
+                                    std::string out(buf_.data(), n);
+                                    if (!foreign_sent_) {
+                                        out += gridconnect::format(foreign_) + "\n";
+                                        foreign_sent_ = true;
+                                    }
+                                    queue_.push_back(std::move(out));
+                                    if (queue_.size() == 1) write();
+                                    read();
+                                });
+    }
+    void write() {
+        boost::asio::async_write(socket_, boost::asio::buffer(queue_.front()),
+                                 [this](const boost::system::error_code& ec, std::size_t) {
+                                     if (ec) return;
+                                     queue_.pop_front();
+                                     if (!queue_.empty()) write();
+                                 });
+    }
+
+    boost::asio::ip::tcp::acceptor acceptor_;
+    boost::asio::ip::tcp::socket socket_;
+    CanFrame foreign_;
+    bool foreign_sent_ = false;
+    std::array<char, 4096> buf_{};
+    std::deque<std::string> queue_;
+};
+
+TEST(TcpClient, DropsEchoesOfItsOwnFramesFromAnEchoingHub) {
+    boost::asio::io_context io;
+    const auto ours = numbered_frame(0x100, 1);
+    const auto theirs = numbered_frame(0x200, 1);
+    EchoingServer server(io, theirs);
+    TcpClient client(io, "127.0.0.1", server.port());
+    std::vector<CanFrame> received;
+    client.set_handler([&](const CanFrame& f) { received.push_back(f); });
+    client.start();
+    ASSERT_TRUE(run_until(io, [&] { return client.connected(); }));
+    client.send(ours);
+    ASSERT_TRUE(run_until(io, [&] { return !received.empty(); }));
+    EXPECT_EQ(received, (std::vector<CanFrame>{theirs}));
+    EXPECT_EQ(client.stats().echoes_dropped, 1u);
+    EXPECT_EQ(client.stats().frames_received, 1u);
+}
+
+TEST(TcpClient, DeliversEchoesWhenAskedNotToDropThem) {
+    boost::asio::io_context io;
+    const auto ours = numbered_frame(0x100, 1);
+    const auto theirs = numbered_frame(0x200, 1);
+    EchoingServer server(io, theirs);
+    TcpClientOptions options;
+    options.drop_echoes = false;
+    TcpClient client(io, "127.0.0.1", server.port(), options);
+    std::vector<CanFrame> received;
+    client.set_handler([&](const CanFrame& f) { received.push_back(f); });
+    client.start();
+    ASSERT_TRUE(run_until(io, [&] { return client.connected(); }));
+    client.send(ours);
+    ASSERT_TRUE(run_until(io, [&] { return received.size() == 2; }));
+    EXPECT_EQ(received, (std::vector<CanFrame>{ours, theirs}));
+    EXPECT_EQ(client.stats().echoes_dropped, 0u);
 }
 
 }  // namespace
