@@ -34,9 +34,12 @@ constexpr std::string_view kNodeKeys[] = {
 };
 // Keys of the whole process (top level only).
 constexpr std::string_view kProcessKeys[] = {"listen", "connect", "socketcan",
+                                             "serial", "baud",    "flow-control",
                                              "trace",  "candump", "run-for"};
 // A network of this many nodes is already far beyond any real CAN segment.
 constexpr std::uint64_t kMaxCount = 100000;
+// Faster than any UART a USB-CAN adapter uses; above it a typo is more likely than a rate.
+constexpr unsigned long kMaxBaud = 12'000'000;
 constexpr std::string_view kSectionPrefix = "node.";
 
 bool contains(std::span<const std::string_view> keys, std::string_view key) {
@@ -128,7 +131,12 @@ po::options_description cli_options() {
         "connect", po::value<std::string>()->value_name("HOST:PORT"),
         "join a GridConnect TCP hub (reconnects when it goes away)")(
         "socketcan", po::value<std::string>()->value_name("IF"), "join SocketCAN interface IF")(
-        "trace", po::value<std::string>()->value_name("FILE"), "write decoded traffic to FILE")(
+        "serial", po::value<std::string>()->value_name("DEVICE"),
+        "join the CAN bus behind a GridConnect USB/serial adapter (e.g. /dev/ttyACM0)")(
+        "baud", po::value<std::string>()->value_name("N"), "serial bit rate (default 115200)")(
+        "flow-control", po::value<std::string>()->value_name("none|rtscts"),
+        "serial flow control (default none)")("trace", po::value<std::string>()->value_name("FILE"),
+                                              "write decoded traffic to FILE")(
         "candump", po::value<std::string>()->value_name("FILE"),
         "write traffic to FILE as candump -L lines");
     po::options_description all;
@@ -331,6 +339,21 @@ public:
             if (scenario_.connect->port == 0) return fail("connect: port 0 is not a port");
         }
         if (const auto* v = single(keys, "socketcan")) scenario_.socketcan = *v;
+        if (const auto* v = single(keys, "serial")) scenario_.serial = *v;
+        if (const auto* v = single(keys, "baud")) {
+            unsigned long baud = 0;
+            const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), baud);
+            if (ec != std::errc() || end != v->data() + v->size() || baud == 0 || baud > kMaxBaud) {
+                return fail("baud '" + *v + "' must be a bit rate such as 115200");
+            }
+            scenario_.baud = static_cast<unsigned>(baud);
+        }
+        if (const auto* v = single(keys, "flow-control")) {
+            if (*v != "none" && *v != "rtscts") {
+                return fail("flow-control '" + *v + "' must be none or rtscts");
+            }
+            scenario_.rtscts = *v == "rtscts";
+        }
         scenario_.trace = path_of(keys, "trace");
         scenario_.candump = path_of(keys, "candump");
         if (const auto* v = single(keys, "run-for")) {

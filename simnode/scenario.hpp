@@ -34,6 +34,9 @@ struct Scenario {
     std::optional<HostPort> listen;       ///< run a GridConnect TCP hub here
     std::optional<HostPort> connect;      ///< join this GridConnect TCP hub
     std::string socketcan;                ///< join this SocketCAN interface (empty: none)
+    std::string serial;                   ///< join this serial GridConnect adapter (empty: none)
+    unsigned baud = 115200;               ///< the serial adapter's bit rate
+    bool rtscts = false;                  ///< hardware flow control on the serial adapter
     std::filesystem::path trace;          ///< decoded traffic log (empty: none)
     std::filesystem::path candump;        ///< candump -L traffic log (empty: none)
     std::optional<double> run_for;        ///< stop after this many seconds

@@ -1,5 +1,5 @@
-// simnode: runs the nodes of a scenario on one CAN segment (TCP hub, TCP client, SocketCAN or
-// in-process only) until SIGINT/SIGTERM or --run-for.
+// simnode: runs the nodes of a scenario on one CAN segment (TCP hub, TCP client, SocketCAN,
+// serial GridConnect adapter or in-process only) until SIGINT/SIGTERM or --run-for.
 #include <signal.h>
 
 #include <chrono>
@@ -17,6 +17,7 @@
 #include "openlcb/asio.hpp"
 #include "openlcb/in_process_bus.hpp"
 #include "openlcb/monitor.hpp"
+#include "openlcb/serial_port.hpp"
 #include "openlcb/socketcan.hpp"
 #include "openlcb/stack_driver.hpp"
 #include "openlcb/tcp_client.hpp"
@@ -158,7 +159,6 @@ int run(const Scenario& scenario) {
         client = std::make_unique<TcpClient>(io, scenario.connect->host, scenario.connect->port);
         Transport& port = add_port([&client](const CanFrame& f) { client->send(f); });
         client->set_handler([&port](const CanFrame& f) { port.send(f); });
-        client->start();
     }
     std::unique_ptr<socketcan::SocketCanPort> can;
     if (!scenario.socketcan.empty()) {
@@ -171,6 +171,29 @@ int run(const Scenario& scenario) {
         can->set_handler([&port](const CanFrame& f) { port.send(f); });
     }
 
+    std::unique_ptr<SerialPort> serial;
+    if (!scenario.serial.empty()) {
+        SerialOptions options;
+        options.baud = scenario.baud;
+        options.rtscts = scenario.rtscts;
+        serial = std::make_unique<SerialPort>(io, scenario.serial, options);
+        if (const auto failed = serial->open()) {
+            std::cerr << "simnode: " << *failed << "\n";
+            return kExitRuntime;
+        }
+        // A lost adapter is reported and reopened; the nodes keep running meanwhile.
+        serial->set_connection_handler([&serial](bool up, const std::string& reason) {
+            if (up) {
+                say("serial " + serial->device() + ": open again");
+            } else {
+                std::cerr << "simnode: " << reason << "; reopening" << std::endl;
+            }
+        });
+        Transport& port = add_port([&serial](const CanFrame& f) { serial->send(f); });
+        serial->set_handler([&port](const CanFrame& f) { port.send(f); });
+        say("serial " + scenario.serial + " open at " + std::to_string(scenario.baud) + " baud");
+    }
+
     StackDriver driver(io, node_port);
     for (auto& node : nodes) driver.attach(node->stack());
 
@@ -178,6 +201,7 @@ int run(const Scenario& scenario) {
         if (hub) hub->stop();
         if (client) client->stop();
         if (can) can->close();
+        if (serial) serial->close();
         io.stop();
     };
     boost::asio::signal_set signals(io, SIGINT, SIGTERM);
@@ -194,8 +218,28 @@ int run(const Scenario& scenario) {
     }
 
     if (hub) say("listening on " + HostPort{scenario.listen->host, hub->port()}.to_string());
-    const auto started = Clock::now();
-    driver.start_all();
+    auto started = Clock::now();
+    bool nodes_started = false;
+    if (client) {
+        // The nodes start once the hub is reached, so the hub's nodes see their alias
+        // reservation and can object to a collision.
+        const std::string where = scenario.connect->to_string();
+        client->set_connection_handler([&, where](bool up) {
+            if (!up) {
+                std::cerr << "simnode: lost the hub " << where << "; reconnecting" << std::endl;
+                return;
+            }
+            say("connected to hub " + where);
+            if (nodes_started) return;
+            nodes_started = true;
+            started = Clock::now();
+            driver.start_all();
+        });
+        say("connecting to hub " + where);
+        client->start();
+    } else {
+        driver.start_all();
+    }
 
     // One line once every node holds an alias and sent Initialization Complete: start-up time
     // and memory for scripts and benchmarks.

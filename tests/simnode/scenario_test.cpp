@@ -1,0 +1,90 @@
+// Scenario files and command lines: transports (TCP, SocketCAN, serial with its line settings),
+// node groups, overrides and the errors a user sees for bad values.
+#include "simnode/scenario.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace olcb::simnode {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kScenarios = fs::path(OLCB_SOURCE_DIR) / "scenarios";
+
+std::optional<Scenario> parse(const std::string& ini, const std::vector<std::string>& overrides,
+                              std::string& error) {
+    return parse_scenario_text(ini, kScenarios, overrides, error);
+}
+
+constexpr const char* kOneNode = "node-id = 05.01.01.01.22.00\ncdi = default.xml\n";
+
+TEST(ScenarioTest, SerialWithDefaultLineSettings) {
+    std::string error;
+    const auto s = parse(std::string(kOneNode) + "serial = /dev/ttyACM0\n", {}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->serial, "/dev/ttyACM0");
+    EXPECT_EQ(s->baud, 115200u);
+    EXPECT_FALSE(s->rtscts);
+    EXPECT_FALSE(s->listen);
+    EXPECT_FALSE(s->connect);
+}
+
+TEST(ScenarioTest, SerialLineSettingsFromTheCommandLine) {
+    std::string error;
+    const auto s =
+        parse(kOneNode, {"--serial", "/dev/ttyUSB1", "--baud", "57600", "--flow-control", "rtscts"},
+              error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->serial, "/dev/ttyUSB1");
+    EXPECT_EQ(s->baud, 57600u);
+    EXPECT_TRUE(s->rtscts);
+}
+
+TEST(ScenarioTest, BadBaudAndFlowControlAreRefusedByName) {
+    for (const char* baud : {"0", "fast", "115200x", "-1", "99999999999"}) {
+        std::string error;
+        EXPECT_FALSE(parse(kOneNode, {"--serial", "/dev/x", "--baud", baud}, error)) << baud;
+        EXPECT_NE(error.find("baud"), std::string::npos) << error;
+    }
+    std::string error;
+    EXPECT_FALSE(parse(kOneNode, {"--serial", "/dev/x", "--flow-control", "xonxoff"}, error));
+    EXPECT_NE(error.find("flow-control"), std::string::npos) << error;
+}
+
+TEST(ScenarioTest, ConnectTakesAHostName) {
+    std::string error;
+    const auto s = parse(kOneNode, {"--connect", "jmri.local:12021"}, error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_TRUE(s->connect);
+    EXPECT_EQ(s->connect->host, "jmri.local");
+    EXPECT_EQ(s->connect->port, 12021);
+    std::string why;
+    EXPECT_FALSE(parse(kOneNode, {"--connect", "host:0"}, why));
+}
+
+TEST(ScenarioTest, EveryTransportAtOnce) {
+    std::string error;
+    const auto s = parse(
+        std::string(kOneNode) + "listen = 127.0.0.1:0\n",
+        {"--connect", "10.0.0.2:12021", "--socketcan", "can0", "--serial", "/dev/ttyACM0"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_TRUE(s->listen);
+    EXPECT_TRUE(s->connect);
+    EXPECT_EQ(s->socketcan, "can0");
+    EXPECT_EQ(s->serial, "/dev/ttyACM0");
+}
+
+TEST(ScenarioTest, CountMakesConsecutiveNodeIds) {
+    std::string error;
+    const auto s = parse(std::string(kOneNode) + "count = 3\n", {}, error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_EQ(s->nodes.size(), 3u);
+    EXPECT_EQ(s->nodes[2].node_id.to_string(), "05.01.01.01.22.02");
+}
+
+}  // namespace
+}  // namespace olcb::simnode
