@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -38,6 +39,8 @@ struct CheckContext {
     std::optional<memory::ConfigOptionsReply> options;  ///< Get Configuration Options reply
     std::map<std::uint8_t, SpaceInfo> spaces;           ///< Space Info per space asked
     unsigned temporary_rejects = 0;                     ///< temporary rejects retried so far
+    /// Called with the bytes read so far while the CDI downloads (progress display).
+    std::function<void(std::size_t)> cdi_progress;
 };
 
 }  // namespace olcb::conform

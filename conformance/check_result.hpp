@@ -22,6 +22,7 @@ enum class Category : std::uint8_t {
     kCdi,
     kAcdi,
     kEncoding,
+    kLink,  ///< the transport itself (an adapter unplugged, a hub gone): not the node's fault
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
@@ -31,13 +32,14 @@ std::string_view category_name(Category category);
 
 /// One executed check.
 struct CheckResult {
-    std::string id;       ///< stable ID from docs/checks.md, e.g. "cdi.nul-terminated"
+    std::string id;  ///< stable ID from docs/checks.md, e.g. "cdi.nul-terminated"
     Category category = Category::kMessage;
     Status status = Status::kSkip;
     std::string message;  ///< one line: what was checked, and for failures what went wrong
-    std::string section;  ///< the standard and section, e.g. "CDI S 5" or "MemoryConfigurationS 4.8"
-    std::string expected; ///< for failures: what the standard wants (may be empty)
-    std::string seen;     ///< for failures: what the node did (may be empty)
+    std::string
+        section;  ///< the standard and section, e.g. "CDI S 5" or "MemoryConfigurationS 4.8"
+    std::string expected;  ///< for failures: what the standard wants (may be empty)
+    std::string seen;      ///< for failures: what the node did (may be empty)
 };
 
 /// Every check run against one node, in the order they ran.

@@ -36,6 +36,13 @@ public:
     virtual void send_frame(const CanFrame& frame) = 0;
     /// Sets the observer of every frame (replaces any previous one).
     virtual void set_frame_observer(FrameObserver observer) = 0;
+
+    /// True while the transport under the link works (adapter present, hub connected).
+    virtual bool up() { return true; }
+    /// Times the transport went away since the link was opened.
+    virtual std::uint64_t losses() { return 0; }
+    /// Why the transport last went away ("" when it never did).
+    virtual std::string loss_reason() { return {}; }
 };
 
 /// In-process link on a simulated network (tests); the stack starts at network.now().
@@ -43,6 +50,15 @@ std::unique_ptr<Link> make_sim_link(SimNetwork& network, NodeId tool_id);
 /// GridConnect TCP link to a hub; nullptr with `error` set when the connection fails (2 s).
 std::unique_ptr<Link> connect_tcp(const std::string& host, std::uint16_t port, NodeId tool_id,
                                   std::string& error);
+/// Serial line settings of open_serial.
+struct SerialSettings {
+    unsigned baud = 115200;  ///< bits per second
+    bool rtscts = false;     ///< hardware flow control
+};
+/// GridConnect link through a USB/serial CAN adapter at `device`; nullptr with `error` set when
+/// it cannot be opened. A lost adapter is reopened in the background (see Link::up()).
+std::unique_ptr<Link> open_serial(const std::string& device, SerialSettings settings,
+                                  NodeId tool_id, std::string& error);
 /// SocketCAN link on `interface`; nullptr with `error` set when it cannot be opened.
 std::unique_ptr<Link> open_socketcan(const std::string& interface, NodeId tool_id,
                                      std::string& error);

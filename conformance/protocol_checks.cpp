@@ -193,7 +193,7 @@ private:
         const SpaceInfo& ff = ctx_.spaces[0xFF];
         const std::uint32_t len =
             ff.present ? std::min(ff.highest_address + 1, o_.max_cdi_bytes) : o_.max_cdi_bytes;
-        MemResult r = s_.read_range(node_, Space::kCdi, 0, len, true);
+        MemResult r = s_.read_range(node_, Space::kCdi, 0, len, true, ctx_.cdi_progress);
         note(r);
         cdi_read_ok_ = r.ok && !r.data.empty();
         add("cdi.read", Category::kCdi, cdi_read_ok_, "MemoryConfigurationS 4.4",

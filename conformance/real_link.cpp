@@ -61,6 +61,14 @@ void RealLink::send_frame(const CanFrame& frame) {
     if (inner_) inner_->send(frame);
 }
 
+void RealLink::set_up(bool up, const std::string& reason) {
+    if (up_ && !up) {
+        ++losses_;
+        loss_reason_ = reason;
+    }
+    up_ = up;
+}
+
 void RealLink::set_frame_observer(FrameObserver observer) {
     observer_ = std::move(observer);
 }

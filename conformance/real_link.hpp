@@ -47,8 +47,18 @@ public:
     bool run_until(const std::function<bool()>& pred, Duration max) override;
     void send_frame(const CanFrame& frame) override;
     void set_frame_observer(FrameObserver observer) override;
+    bool up() override { return up_; }
+    std::uint64_t losses() override { return losses_; }
+    std::string loss_reason() override { return loss_reason_; }
+
+protected:
+    /// Subclasses report their transport going away (with the reason) and coming back.
+    void set_up(bool up, const std::string& reason = {});
 
 private:
+    bool up_ = true;
+    std::uint64_t losses_ = 0;
+    std::string loss_reason_;
     std::unique_ptr<boost::asio::io_context> io_;
     NodeStack stack_;
     std::unique_ptr<TapTransport> tap_;

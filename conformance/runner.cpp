@@ -28,6 +28,41 @@ AccessResult to_access(const MemResult& r) {
     return {r.ok, r.error, r.data};
 }
 
+// One FAIL naming the loss when the transport went away during this node's run.
+void add_link_check(NodeReport& report, Link& link, std::uint64_t losses_before) {
+    if (link.losses() == losses_before && link.up()) return;
+    std::string message = "the link went down during the run";
+    if (!link.loss_reason().empty()) message += ": " + link.loss_reason();
+    message += link.up() ? " (it came back)" : " (still down)";
+    report.checks.push_back(
+        CheckResult{"link.lost", Category::kLink, Status::kFail, message, "", "", ""});
+}
+
+// After a loss, waits (bounded) until the transport is back and the node answers again, so the
+// restore can run; says what it is waiting for.
+void wait_for_link(Session& session, const NodeInfo& node, const RunOptions& options,
+                   std::ostream& progress) {
+    Link& link = session.link();
+    progress << "lcc-conform: the link went down"
+             << (link.loss_reason().empty() ? "" : " (" + link.loss_reason() + ")")
+             << "; waiting up to " << options.link_wait.count()
+             << " s for it to return to restore the node" << std::endl;
+    // The link's clock: simulated in tests, steady on real transports.
+    const TimePoint deadline = link.now() + options.link_wait;
+    while (!stop_requested() && link.now() < deadline) {
+        const Duration left = deadline - link.now();
+        if (!link.up() && !link.run_until([&] { return link.up() || stop_requested(); }, left)) {
+            continue;
+        }
+        if (stop_requested()) return;
+        // Up again: the node must answer before its memory is trusted to the restore.
+        if (session.find_node(node.id)) {
+            progress << "lcc-conform: link back; restoring" << std::endl;
+            return;
+        }
+    }
+}
+
 }  // namespace
 
 AccessResult SessionMemory::read(std::uint8_t space, std::uint32_t address, std::size_t count) {
@@ -56,16 +91,31 @@ AccessResult SessionMemory::write(std::uint8_t space, std::uint32_t address,
     return {true, 0, {}};
 }
 
-NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& options,
-                    const ProtocolChecks& protocol_checks, std::ostream& progress) {
+namespace {
+
+NodeReport run_node_checks(Session& session, const NodeInfo& node, const RunOptions& options,
+                           const ProtocolChecks& protocol_checks, std::ostream& progress) {
     NodeReport report;
     report.node_id = node.id.to_string();
+    Link& link = session.link();
+    const std::uint64_t losses_before = link.losses();
+    const auto link_lost = [&] { return link.losses() != losses_before || !link.up(); };
     if (auto snip = session.snip_payload(node)) {
         memory::Snip s = memory::decode_snip(*snip);
         report.name = s.manufacturer + " " + s.model;
         if (!s.user_name.empty()) report.name += " \"" + s.user_name + "\"";
     }
-    if (protocol_checks) report.checks = protocol_checks(session, node);
+    // The protocol checks download and lay out the CDI; the encoding checks reuse both.
+    ProgressBar bar(progress, options.progress);
+    auto wall = [] { return std::chrono::steady_clock::now(); };
+    CheckContext ctx;
+    ctx.cdi_progress = [&](std::size_t n) { bar.update(n, wall()); };
+    if (protocol_checks) {
+        bar.start("protocol checks, reading CDI", 0, wall());
+        report.checks = protocol_checks(session, node, ctx);
+        bar.finish();
+    }
+    ctx.cdi_progress = nullptr;
     if (options.read_only) {
         for (auto& c : skipped_encoding_checks("--read-only: no write")) report.checks.push_back(c);
         report.restore_summary = "nothing written (--read-only)";
@@ -77,19 +127,24 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
         return report;
     }
 
-    // The encoding checks need the CDI's layout.
-    ProgressBar bar(progress, options.progress);
-    auto wall = [] { return std::chrono::steady_clock::now(); };
-    bar.start("reading CDI", 0, wall());
-    MemResult cdi_bytes = session.read_range(node, memory::Space::kCdi, 0, kMaxCdi, true,
-                                             [&](std::size_t n) { bar.update(n, wall()); });
-    bar.finish();
-    std::string xml(cdi_bytes.data.begin(), cdi_bytes.data.end());
-    if (auto nul = xml.find('\0'); nul != std::string::npos) xml.resize(nul);
-    auto parsed = cdi::parse(xml);
-    std::optional<cdi::LayoutResult> layout;
-    if (parsed.document) layout = cdi::build_layout(*parsed.document);
-    if (!cdi_bytes.ok || !layout || !layout->layout) {
+    // Without the protocol checks' layout (none ran, or their read stopped at a wrong highest
+    // address), the CDI is read here up to its NUL.
+    if (!ctx.document || !ctx.layout) {
+        bar.start("reading CDI", 0, wall());
+        MemResult cdi_bytes = session.read_range(node, memory::Space::kCdi, 0, kMaxCdi, true,
+                                                 [&](std::size_t n) { bar.update(n, wall()); });
+        bar.finish();
+        std::string xml(cdi_bytes.data.begin(), cdi_bytes.data.end());
+        if (auto nul = xml.find('\0'); nul != std::string::npos) xml.resize(nul);
+        auto parsed = cdi::parse(xml);
+        ctx.layout.reset();
+        ctx.document.reset();
+        if (cdi_bytes.ok && parsed.document) {
+            ctx.document = std::make_unique<cdi::Document>(std::move(*parsed.document));
+            ctx.layout = cdi::build_layout(*ctx.document).layout;
+        }
+    }
+    if (!ctx.document || !ctx.layout) {
         for (auto& c : skipped_encoding_checks("no usable CDI layout (see the cdi checks)")) {
             report.checks.push_back(c);
         }
@@ -101,8 +156,8 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
     eo.sample = options.sample;
     eo.blob = options.blob;
     eo.reboot = options.reboot;
-    eo.acdi_user = parsed.document->acdi.has_value();
-    std::vector<Probe> probes = plan_encoding(*layout->layout, eo);
+    eo.acdi_user = ctx.document->acdi.has_value();
+    std::vector<Probe> probes = plan_encoding(*ctx.layout, eo);
     // Spaces the standard makes read-only (CDI, ACDI manufacturer) are never written, even when
     // a CDI lays variables there: cdi.acdi-spaces reports such a CDI.
     const std::size_t planned = probes.size();
@@ -123,7 +178,7 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
     }
 
     EncodingHooks hooks;
-    hooks.stop = [] { return stop_requested(); };
+    hooks.stop = [&] { return stop_requested() || link_lost(); };
     hooks.reboot = [&] {
         std::size_t mark = session.message_mark();
         const std::uint8_t reset[] = {0x20, 0xA9};
@@ -159,7 +214,25 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
             "MemoryConfigurationS 4.2", "", ""});
     }
 
-    RestoreOutcome outcome = restore(backup, memory);
+    if (link_lost()) {
+        // What ran after the loss measured the link, not the node.
+        for (CheckResult& c : report.checks) {
+            if (c.category == Category::kEncoding || c.id == "snip.follows-acdi-user-write") {
+                c.status = Status::kSkip;
+                c.message = "not judged: the link went down mid-run";
+                c.expected.clear();
+                c.seen.clear();
+            }
+        }
+        wait_for_link(session, node, options, progress);
+    }
+
+    RestoreOutcome outcome;
+    if (link.up()) {
+        outcome = restore(backup, memory);
+    } else {
+        outcome.differences.push_back("not restored, the link is still down");
+    }
     report.restore_summary = outcome.summary();
     CheckResult restored{"encoding.restore",
                          Category::kEncoding,
@@ -171,9 +244,22 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
     if (outcome.identical) {
         backup.remove_file();
     } else {
-        restored.message += "; backup kept in " + backup.path();
+        restored.message += "; backup kept in " + backup.path() +
+                            "; when the node is reachable again run: " + options.restore_command +
+                            " " + backup.path();
     }
     report.checks.push_back(std::move(restored));
+    return report;
+}
+
+}  // namespace
+
+NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& options,
+                    const ProtocolChecks& protocol_checks, std::ostream& progress) {
+    Link& link = session.link();
+    const std::uint64_t losses_before = link.losses();
+    NodeReport report = run_node_checks(session, node, options, protocol_checks, progress);
+    add_link_check(report, link, losses_before);
     return report;
 }
 

@@ -2,6 +2,7 @@
 // backup, then the restore; and the exit code of a run.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <iosfwd>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "conformance/backup.hpp"
+#include "conformance/check_context.hpp"
 #include "conformance/check_result.hpp"
 #include "conformance/session.hpp"
 
@@ -22,10 +24,17 @@ struct RunOptions {
     bool reboot = false;      ///< reset the node and check persistence
     std::string backup_path;  ///< safety backup file; empty: default_backup_path(node)
     bool progress = false;    ///< draw progress bars on the progress stream
+    /// How long a link lost mid-run is waited for before the restore is left to the user.
+    std::chrono::seconds link_wait{60};
+    /// The command that restores a kept backup FILE later, e.g. "lcc-conform --serial DEV
+    /// restore" (named in the message when the restore cannot happen now).
+    std::string restore_command = "lcc-conform restore";
 };
 
-/// The protocol checks (J1's run_protocol_checks, bound by the program); may be empty.
-using ProtocolChecks = std::function<std::vector<CheckResult>(Session&, const NodeInfo&)>;
+/// The protocol checks (run_protocol_checks, bound by the program); may be empty. What they
+/// learn goes into the context (the encoding checks reuse its CDI layout).
+using ProtocolChecks =
+    std::function<std::vector<CheckResult>(Session&, const NodeInfo&, CheckContext&)>;
 
 /// MemoryAccess over a Session: splits reads and writes into 64-byte datagrams.
 class SessionMemory : public MemoryAccess {

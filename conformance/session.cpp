@@ -252,7 +252,10 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     // The ack may sit behind an earlier unacknowledged datagram to the same node (sender timeout).
     const Duration ack_wait =
         link_.stack().config().datagram_sender.ack_timeout * 2 + std::chrono::milliseconds(500);
-    link_.run_until([&] { return outcome() != nullptr || find_reply(); }, ack_wait);
+    // A transport that goes away mid-exchange ends the wait at once: no reply can come.
+    const std::uint64_t losses = link_.losses();
+    auto lost = [&] { return link_.losses() != losses; };
+    link_.run_until([&] { return outcome() != nullptr || find_reply() || lost(); }, ack_wait);
     const OutcomeRecord* oc = outcome();
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
     if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !reply_index) {
@@ -268,8 +271,8 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
             return result;
         }
     }
-    if (!reply_index) {
-        link_.run_until(find_reply, reply_timeout_);
+    if (!reply_index && !lost()) {
+        link_.run_until([&] { return find_reply() || lost(); }, reply_timeout_);
     }
     if (!reply_index) {
         result.timed_out = true;

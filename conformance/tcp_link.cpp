@@ -10,7 +10,12 @@ class TcpLink final : public RealLink {
 public:
     TcpLink(std::unique_ptr<boost::asio::io_context> io, const std::string& host,
             std::uint16_t port, NodeId tool_id)
-        : RealLink(std::move(io), tool_id), client_(this->io(), host, port, options()) {}
+        : RealLink(std::move(io), tool_id), client_(this->io(), host, port, options()) {
+        const std::string where = host + ":" + std::to_string(port);
+        client_.set_connection_handler([this, where](bool connected) {
+            set_up(connected, "the connection to " + where + " broke");
+        });
+    }
     ~TcpLink() override {
         detach();
         client_.stop();

@@ -47,13 +47,41 @@ std::unique_ptr<Link> open_link(const po::variables_map& vm, std::string& error)
     }
     if (vm.count("socketcan"))
         return open_socketcan(vm["socketcan"].as<std::string>(), tool, error);
-    error = "say where the node is: --connect host:port or --socketcan IF";
+    if (vm.count("serial")) {
+        SerialSettings settings;
+        settings.baud = vm["baud"].as<unsigned>();
+        const std::string flow = vm["flow-control"].as<std::string>();
+        if (flow != "none" && flow != "rtscts") {
+            error = "--flow-control wants none or rtscts";
+            return nullptr;
+        }
+        settings.rtscts = flow == "rtscts";
+        if (settings.baud == 0) {
+            error = "--baud wants a bit rate such as 115200";
+            return nullptr;
+        }
+        return open_serial(vm["serial"].as<std::string>(), settings, tool, error);
+    }
+    error = "say where the node is: --connect HOST:PORT, --serial DEVICE or --socketcan IF";
     return nullptr;
+}
+
+// The transport options as typed, for the "run this to restore later" hint.
+std::string transport_arguments(const po::variables_map& vm) {
+    std::string out;
+    for (const char* key : {"connect", "serial", "socketcan"}) {
+        if (vm.count(key)) out += std::string(" --") + key + " " + vm[key].as<std::string>();
+    }
+    if (vm.count("serial") && vm["baud"].as<unsigned>() != 115200) {
+        out += " --baud " + std::to_string(vm["baud"].as<unsigned>());
+    }
+    return out;
 }
 
 void print_help(const po::options_description& opts) {
     std::cout
-        << "usage: lcc-conform (--connect HOST:PORT | --socketcan IF) [options]\n"
+        << "usage: lcc-conform (--connect HOST:PORT | --serial DEVICE | --socketcan IF) "
+           "[options]\n"
            "       lcc-conform backup --node ID FILE   save every CDI variable (JMRI format)\n"
            "       lcc-conform restore FILE            put a safety or JMRI backup back\n\n"
            "Checks every node found (or --node ID) and prints one line per check.\n"
@@ -68,7 +96,13 @@ int main(int argc, char** argv) {
     po::options_description opts("options");
     opts.add_options()("help,h", "this text")("connect", po::value<std::string>(),
                                               "GridConnect TCP hub, host:port")(
-        "socketcan", po::value<std::string>(), "SocketCAN interface, e.g. vcan0")(
+        "serial", po::value<std::string>(), "USB/serial GridConnect adapter, e.g. /dev/ttyACM0")(
+        "baud", po::value<unsigned>()->default_value(115200), "serial bit rate")(
+        "flow-control", po::value<std::string>()->default_value("none"),
+        "serial flow control: none or rtscts")("socketcan", po::value<std::string>(),
+                                               "SocketCAN interface, e.g. vcan0 or slcan0")(
+        "link-wait", po::value<unsigned>()->default_value(60),
+        "seconds to wait for a lost link to return before leaving the restore to you")(
         "node", po::value<std::string>(), "node ID to check (default: every node found)")(
         "list", "list every node with its SNIP names, check nothing")(
         "read-only", "never write (encoding checks are skipped)")(
@@ -176,13 +210,14 @@ int main(int argc, char** argv) {
     ro.blob = vm.count("blob") > 0;
     ro.reboot = vm.count("reboot") > 0;
     if (vm.count("backup")) ro.backup_path = vm["backup"].as<std::string>();
+    ro.link_wait = std::chrono::seconds(vm["link-wait"].as<unsigned>());
+    ro.restore_command = "lcc-conform" + transport_arguments(vm) + " restore";
     ro.progress = is_terminal(2);
     bool colour = is_terminal(1) && !vm.count("no-color");
 
-    ProtocolChecks protocol = [&](Session& s, const NodeInfo& n) {
+    ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
         ProtocolOptions po_opts;
         po_opts.read_only = ro.read_only;
-        CheckContext ctx;
         return run_protocol_checks(s, n, po_opts, ctx);
     };
     install_stop_handlers();
@@ -195,6 +230,7 @@ int main(int argc, char** argv) {
         reports.push_back(run_node(session, n, one, protocol, std::cerr));
         write_text(std::cout, reports.back(), colour);
         if (stop_requested()) break;
+        if (!link->up()) break;  // the next node cannot be reached either
     }
     if (vm.count("json") && !write_file(vm["json"].as<std::string>(), to_json(reports), error)) {
         std::cerr << "lcc-conform: " << error << "\n";
@@ -206,6 +242,11 @@ int main(int argc, char** argv) {
     }
     if (stop_requested()) {
         std::cerr << "lcc-conform: interrupted; node memory restored (see the restore line)\n";
+        return kUsage;
+    }
+    if (link->losses() != 0) {
+        std::cerr << "lcc-conform: the link went down during the run (" << link->loss_reason()
+                  << "); the results are incomplete (see link.lost)\n";
         return kUsage;
     }
     return exit_code(reports);

@@ -91,8 +91,7 @@ TEST_P(CorpusRun, OnlyTheCdisOwnFaultsFail) {
     std::ostringstream progress;
     NodeReport report = run_node(
         session, *node, options,
-        [](Session& s, const NodeInfo& n) {
-            CheckContext ctx;
+        [](Session& s, const NodeInfo& n, CheckContext& ctx) {
             return run_protocol_checks(s, n, ProtocolOptions{}, ctx);
         },
         progress);
