@@ -11,7 +11,7 @@
 #include <sstream>
 #include <thread>
 
-#include "e2e/e2e_util.hpp"
+#include "e2e/conform_util.hpp"
 
 #if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
 
@@ -20,36 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr const char* kNode = "05.01.01.01.22.00";
-
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-/// Every image file (except journals) under dir with its contents.
-std::map<std::string, std::string> snapshot_images(const fs::path& dir) {
-    std::map<std::string, std::string> out;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) {
-        if (!e.is_regular_file() || e.path().extension() == ".journal") continue;
-        out[fs::relative(e.path(), dir).string()] = read_text(e.path());
-    }
-    return out;
-}
-
-/// The image files once they equal `expected`, or as they are after a bounded wait: simnode
-/// applies journaled writes to its images in the background, so the last restore may lag a bit.
-std::map<std::string, std::string> settled_images(
-    const fs::path& dir, const std::map<std::string, std::string>& expected) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-    auto now = snapshot_images(dir);
-    while (now != expected && std::chrono::steady_clock::now() < deadline) {
-        std::this_thread::sleep_for(milliseconds(20));
-        now = snapshot_images(dir);
-    }
-    return now;
-}
 
 /// A simnode program serving one scenario on an ephemeral port; killed when destroyed.
 struct Simnode {
@@ -65,26 +35,6 @@ struct Simnode {
     }
     std::string connect() const { return "127.0.0.1:" + std::to_string(port); }
 };
-
-/// Runs lcc-conform with args; exit code and stdout (bounded).
-std::pair<int, std::string> conform(const std::vector<std::string>& args,
-                                    milliseconds timeout = milliseconds(60000)) {
-    return run_program(LCC_CONFORM_PATH, args, timeout);
-}
-
-/// The status of every check line "STATUS  id  message" of the text report.
-std::vector<std::pair<std::string, std::string>> check_lines(const std::string& out) {
-    std::vector<std::pair<std::string, std::string>> lines;
-    std::istringstream in(out);
-    for (std::string line; std::getline(in, line);) {
-        std::istringstream words(line);
-        std::string status, id;
-        words >> status >> id;
-        if (status == "PASS" || status == "FAIL" || status == "WARN" || status == "SKIP")
-            lines.emplace_back(status, id);
-    }
-    return lines;
-}
 
 TEST(LccConformE2e, DefaultScenarioPassesWithValidJsonAndJunit) {
     Simnode sim(source_path("scenarios/default.ini"));

@@ -1,0 +1,76 @@
+// Helpers of the suites that run lcc-conform against simnode programs: image snapshots (to
+// prove a restore), the check lines of the text report, and the lcc-conform invocation.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "e2e/e2e_util.hpp"
+
+#if defined(LCC_CONFORM_PATH)
+
+namespace olcb::e2e {
+
+namespace fs = std::filesystem;
+
+/// The whole file as bytes ("" when it cannot be read).
+inline std::string read_text(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Every image file (except journals) under dir with its contents.
+inline std::map<std::string, std::string> snapshot_images(const fs::path& dir) {
+    std::map<std::string, std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file() || e.path().extension() == ".journal") continue;
+        out[fs::relative(e.path(), dir).string()] = read_text(e.path());
+    }
+    return out;
+}
+
+/// The image files once they equal `expected`, or as they are after a bounded wait: simnode
+/// applies journaled writes to its images in the background, so the last restore may lag a bit.
+inline std::map<std::string, std::string> settled_images(
+    const fs::path& dir, const std::map<std::string, std::string>& expected) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    auto now = snapshot_images(dir);
+    while (now != expected && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(milliseconds(20));
+        now = snapshot_images(dir);
+    }
+    return now;
+}
+
+/// Runs lcc-conform with args; exit code and stdout (bounded).
+inline std::pair<int, std::string> conform(const std::vector<std::string>& args,
+                                           milliseconds timeout = milliseconds(60000)) {
+    return run_program(LCC_CONFORM_PATH, args, timeout);
+}
+
+/// The status of every check line "STATUS  id  message" of the text report.
+inline std::vector<std::pair<std::string, std::string>> check_lines(const std::string& out) {
+    std::vector<std::pair<std::string, std::string>> lines;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream words(line);
+        std::string status, id;
+        words >> status >> id;
+        if (status == "PASS" || status == "FAIL" || status == "WARN" || status == "SKIP")
+            lines.emplace_back(status, id);
+    }
+    return lines;
+}
+
+}  // namespace olcb::e2e
+
+#endif  // LCC_CONFORM_PATH
