@@ -37,6 +37,8 @@ constexpr int kExitRuntime = 1;
 constexpr int kExitUsage = 2;
 // How often start-up progress is checked for the "initialized" line.
 constexpr auto kStartupPoll = std::chrono::milliseconds(10);
+// Output a hub may fall behind by before simnode reconnects (see the --connect client).
+constexpr std::size_t kClientQueueBytes = 64u << 20;
 
 // Where `simnode` without arguments finds scenarios/default.ini: the source tree this binary was
 // built from, next to the binary (build tree or install prefix), then the working directory.
@@ -156,7 +158,12 @@ int run(const Scenario& scenario) {
 
     std::unique_ptr<TcpClient> client;
     if (scenario.connect) {
-        client = std::make_unique<TcpClient>(io, scenario.connect->host, scenario.connect->port);
+        // Hundreds of nodes announce their events in one burst at start-up, faster than any
+        // socket drains; the default 256 KiB queue would take that for a stalled hub.
+        TcpClientOptions options;
+        options.max_queue_bytes = kClientQueueBytes;
+        client = std::make_unique<TcpClient>(io, scenario.connect->host, scenario.connect->port,
+                                             options);
         Transport& port = add_port([&client](const CanFrame& f) { client->send(f); });
         client->set_handler([&port](const CanFrame& f) { port.send(f); });
     }
