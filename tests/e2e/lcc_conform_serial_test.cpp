@@ -89,6 +89,20 @@ TEST(LccConformSerial, MissingDeviceIsAUsageError) {
     EXPECT_EQ(run->wait(), 2);
 }
 
+TEST(LccConformSerial, SimnodeSurvivesItsAdapterBeingUnplugged) {
+    SerialSimnode sim;
+    ASSERT_TRUE(sim.ready);
+    sim.relay.unplug(PtyRelay::Side::A);
+    // Reported, then reopened once the adapter is back under the same path.
+    EXPECT_FALSE(sim.child->wait_for(milliseconds(300))) << "simnode exited on a lost adapter";
+    sim.relay.replug(PtyRelay::Side::A);
+    ASSERT_TRUE(sim.child->wait_line("simnode: serial ", milliseconds(10000)))
+        << sim.child->output();
+    const auto [code, text] = conform({"--serial", sim.tool_side(), "--list"});
+    EXPECT_EQ(code, 0) << text;
+    EXPECT_NE(text.find(kNode), std::string::npos) << text;
+}
+
 TEST(LccConformSerial, UnplugMidRunRestoresWhenTheAdapterReturns) {
     SerialSimnode sim;
     ASSERT_TRUE(sim.ready);
