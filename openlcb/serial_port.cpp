@@ -241,7 +241,11 @@ SerialPort::SerialPort(boost::asio::io_context& io, std::string device, SerialOp
     : impl_(std::make_shared<Impl>(io, std::move(device), options)) {}
 
 SerialPort::~SerialPort() {
-    impl_->close();
+    try {
+        impl_->close();
+    } catch (...) {
+        // Closing a descriptor that is already gone: nothing left to release.
+    }
 }
 
 std::optional<std::string> SerialPort::open() {

@@ -210,7 +210,11 @@ TcpClient::TcpClient(boost::asio::io_context& io, std::string host, std::uint16_
     : impl_(std::make_shared<Impl>(io, std::move(host), port, options)) {}
 
 TcpClient::~TcpClient() {
-    impl_->stop();
+    try {
+        impl_->stop();
+    } catch (...) {
+        // Cancelling a resolver or closing a socket that is already gone: nothing to release.
+    }
 }
 
 void TcpClient::start() {

@@ -90,9 +90,7 @@ void print_help(const po::options_description& opts) {
         << opts;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int main_checked(int argc, char** argv) {
     po::options_description opts("options");
     opts.add_options()("help,h", "this text")("connect", po::value<std::string>(),
                                               "GridConnect TCP hub, host:port")(
@@ -250,4 +248,17 @@ int main(int argc, char** argv) {
         return kUsage;
     }
     return exit_code(reports);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return main_checked(argc, argv);
+    } catch (const std::exception& e) {
+        // Never a silent abort: the user must know the node may hold test values (the safety
+        // backup file says what to restore).
+        std::cerr << "lcc-conform: internal error: " << e.what() << "\n";
+        return kUsage;
+    }
 }

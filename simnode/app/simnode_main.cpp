@@ -277,7 +277,7 @@ int run(const Scenario& scenario) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int main_checked(int argc, char** argv) {
     const std::vector<std::string> args(argv + 1, argv + argc);
     const auto defaults = default_scenarios();
     std::string error;
@@ -297,4 +297,13 @@ int main(int argc, char** argv) {
     // A peer closing its socket must not kill the process.
     ::signal(SIGPIPE, SIG_IGN);
     return run(parsed->scenario);
+}
+
+int main(int argc, char** argv) {
+    try {
+        return main_checked(argc, argv);
+    } catch (const std::exception& e) {
+        std::cerr << "simnode: internal error: " << e.what() << "\n";
+        return kExitRuntime;
+    }
 }
