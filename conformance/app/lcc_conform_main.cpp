@@ -86,7 +86,7 @@ void print_help(const po::options_description& opts) {
            "       lcc-conform restore FILE            put a safety or JMRI backup back\n\n"
            "Checks every node found (or --node ID) and prints one line per check.\n"
            "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
-           "error.\n\n"
+           "error,\nor the link went down during the run.\n\n"
         << opts;
 }
 
