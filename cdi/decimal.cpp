@@ -1,6 +1,8 @@
 #include "cdi/decimal.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cstdint>
 #include <string>
 
 namespace olcb::cdi {
@@ -37,8 +39,13 @@ std::optional<WideInt> parse_decimal_int(std::string_view text) {
     }
     while (text.size() > 1 && text.front() == '0') text.remove_prefix(1);
     if (text.size() > kMaxSignificantDigits) return std::nullopt;
-    WideInt value = 0;
-    for (char c : text) value = value * 10 + (c - '0');
+    // 18 digits fit in 64 bits; 128-bit arithmetic is only needed beyond.
+    std::uint64_t low = 0;
+    const std::size_t fast = std::min<std::size_t>(text.size(), 18);
+    for (std::size_t i = 0; i < fast; ++i)
+        low = low * 10 + static_cast<std::uint64_t>(text[i] - '0');
+    WideInt value = low;
+    for (char c : text.substr(fast)) value = value * 10 + (c - '0');
     return negative ? -value : value;
 }
 

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "cdi/boxed.hpp"
+
 namespace olcb::cdi {
 
 /// Integer wide enough for every value of a signed or unsigned 8-byte <int>.
@@ -79,18 +81,19 @@ struct SourcePos {
 };
 
 /// A data element: a <group> or a variable (int, string, eventid, float, action, blob, bit,
-/// or an unknown element with a size).
+/// or an unknown element with a size). Large members that most elements lack are Boxed (kept
+/// out of line), so a document of thousands of elements stays compact.
 struct Element {
     ElementKind kind = ElementKind::kUnknown;
-    std::string tag;  ///< the element name as written (matters for kUnknown)
     SourcePos pos;
+    std::string tag;  ///< the element name as written (matters for kUnknown)
 
     std::int64_t offset = 0;  ///< the offset attribute (0 when absent)
     std::uint64_t size = 0;   ///< bytes of one variable; 0 for groups (derived by Layout)
 
     std::string name;
     std::string description;
-    std::optional<Link> link;
+    Boxed<Link> link;
     Hints hints;
 
     // <int>, <action> (value), <bit>: integer constraints, parsed from decimal text.
@@ -98,20 +101,20 @@ struct Element {
     std::optional<WideInt> int_max;
     std::optional<WideInt> int_default;
     // <float>: floating constraints and the formatting attribute.
-    std::optional<double> float_min;
-    std::optional<double> float_max;
-    std::optional<double> float_default;
-    std::string formatting;
+    Boxed<double> float_min;
+    Boxed<double> float_max;
+    Boxed<double> float_default;
+    Boxed<std::string> formatting;  ///< absent when the attribute is missing or empty
     // <string>/<eventid>: the <default> text when present.
-    std::optional<std::string> text_default;
-    std::optional<Map> map;
+    Boxed<std::string> text_default;
+    Boxed<Map> map;
 
-    // <action>
-    std::string button_text;
-    std::string dialog_text;
-    std::optional<WideInt> action_value;
+    // <action>; the texts are absent when missing or empty.
+    Boxed<std::string> button_text;
+    Boxed<std::string> dialog_text;
+    Boxed<WideInt> action_value;
     // <blob>
-    std::string blob_mode;  ///< "read", "write" or "readwrite"
+    Boxed<std::string> blob_mode;  ///< "read", "write" or "readwrite"; absent when missing/empty
 
     // <group>
     std::uint64_t replication = 1;

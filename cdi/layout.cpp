@@ -222,11 +222,15 @@ void LayoutBuilder::finish_node(std::uint32_t index) {
     }
     n.sorted_count = static_cast<std::uint32_t>(layout_.sorted_.size()) - n.sorted_begin;
     auto begin = layout_.sorted_.begin() + n.sorted_begin;
-    std::sort(begin, layout_.sorted_.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const auto by_start = [&](std::uint32_t a, std::uint32_t b) {
         const Wide ka = wide_[a].rel + wide_[a].lo;
         const Wide kb = wide_[b].rel + wide_[b].lo;
         return ka != kb ? ka < kb : a < b;
-    });
+    };
+    // Children usually follow each other in memory; checking is cheaper than sorting.
+    if (!std::is_sorted(begin, layout_.sorted_.end(), by_start)) {
+        std::sort(begin, layout_.sorted_.end(), by_start);
+    }
     Wide running = std::numeric_limits<std::int64_t>::min();
     for (auto it = begin; it != layout_.sorted_.end(); ++it) {
         running = std::max(running, wide_[*it].rel + wide_[*it].hi);

@@ -25,11 +25,15 @@ void Layout::check_overlaps(const LayoutOptions& options, Diagnostics& diagnosti
         if (c.size() == 0) continue;
         spans.push_back({c.space(), c.address(), c.address() + c.size(), c.ordinal()});
     }
-    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) {
+    const auto by_address = [](const Span& a, const Span& b) {
         if (a.space != b.space) return a.space < b.space;
         if (a.begin != b.begin) return a.begin < b.begin;
         return a.ordinal < b.ordinal;
-    });
+    };
+    // Document order is usually address order already; checking is far cheaper than sorting.
+    if (!std::is_sorted(spans.begin(), spans.end(), by_address)) {
+        std::sort(spans.begin(), spans.end(), by_address);
+    }
     for (std::size_t i = 0; i < spans.size();) {
         const std::uint32_t space = spans[i].space;
         std::uint64_t overlaps = 0;

@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "cdi/pugixml_tree.hpp"
+#include "cdi/simple_xml_reader.hpp"
+#include "cdi/xml_tree.hpp"
+
 namespace olcb::cdi {
 namespace {
 
@@ -14,6 +18,21 @@ constexpr WideInt kTwoPow31 = WideInt{1} << 31;
 constexpr WideInt kTwoPow32 = WideInt{1} << 32;
 // Enough to report every problem of a real CDI; bounds memory on hostile input.
 constexpr std::size_t kMaxDiagnostics = 1000;
+
+// Counts '\n' in [p, end). A block of 240 bytes (a multiple of the vector width) fits an 8-bit
+// counter, which lets compilers compare 16 or 32 bytes per instruction; std::count goes byte by
+// byte.
+std::size_t count_newlines(const char* p, const char* end) {
+    std::size_t total = 0;
+    while (p < end) {
+        const std::size_t block = std::min<std::size_t>(static_cast<std::size_t>(end - p), 240);
+        std::uint8_t n = 0;
+        for (std::size_t i = 0; i < block; ++i) n += static_cast<std::uint8_t>(p[i] == '\n');
+        total += n;
+        p += block;
+    }
+    return total;
+}
 
 // Maps a byte offset to a 1-based line. Elements are visited in document order, so lines are
 // counted incrementally from the previous offset; a backwards step recounts from the start.
@@ -28,7 +47,7 @@ public:
             line_ = 1;
         }
         line_ += static_cast<std::uint32_t>(
-            std::count(text_.data() + offset_, text_.data() + offset, '\n'));
+            count_newlines(text_.data() + offset_, text_.data() + offset));
         offset_ = offset;
         return line_;
     }
@@ -39,78 +58,61 @@ private:
     std::uint32_t line_ = 1;
 };
 
-// Compares a NUL-terminated name with a literal without strlen; stops at the first mismatch, so
-// it never reads past the name's terminator.
 template <std::size_t N>
-bool is(const char* name, const char (&literal)[N]) {
-    for (std::size_t i = 0; i < N; ++i) {
-        if (name[i] != literal[i]) return false;
-    }
-    return true;
+bool is(std::string_view name, const char (&literal)[N]) {
+    return name == std::string_view(literal, N - 1);
+}
+
+std::string str(std::string_view text) {
+    return std::string(text);
 }
 
 // A CDI needs about kMaxGroupDepth + 8 levels; anything far deeper is hostile.
 constexpr std::size_t kMaxXmlDepth = 2 * kMaxGroupDepth + 16;
 
-// Offset of the first start tag deeper than kMaxXmlDepth, by a scan of the (already
-// well-formed) text: no recursion, and far cheaper than walking pugixml's tree node by node.
-std::optional<std::size_t> first_too_deep(std::string_view text) {
-    const char* const begin = text.data();
-    const char* const end = begin + text.size();
-    auto skip_past = [&](const char* from, std::string_view terminator) {
-        std::string_view rest(from, static_cast<std::size_t>(end - from));
-        const std::size_t at = rest.find(terminator);
-        return at == std::string_view::npos ? end : from + at + terminator.size();
-    };
-    std::size_t depth = 0;
-    const char* p = begin;
-    while (p < end) {
-        const void* hit = std::memchr(p, '<', static_cast<std::size_t>(end - p));
-        if (hit == nullptr) break;
-        const char* tag = static_cast<const char*>(hit);
-        if (tag + 1 >= end) break;
-        const char next = tag[1];
-        if (next == '/') {
-            if (depth > 0) --depth;
-            p = tag + 2;
-        } else if (next == '?') {
-            p = skip_past(tag + 2, "?>");
-        } else if (next == '!') {
-            const std::string_view rest(tag, static_cast<std::size_t>(end - tag));
-            if (rest.substr(0, 4) == "<!--") {
-                p = skip_past(tag + 4, "-->");
-            } else if (rest.substr(0, 9) == "<![CDATA[") {
-                p = skip_past(tag + 9, "]]>");
-            } else {
-                p = skip_past(tag + 2, ">");
-            }
-        } else {
-            if (++depth > kMaxXmlDepth) return static_cast<std::size_t>(tag - begin);
-            // Find the end of the tag; attribute values may hold '>'.
-            const char* q = tag + 1;
-            char quote = 0;
-            for (; q < end; ++q) {
-                if (quote != 0) {
-                    if (*q == quote) quote = 0;
-                } else if (*q == '"' || *q == '\'') {
-                    quote = *q;
-                } else if (*q == '>') {
-                    break;
-                }
-            }
-            if (q < end && q[-1] == '/') --depth;
-            p = q + 1;
-        }
+// Finds the first element (document order) nested deeper than kMaxXmlDepth. pugixml's own
+// traversal is iterative and stays inside the library, so it costs a few instructions a node.
+class DepthWalker : public pugi::xml_tree_walker {
+public:
+    bool for_each(pugi::xml_node& node) override {
+        // depth() is 0 for the root element, which is at XML depth 1.
+        if (static_cast<std::size_t>(depth()) < kMaxXmlDepth || node.type() != pugi::node_element)
+            return true;
+        too_deep_ = node;
+        return false;
     }
-    return std::nullopt;
-}
+    pugi::xml_node too_deep() const { return too_deep_; }
+
+private:
+    pugi::xml_node too_deep_;
+};
 
 bool is_xml_space(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\n';
 }
 
-bool name_is(pugi::xml_node node, std::string_view name) {
-    return node.name() == name;
+// Number of children named name; a reservation hint.
+template <std::size_t N>
+std::size_t count_children(XmlElement node, const char (&name)[N]) {
+    std::size_t n = 0;
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
+        if (is(child.name(), name)) ++n;
+    }
+    return n;
+}
+
+// Stores a rarely present text; an empty one is the same as none.
+void set_text(Boxed<std::string>& box, std::string_view text) {
+    if (!text.empty()) {
+        box = std::string(text);
+    } else {
+        box.reset();
+    }
+}
+
+template <std::size_t N>
+bool name_is(XmlElement node, const char (&name)[N]) {
+    return is(node.name(), name);
 }
 
 std::string quoted(std::string_view text) {
@@ -127,7 +129,7 @@ bool is_namespace_attribute(std::string_view name) {
     return name.substr(0, 5) == "xmlns" || name.find(':') != std::string_view::npos;
 }
 
-std::optional<ElementKind> known_kind(const char* tag) {
+std::optional<ElementKind> known_kind(std::string_view tag) {
     switch (tag[0]) {
         case 'g':
             if (is(tag, "group")) return ElementKind::kGroup;
@@ -157,15 +159,17 @@ std::optional<ElementKind> known_kind(const char* tag) {
     return std::nullopt;
 }
 
-// The data element kind of a child of <segment>/<group>, or nullopt for the container's own
-// children (name, description, ...) and for unknown elements without a size.
-std::optional<ElementKind> data_kind(pugi::xml_node child, const char* tag, bool in_group) {
-    if (std::optional<ElementKind> kind = known_kind(tag)) return kind;
-    if (is(tag, "name") || is(tag, "description") || is(tag, "link")) return std::nullopt;
-    if (in_group && (is(tag, "repname") || is(tag, "hints"))) return std::nullopt;
-    if (!child.attribute("size")) return std::nullopt;
-    return ElementKind::kUnknown;
+// The container's own children of a <segment>/<group>, read by its caller (name, ...).
+bool is_own_child(std::string_view tag, bool in_group) {
+    if (is(tag, "name") || is(tag, "description") || is(tag, "link")) return true;
+    return in_group && (is(tag, "repname") || is(tag, "hints"));
 }
+
+// A child of a <segment>/<group> that parse_data_children acts on, in document order.
+struct PendingChild {
+    XmlElement node;
+    std::optional<ElementKind> kind;  // nullopt: an unknown element without size (warned)
+};
 
 class Parser {
 public:
@@ -184,96 +188,140 @@ private:
         }
         diagnostics_.push_back({severity, line, std::move(message)});
     }
-    void error(pugi::xml_node node, std::string message) {
+    void error(XmlElement node, std::string message) {
         report(Severity::kError, line(node), std::move(message));
     }
-    void warning(pugi::xml_node node, std::string message) {
+    void warning(XmlElement node, std::string message) {
         report(Severity::kWarning, line(node), std::move(message));
     }
-    std::uint32_t line(pugi::xml_node node) {
-        const std::ptrdiff_t offset = node.offset_debug();
-        return offset < 0 ? 0 : lines_->line_of(static_cast<std::size_t>(offset));
-    }
+    std::uint32_t line(XmlElement node) { return lines_->line_of(node.offset()); }
 
-    std::optional<WideInt> int_attribute(pugi::xml_node node, const char* name, WideInt lo,
+    std::optional<WideInt> int_attribute(XmlElement node, std::string_view name, WideInt lo,
                                          WideInt hi, bool* bad);
-    std::optional<WideInt> int_value(pugi::xml_node node, pugi::xml_attribute attr, WideInt lo,
+    std::optional<WideInt> int_value(XmlElement node, const XmlAttribute& attr, WideInt lo,
                                      WideInt hi, bool* bad);
-    bool bool_attribute(pugi::xml_node node, const char* name);
-    std::optional<WideInt> int_text(pugi::xml_node node, pugi::xml_node parent);
-    std::optional<double> float_text(pugi::xml_node node, pugi::xml_node parent);
+    bool bool_attribute(XmlElement node, std::string_view name);
+    std::optional<WideInt> int_text(XmlElement node, XmlElement parent);
+    std::optional<double> float_text(XmlElement node, XmlElement parent);
 
+    bool read_with_pugixml(std::string_view bytes, pugi::xml_document& xml, XmlTree& tree);
     void read_declaration(std::string_view text, Document& doc);
-    void parse_identification(pugi::xml_node node, Document& doc);
-    void parse_acdi(pugi::xml_node node, Document& doc);
-    void parse_segment(pugi::xml_node node, Document& doc);
-    Link parse_link(pugi::xml_node node);
-    Map parse_map(pugi::xml_node node);
-    void parse_hints(pugi::xml_node node, Element& element);
-    void parse_data_children(pugi::xml_node parent, std::vector<Element>& out, std::size_t depth);
-    bool parse_data_element(pugi::xml_node node, const char* tag, ElementKind kind,
-                            std::size_t depth, Element& element);
-    void parse_group_body(pugi::xml_node node, Element& group, std::size_t depth);
-    void parse_variable_body(pugi::xml_node node, Element& element);
-    bool read_size(pugi::xml_node node, std::optional<WideInt> size, Element& element);
+    void parse_identification(XmlElement node, Document& doc);
+    void parse_acdi(XmlElement node, Document& doc);
+    void parse_segment(XmlElement node, Document& doc);
+    Link parse_link(XmlElement node);
+    void parse_map(XmlElement node, Map& map);
+    void parse_hints(XmlElement node, Element& element);
+    void parse_data_children(XmlElement parent, std::vector<Element>& out, std::size_t depth);
+    bool parse_data_element(XmlElement node, ElementKind kind, std::size_t depth, Element& element);
+    void parse_group_body(XmlElement node, Element& group, std::size_t depth);
+    void parse_variable_body(XmlElement node, Element& element);
+    bool read_size(XmlElement node, std::optional<WideInt> size, Element& element);
 
     Diagnostics& diagnostics_;
     LineCounter* lines_ = nullptr;
+    std::vector<PendingChild> pending_;  // parse_data_children's work list, one slice per depth
     bool truncated_ = false;
 };
 
-std::optional<WideInt> Parser::int_attribute(pugi::xml_node node, const char* name, WideInt lo,
+std::optional<WideInt> Parser::int_attribute(XmlElement node, std::string_view name, WideInt lo,
                                              WideInt hi, bool* bad) {
-    pugi::xml_attribute attr = node.attribute(name);
-    if (!attr) return std::nullopt;
-    return int_value(node, attr, lo, hi, bad);
+    const XmlAttribute* attr = node.attribute(name);
+    if (attr == nullptr) return std::nullopt;
+    return int_value(node, *attr, lo, hi, bad);
 }
 
-std::optional<WideInt> Parser::int_value(pugi::xml_node node, pugi::xml_attribute attr, WideInt lo,
+std::optional<WideInt> Parser::int_value(XmlElement node, const XmlAttribute& attr, WideInt lo,
                                          WideInt hi, bool* bad) {
-    std::optional<WideInt> value = parse_decimal_int(attr.value());
+    std::optional<WideInt> value = parse_decimal_int(attr.value);
     if (!value) {
-        error(node, std::string("attribute ") + attr.name() + "=" + quoted(attr.value()) + " of <" +
-                        node.name() + "> is not a decimal integer");
+        error(node, "attribute " + str(attr.name) + "=" + quoted(attr.value) + " of <" +
+                        str(node.name()) + "> is not a decimal integer");
         *bad = true;
         return std::nullopt;
     }
     if (*value < lo || *value > hi) {
-        error(node, std::string("attribute ") + attr.name() + "=" + quoted(attr.value()) + " of <" +
-                        node.name() + "> is out of range " + to_string(lo) + ".." + to_string(hi));
+        error(node, "attribute " + str(attr.name) + "=" + quoted(attr.value) + " of <" +
+                        str(node.name()) + "> is out of range " + to_string(lo) + ".." +
+                        to_string(hi));
         *bad = true;
         return std::nullopt;
     }
     return value;
 }
 
-bool Parser::bool_attribute(pugi::xml_node node, const char* name) {
-    pugi::xml_attribute attr = node.attribute(name);
-    if (!attr) return false;
-    std::string_view text = trim_xml_space(attr.value());
+bool Parser::bool_attribute(XmlElement node, std::string_view name) {
+    const XmlAttribute* attr = node.attribute(name);
+    if (attr == nullptr) return false;
+    std::string_view text = trim_xml_space(attr->value);
     if (text == "yes" || text == "true" || text == "1") return true;
     if (text == "no" || text == "false" || text == "0") return false;
-    warning(node, std::string("attribute ") + name + "=" + quoted(attr.value()) + " of <" +
-                      node.name() + "> is not yes/no/true/false/1/0; taken as false");
+    warning(node, "attribute " + str(name) + "=" + quoted(attr->value) + " of <" +
+                      str(node.name()) + "> is not yes/no/true/false/1/0; taken as false");
     return false;
 }
 
-std::optional<WideInt> Parser::int_text(pugi::xml_node node, pugi::xml_node parent) {
-    std::optional<WideInt> value = parse_decimal_int(node.child_value());
+std::optional<WideInt> Parser::int_text(XmlElement node, XmlElement parent) {
+    std::optional<WideInt> value = parse_decimal_int(node.text());
     if (!value) {
-        error(node, std::string("<") + node.name() + "> of <" + parent.name() +
-                        "> is not a decimal integer: " + quoted(node.child_value()));
+        error(node, "<" + str(node.name()) + "> of <" + str(parent.name()) +
+                        "> is not a decimal integer: " + quoted(node.text()));
     }
     return value;
 }
 
-std::optional<double> Parser::float_text(pugi::xml_node node, pugi::xml_node parent) {
-    std::optional<double> value = parse_decimal_float(node.child_value());
+std::optional<double> Parser::float_text(XmlElement node, XmlElement parent) {
+    std::optional<double> value = parse_decimal_float(node.text());
     if (!value) {
-        error(node, std::string("<") + node.name() + "> of <" + parent.name() +
-                        "> is not a decimal number: " + quoted(node.child_value()));
+        error(node, "<" + str(node.name()) + "> of <" + str(parent.name()) +
+                        "> is not a decimal number: " + quoted(node.text()));
     }
     return value;
+}
+
+// Reads a document that read_simple_xml declines: reports what makes it unusable (malformed
+// XML, a DTD, no root, nesting too deep) and returns false, or fills tree. A root other than
+// <cdi> is left to the caller: the tree then holds that root alone.
+bool Parser::read_with_pugixml(std::string_view bytes, pugi::xml_document& xml, XmlTree& tree) {
+    const auto line = [this](pugi::xml_node node) -> std::uint32_t {
+        const std::ptrdiff_t offset = node.offset_debug();
+        return offset < 0 ? 0 : lines_->line_of(static_cast<std::size_t>(offset));
+    };
+    pugi::xml_parse_result parsed =
+        xml.load_buffer(bytes.data(), bytes.size(), kPugixmlOptions, pugi::encoding_utf8);
+    if (!parsed) {
+        const std::size_t offset = parsed.offset < 0 ? 0 : static_cast<std::size_t>(parsed.offset);
+        report(Severity::kError, lines_->line_of(std::min(offset, bytes.size())),
+               std::string("malformed XML: ") + parsed.description());
+        return false;
+    }
+    for (pugi::xml_node child : xml.children()) {
+        if (child.type() == pugi::node_doctype) {
+            report(Severity::kError, line(child),
+                   "DOCTYPE/DTD (and entity declarations) are not allowed in a CDI");
+            return false;
+        }
+    }
+    pugi::xml_node root = xml.document_element();
+    if (!root) {
+        report(Severity::kError, 0, "no root element");
+        return false;
+    }
+    if (std::strcmp(root.name(), "cdi") != 0) {
+        tree.close(
+            tree.open(static_cast<std::size_t>(root.offset_debug()), std::strlen(root.name())));
+        return true;
+    }
+    DepthWalker walker;
+    xml.traverse(walker);
+    if (pugi::xml_node deep = walker.too_deep()) {
+        report(
+            Severity::kError, line(deep),
+            "XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels; refused");
+        return false;
+    }
+    copy_pugixml_elements(root, tree);
+    return true;
 }
 
 void Parser::read_declaration(std::string_view text, Document& doc) {
@@ -289,43 +337,50 @@ void Parser::read_declaration(std::string_view text, Document& doc) {
     doc.xml_declaration = std::string(rest.substr(0, end + 2));
 }
 
-Link Parser::parse_link(pugi::xml_node node) {
+Link Parser::parse_link(XmlElement node) {
     Link link;
-    link.ref = node.attribute("ref").value();
-    link.text = node.child_value();
-    if (!node.attribute("ref")) warning(node, "<link> without a ref attribute");
+    const XmlAttribute* ref = node.attribute("ref");
+    if (ref != nullptr) link.ref = ref->value;
+    link.text = node.text();
+    if (ref == nullptr) warning(node, "<link> without a ref attribute");
     return link;
 }
 
-Map Parser::parse_map(pugi::xml_node node) {
-    Map map;
-    for (pugi::xml_node child : node.children()) {
-        if (child.type() != pugi::node_element) continue;
-        if (name_is(child, "name")) {
-            map.name = child.child_value();
-        } else if (name_is(child, "description")) {
-            map.description = child.child_value();
-        } else if (name_is(child, "relation")) {
-            MapEntry entry;
-            pugi::xml_node property = child.child("property");
-            pugi::xml_node value = child.child("value");
+void Parser::parse_map(XmlElement node, Map& map) {
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
+        const std::string_view tag = child.name();
+        if (is(tag, "name")) {
+            map.name = child.text();
+        } else if (is(tag, "description")) {
+            map.description = child.text();
+        } else if (is(tag, "relation")) {
+            if (map.entries.empty()) map.entries.reserve(count_children(node, "relation"));
+            // The first <property> and the first <value>, in one pass over the relation.
+            XmlElement property;
+            XmlElement value;
+            for (XmlElement part = child.first_child(); part; part = part.next_sibling()) {
+                const std::string_view part_tag = part.name();
+                if (!property && is(part_tag, "property")) {
+                    property = part;
+                } else if (!value && is(part_tag, "value")) {
+                    value = part;
+                }
+            }
             if (!property || !value) {
                 warning(child, "<relation> without <property> and <value>");
             }
-            entry.property = property.child_value();
-            entry.value = value.child_value();
-            map.entries.push_back(std::move(entry));
+            MapEntry& entry = map.entries.emplace_back();
+            if (property) entry.property = property.text();
+            if (value) entry.value = value.text();
         } else {
-            warning(child, std::string("unknown element <") + child.name() + "> in <map> ignored");
+            warning(child, "unknown element <" + str(tag) + "> in <map> ignored");
         }
     }
-    return map;
 }
 
-void Parser::parse_hints(pugi::xml_node node, Element& element) {
+void Parser::parse_hints(XmlElement node, Element& element) {
     const bool group = element.kind == ElementKind::kGroup;
-    for (pugi::xml_node child : node.children()) {
-        if (child.type() != pugi::node_element) continue;
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
         if (!group && name_is(child, "slider")) {
             SliderHint slider;
             bool bad = false;
@@ -347,42 +402,41 @@ void Parser::parse_hints(pugi::xml_node node, Element& element) {
         } else if (group && name_is(child, "readOnly")) {
             element.hints.read_only = true;
         } else {
-            warning(child, std::string("hint <") + child.name() + "> is not defined for <" +
-                               element.tag + ">; ignored");
+            warning(child, "hint <" + str(child.name()) + "> is not defined for <" + element.tag +
+                               ">; ignored");
         }
     }
 }
 
-void Parser::parse_identification(pugi::xml_node node, Document& doc) {
+void Parser::parse_identification(XmlElement node, Document& doc) {
     if (doc.identification) {
         warning(node, "duplicate <identification> ignored");
         return;
     }
     Identification id;
     id.pos.line = line(node);
-    for (pugi::xml_node child : node.children()) {
-        if (child.type() != pugi::node_element) continue;
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
         if (name_is(child, "manufacturer")) {
-            id.manufacturer = child.child_value();
+            id.manufacturer = child.text();
         } else if (name_is(child, "model")) {
-            id.model = child.child_value();
+            id.model = child.text();
         } else if (name_is(child, "hardwareVersion")) {
-            id.hardware_version = child.child_value();
+            id.hardware_version = child.text();
         } else if (name_is(child, "softwareVersion")) {
-            id.software_version = child.child_value();
+            id.software_version = child.text();
         } else if (name_is(child, "link")) {
             id.link = parse_link(child);
         } else if (name_is(child, "map")) {
-            id.map = parse_map(child);
+            parse_map(child, id.map.emplace());
         } else {
-            warning(child, std::string("unknown element <") + child.name() +
-                               "> in <identification> ignored");
+            warning(child,
+                    "unknown element <" + str(child.name()) + "> in <identification> ignored");
         }
     }
     doc.identification = std::move(id);
 }
 
-void Parser::parse_acdi(pugi::xml_node node, Document& doc) {
+void Parser::parse_acdi(XmlElement node, Document& doc) {
     if (doc.acdi) {
         warning(node, "duplicate <acdi> ignored");
         return;
@@ -399,11 +453,11 @@ void Parser::parse_acdi(pugi::xml_node node, Document& doc) {
     doc.acdi = acdi;
 }
 
-void Parser::parse_segment(pugi::xml_node node, Document& doc) {
+void Parser::parse_segment(XmlElement node, Document& doc) {
     Segment segment;
     segment.pos.line = line(node);
     bool bad = false;
-    if (!node.attribute("space")) {
+    if (node.attribute("space") == nullptr) {
         error(node, "<segment> without the required space attribute");
     } else if (auto v = int_attribute(node, "space", 0, 255, &bad)) {
         segment.space = static_cast<std::uint32_t>(*v);
@@ -412,19 +466,16 @@ void Parser::parse_segment(pugi::xml_node node, Document& doc) {
     if (auto v = int_attribute(node, "origin", -kTwoPow31, kTwoPow32 - 1, &bad)) {
         segment.origin = static_cast<std::int64_t>(*v);
     }
-    for (pugi::xml_attribute attr : node.attributes()) {
-        const char* name = attr.name();
-        if (std::strcmp(name, "space") != 0 && std::strcmp(name, "origin") != 0 &&
-            !is_namespace_attribute(name)) {
-            warning(node, std::string("attribute '") + name + "' of <segment> ignored");
+    for (const XmlAttribute& attr : node.attributes()) {
+        if (attr.name != "space" && attr.name != "origin" && !is_namespace_attribute(attr.name)) {
+            warning(node, "attribute '" + str(attr.name) + "' of <segment> ignored");
         }
     }
-    for (pugi::xml_node child : node.children()) {
-        if (child.type() != pugi::node_element) continue;
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
         if (name_is(child, "name")) {
-            segment.name = child.child_value();
+            segment.name = child.text();
         } else if (name_is(child, "description")) {
-            segment.description = child.child_value();
+            segment.description = child.text();
         } else if (name_is(child, "link")) {
             segment.link = parse_link(child);
         }
@@ -435,34 +486,38 @@ void Parser::parse_segment(pugi::xml_node node, Document& doc) {
 
 // Reads the data elements among the children of a <segment> or <group>; other children are
 // the caller's (name, description, ...) or unknown elements without size, skipped with a warning.
-// Elements are built in place: an Element is large and moving it costs.
-void Parser::parse_data_children(pugi::xml_node parent, std::vector<Element>& out,
-                                 std::size_t depth) {
+// One pass classifies the children so the output is reserved exactly: Elements are built in
+// place, because moving one costs. Nested calls stack their entries above this call's.
+void Parser::parse_data_children(XmlElement parent, std::vector<Element>& out, std::size_t depth) {
     const bool in_group = name_is(parent, "group");
+    const std::size_t first = pending_.size();
     std::size_t count = 0;
-    for (pugi::xml_node child = parent.first_child(); child; child = child.next_sibling()) {
-        const char* tag = child.name();
-        if (*tag != '\0' && data_kind(child, tag, in_group)) ++count;
+    for (XmlElement child = parent.first_child(); child; child = child.next_sibling()) {
+        const std::string_view tag = child.name();
+        if (is_own_child(tag, in_group)) continue;  // the caller's
+        std::optional<ElementKind> kind = known_kind(tag);
+        if (!kind && child.attribute("size") != nullptr) kind = ElementKind::kUnknown;
+        if (kind) ++count;
+        pending_.push_back({child, kind});
     }
+    const std::size_t end = pending_.size();
     out.reserve(out.size() + count);
-    for (pugi::xml_node child = parent.first_child(); child; child = child.next_sibling()) {
-        const char* tag = child.name();
-        if (*tag == '\0') continue;  // text nodes; comments and PIs are not kept
-        std::optional<ElementKind> kind = data_kind(child, tag, in_group);
-        if (!kind) {
-            if (!known_kind(tag) && !is(tag, "name") && !is(tag, "description") &&
-                !is(tag, "link") && !(in_group && (is(tag, "repname") || is(tag, "hints")))) {
-                warning(child, std::string("unknown element <") + child.name() + "> in <" +
-                                   parent.name() + "> has no size attribute; skipped");
-            }
+    for (std::size_t i = first; i < end; ++i) {
+        const PendingChild child = pending_[i];  // a copy: nested calls may grow pending_
+        if (!child.kind) {
+            warning(child.node, "unknown element <" + str(child.node.name()) + "> in <" +
+                                    str(parent.name()) + "> has no size attribute; skipped");
             continue;
         }
         Element& element = out.emplace_back();
-        if (!parse_data_element(child, tag, *kind, depth, element)) out.pop_back();
+        if (!parse_data_element(child.node, *child.kind, depth, element)) {
+            out.pop_back();
+        }
     }
+    pending_.resize(first);
 }
 
-bool Parser::read_size(pugi::xml_node node, std::optional<WideInt> size, Element& element) {
+bool Parser::read_size(XmlElement node, std::optional<WideInt> size, Element& element) {
     switch (element.kind) {
         case ElementKind::kInt:
             element.size = size ? static_cast<std::uint64_t>(*size) : 1;
@@ -477,7 +532,7 @@ bool Parser::read_size(pugi::xml_node node, std::optional<WideInt> size, Element
             return true;
         case ElementKind::kEventId:
             if (size && *size != 8) {
-                warning(node, "size=" + quoted(node.attribute("size").value()) +
+                warning(node, "size=" + quoted(node.attribute("size")->value) +
                                   " of <eventid> ignored; an event ID is 8 bytes");
             }
             element.size = 8;
@@ -486,17 +541,17 @@ bool Parser::read_size(pugi::xml_node node, std::optional<WideInt> size, Element
             break;
     }
     if (!size) {
-        error(node, std::string("<") + node.name() + "> requires a size attribute");
+        error(node, "<" + str(node.name()) + "> requires a size attribute");
         return false;
     }
     element.size = static_cast<std::uint64_t>(*size);
     return true;
 }
 
-bool Parser::parse_data_element(pugi::xml_node node, const char* tag, ElementKind kind,
-                                std::size_t depth, Element& element) {
+bool Parser::parse_data_element(XmlElement node, ElementKind kind, std::size_t depth,
+                                Element& element) {
     element.kind = kind;
-    element.tag.assign(tag);
+    element.tag = node.name();
     element.pos.line = line(node);
     const bool group = kind == ElementKind::kGroup;
     bool bad = false;
@@ -504,8 +559,8 @@ bool Parser::parse_data_element(pugi::xml_node node, const char* tag, ElementKin
     std::optional<WideInt> size;
     // One pass over the attributes; offset is xs:int, but [2^31, 2^32) is OpenMRN's unsigned
     // rendering of a negative value and is kept verbatim for the layout to judge.
-    for (pugi::xml_attribute attr = node.first_attribute(); attr; attr = attr.next_attribute()) {
-        const char* name = attr.name();
+    for (const XmlAttribute& attr : node.attributes()) {
+        const std::string_view name = attr.name;
         if (is(name, "offset")) {
             if (auto v = int_value(node, attr, -kTwoPow31, kTwoPow32 - 1, &bad)) {
                 element.offset = static_cast<std::int64_t>(*v);
@@ -517,11 +572,11 @@ bool Parser::parse_data_element(pugi::xml_node node, const char* tag, ElementKin
                 element.replication = static_cast<std::uint64_t>(*v);
             }
         } else if (kind == ElementKind::kFloat && is(name, "formatting")) {
-            element.formatting = attr.value();
+            set_text(element.formatting, attr.value);
         } else if (kind == ElementKind::kBlob && is(name, "mode")) {
-            element.blob_mode = attr.value();
+            set_text(element.blob_mode, attr.value);
         } else if (kind != ElementKind::kUnknown && !is_namespace_attribute(name)) {
-            warning(node, std::string("attribute '") + attr.name() + "' of <" + node.name() +
+            warning(node, "attribute '" + str(name) + "' of <" + str(node.name()) +
                               "> is not in the CDI schema; ignored");
         }
     }
@@ -539,18 +594,17 @@ bool Parser::parse_data_element(pugi::xml_node node, const char* tag, ElementKin
     return !bad;
 }
 
-void Parser::parse_group_body(pugi::xml_node node, Element& group, std::size_t depth) {
-    for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling()) {
-        const char* tag = child.name();
-        if (*tag == '\0') continue;  // text nodes; comments and PIs are not kept
+void Parser::parse_group_body(XmlElement node, Element& group, std::size_t depth) {
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
+        const std::string_view tag = child.name();
         if (is(tag, "name")) {
-            group.name = child.child_value();
+            group.name = child.text();
         } else if (is(tag, "description")) {
-            group.description = child.child_value();
+            group.description = child.text();
         } else if (is(tag, "link")) {
             group.link = parse_link(child);
         } else if (is(tag, "repname")) {
-            group.repnames.emplace_back(child.child_value());
+            group.repnames.emplace_back(child.text());
         } else if (is(tag, "hints")) {
             parse_hints(child, group);
         }
@@ -558,19 +612,18 @@ void Parser::parse_group_body(pugi::xml_node node, Element& group, std::size_t d
     parse_data_children(node, group.children, depth + 1);
 }
 
-void Parser::parse_variable_body(pugi::xml_node node, Element& element) {
+void Parser::parse_variable_body(XmlElement node, Element& element) {
     const ElementKind kind = element.kind;
     const bool integer = kind == ElementKind::kInt || kind == ElementKind::kBit;
     const bool floating = kind == ElementKind::kFloat;
     const bool text = kind == ElementKind::kString || kind == ElementKind::kEventId;
     const bool action = kind == ElementKind::kAction;
-    for (pugi::xml_node child = node.first_child(); child; child = child.next_sibling()) {
-        const char* tag = child.name();
-        if (*tag == '\0') continue;  // text nodes; comments and PIs are not kept
+    for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
+        const std::string_view tag = child.name();
         if (is(tag, "name")) {
-            element.name = child.child_value();
+            element.name = child.text();
         } else if (is(tag, "description")) {
-            element.description = child.child_value();
+            element.description = child.text();
         } else if (kind == ElementKind::kUnknown) {
             continue;  // a future element: only its name, description and size matter here
         } else if (is(tag, "link")) {
@@ -578,7 +631,7 @@ void Parser::parse_variable_body(pugi::xml_node node, Element& element) {
         } else if (is(tag, "hints")) {
             parse_hints(child, element);
         } else if (is(tag, "map") && !action && kind != ElementKind::kBlob) {
-            element.map = parse_map(child);
+            parse_map(child, element.map.emplace());
         } else if (integer && is(tag, "min")) {
             element.int_min = int_text(child, node);
         } else if (integer && is(tag, "max")) {
@@ -592,16 +645,16 @@ void Parser::parse_variable_body(pugi::xml_node node, Element& element) {
         } else if (floating && is(tag, "default")) {
             element.float_default = float_text(child, node);
         } else if (text && is(tag, "default")) {
-            element.text_default = child.child_value();
+            element.text_default = std::string(child.text());
         } else if (action && is(tag, "buttonText")) {
-            element.button_text = child.child_value();
+            set_text(element.button_text, child.text());
         } else if (action && is(tag, "dialogText")) {
-            element.dialog_text = child.child_value();
+            set_text(element.dialog_text, child.text());
         } else if (action && is(tag, "value")) {
             element.action_value = int_text(child, node);
         } else {
-            warning(child, std::string("unknown element <") + child.name() + "> in <" +
-                               node.name() + "> ignored");
+            warning(child,
+                    "unknown element <" + str(tag) + "> in <" + str(node.name()) + "> ignored");
         }
     }
 }
@@ -629,51 +682,30 @@ std::optional<Document> Parser::run(std::string_view bytes) {
         return std::nullopt;
     }
 
+    // The plain XML of nearly every CDI is read directly; anything else goes through pugixml,
+    // which also reports what is wrong. Both give the same tree. xml outlives tree: the tree
+    // may hold views of pugixml's text.
     pugi::xml_document xml;
-    // parse_doctype keeps a DOCTYPE as a node so it can be refused; pugixml never expands
-    // entities it does not know, so a billion-laughs DTD costs one linear scan.
-    const unsigned options = pugi::parse_default | pugi::parse_doctype;
-    pugi::xml_parse_result parsed =
-        xml.load_buffer(bytes.data(), bytes.size(), options, pugi::encoding_utf8);
-    if (!parsed) {
-        const std::size_t offset = parsed.offset < 0 ? 0 : static_cast<std::size_t>(parsed.offset);
-        report(Severity::kError, lines.line_of(std::min(offset, bytes.size())),
-               std::string("malformed XML: ") + parsed.description());
-        return std::nullopt;
+    XmlTree tree(bytes);
+    if (!read_simple_xml(bytes, kMaxXmlDepth, tree)) {
+        tree.clear();
+        if (!read_with_pugixml(bytes, xml, tree)) return std::nullopt;
     }
-    for (pugi::xml_node child : xml.children()) {
-        if (child.type() == pugi::node_doctype) {
-            report(Severity::kError, line(child),
-                   "DOCTYPE/DTD (and entity declarations) are not allowed in a CDI");
-            return std::nullopt;
-        }
-    }
-    pugi::xml_node root = xml.document_element();
-    if (!root) {
-        report(Severity::kError, 0, "no root element");
-        return std::nullopt;
-    }
+    const XmlElement root = tree.root();
     if (!name_is(root, "cdi")) {
-        error(root, std::string("root element is <") + root.name() + ">, expected <cdi>");
-        return std::nullopt;
-    }
-    if (std::optional<std::size_t> deep = first_too_deep(bytes)) {
-        report(
-            Severity::kError, lines.line_of(*deep),
-            "XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels; refused");
+        error(root, "root element is <" + str(root.name()) + ">, expected <cdi>");
         return std::nullopt;
     }
 
     Document doc;
     read_declaration(bytes, doc);
-    for (pugi::xml_attribute attr : root.attributes()) {
-        const char* colon = std::strchr(attr.name(), ':');
-        const char* local = colon ? colon + 1 : attr.name();
-        if (std::strcmp(local, "noNamespaceSchemaLocation") == 0)
-            doc.schema_location = attr.value();
+    for (const XmlAttribute& attr : root.attributes()) {
+        const std::size_t colon = attr.name.find(':');
+        const std::string_view local =
+            colon == std::string_view::npos ? attr.name : attr.name.substr(colon + 1);
+        if (local == "noNamespaceSchemaLocation") doc.schema_location = attr.value;
     }
-    for (pugi::xml_node child : root.children()) {
-        if (child.type() != pugi::node_element) continue;
+    for (XmlElement child = root.first_child(); child; child = child.next_sibling()) {
         if (name_is(child, "identification")) {
             parse_identification(child, doc);
         } else if (name_is(child, "acdi")) {
@@ -681,7 +713,7 @@ std::optional<Document> Parser::run(std::string_view bytes) {
         } else if (name_is(child, "segment")) {
             parse_segment(child, doc);
         } else {
-            warning(child, std::string("unknown element <") + child.name() + "> in <cdi> ignored");
+            warning(child, "unknown element <" + str(child.name()) + "> in <cdi> ignored");
         }
     }
     return doc;

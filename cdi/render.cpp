@@ -20,8 +20,8 @@ std::string hints_text(const Hints& h) {
     auto add = [&out](const std::string& s) { out += (out.empty() ? "" : ", ") + s; };
     if (h.slider) {
         add("slider(tickSpacing " + std::to_string(h.slider->tick_spacing) +
-            (h.slider->immediate ? ", immediate" : "") + (h.slider->show_value ? ", showValue" : "") +
-            ")");
+            (h.slider->immediate ? ", immediate" : "") +
+            (h.slider->show_value ? ", showValue" : "") + ")");
     }
     if (h.radiobutton) add("radiobutton");
     if (h.checkbox) add("checkbox");
@@ -54,8 +54,8 @@ public:
                  << "): space 252 manufacturer data, space 251 user name and description\n";
         }
         for (const Segment& s : doc.segments) {
-            out_ << "Segment " << (s.name.empty() ? "(unnamed)" : "\"" + s.name + "\"") << ", space "
-                 << s.space << ", origin " << s.origin << "\n";
+            out_ << "Segment " << (s.name.empty() ? "(unnamed)" : "\"" + s.name + "\"")
+                 << ", space " << s.space << ", origin " << s.origin << "\n";
             text(1, s.description);
             if (s.link) line(1, "link: " + s.link->text + " <" + s.link->ref + ">");
             for (const Element& e : s.children) element(1, e);
@@ -71,7 +71,8 @@ private:
     }
     void map(int depth, const Map& m) {
         line(depth, "map" + (m.name.empty() ? std::string() : " \"" + m.name + "\"") + ":");
-        for (const MapEntry& entry : m.entries) line(depth + 1, entry.property + " = " + entry.value);
+        for (const MapEntry& entry : m.entries)
+            line(depth + 1, entry.property + " = " + entry.value);
     }
 
     void element(int depth, const Element& e) {
@@ -101,15 +102,15 @@ private:
             if (e.float_default) head += " default " + format_double(*e.float_default);
             if (e.text_default) head += " default \"" + *e.text_default + "\"";
             if (e.action_value) head += " value " + to_string(*e.action_value);
-            if (!e.button_text.empty()) head += " button \"" + e.button_text + "\"";
-            if (!e.blob_mode.empty()) head += " mode " + e.blob_mode;
+            if (e.button_text) head += " button \"" + *e.button_text + "\"";
+            if (e.blob_mode) head += " mode " + *e.blob_mode;
             line(depth, head);
         }
         text(depth + 1, e.description);
         if (e.link) line(depth + 1, "link: " + e.link->text + " <" + e.link->ref + ">");
         std::string hints = hints_text(e.hints);
         if (!hints.empty()) line(depth + 1, "hints: " + hints);
-        if (!e.dialog_text.empty()) line(depth + 1, "dialog: " + e.dialog_text);
+        if (e.dialog_text) line(depth + 1, "dialog: " + *e.dialog_text);
         if (e.map) map(depth + 1, *e.map);
         for (const Element& child : e.children) element(depth + 1, child);
     }
@@ -126,6 +127,8 @@ private:
 
 }  // namespace
 
-void render(const Layout& layout, std::ostream& out) { Renderer(layout, out).document(); }
+void render(const Layout& layout, std::ostream& out) {
+    Renderer(layout, out).document();
+}
 
 }  // namespace olcb::cdi

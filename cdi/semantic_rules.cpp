@@ -328,7 +328,9 @@ private:
             }
             return text;
         };
-        check_map(e, key_of, e.text_default,
+        const std::optional<std::string> default_key =
+            e.text_default ? std::optional<std::string>(*e.text_default) : std::nullopt;
+        check_map(e, key_of, default_key,
                   e.text_default ? "\"" + *e.text_default + "\"" : std::string());
     }
 

@@ -84,8 +84,8 @@ void add_details(const Element& e, nlohmann::json& out) {
     if (e.text_default) out["default"] = *e.text_default;
     if (e.action_value) out["value"] = int_json(*e.action_value);
     if (e.kind == ElementKind::kInt) out["signed"] = e.is_signed();
-    if (!e.formatting.empty()) out["formatting"] = e.formatting;
-    if (!e.blob_mode.empty()) out["mode"] = e.blob_mode;
+    if (e.formatting) out["formatting"] = *e.formatting;
+    if (e.blob_mode) out["mode"] = *e.blob_mode;
     if (e.map) {
         nlohmann::json map = nlohmann::json::array();
         for (const auto& entry : e.map->entries) {

@@ -261,6 +261,32 @@ TEST(Parser, StringEventIdFloatActionBlob) {
     EXPECT_EQ(c[5].name, "B");
 }
 
+TEST(Parser, EmptyRareTextsAreAbsent) {
+    Document doc = parse_ok(in_segment(R"(<float size="4" formatting=""/>
+<action size="1"><buttonText/><buttonText>Go</buttonText><dialogText>x</dialogText><dialogText/>
+</action>
+<blob size="2"/>)"));
+    const auto& c = doc.segments[0].children;
+    ASSERT_EQ(c.size(), 3u);
+    EXPECT_FALSE(c[0].formatting);
+    EXPECT_EQ(c[1].button_text, "Go");  // the last one counts
+    EXPECT_FALSE(c[1].dialog_text);     // an empty last one leaves none
+    EXPECT_FALSE(c[2].blob_mode);
+    EXPECT_FALSE(c[2].float_min);
+}
+
+TEST(Parser, DecodesTextAndAttributes) {
+    Document doc = parse_ok(
+        "<cdi><segment space='1'><group><name>A &amp; B</name>"
+        "<description>one\r\ntwo\rthree</description></group>"
+        "<float size='4' formatting='%1.1f\t&lt;x&gt;'/></segment></cdi>");
+    const auto& c = doc.segments[0].children;
+    ASSERT_EQ(c.size(), 2u);
+    EXPECT_EQ(c[0].name, "A & B");
+    EXPECT_EQ(c[0].description, "one\ntwo\nthree");
+    EXPECT_EQ(c[1].formatting, "%1.1f <x>");
+}
+
 TEST(Parser, BitIsSizedInBitsRoundedUpToBytes) {
     ParseResult r = parse(in_segment(
         R"(<bit><name>b</name><map><relation><property>1</property><value>on</value></relation></map></bit>
