@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "conformance/conform_test_util.hpp"
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
 #include "conformance/runner.hpp"
@@ -18,16 +19,6 @@ namespace olcb::conform {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr NodeId kDut{0x050101012200ull};
-constexpr NodeId kTool{0x0501010122FFull};
-
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // File name -> kind, from the "Files" table of MANIFEST.md (column 6).
 std::map<std::string, std::string> corpus_kinds(const fs::path& manifest) {

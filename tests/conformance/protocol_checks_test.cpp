@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "conformance/conform_test_util.hpp"
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
 #include "conformance/session.hpp"
@@ -16,16 +17,6 @@
 
 namespace olcb::conform {
 namespace {
-
-constexpr NodeId kDut{0x050101012200ull};
-constexpr NodeId kTool{0x0501010122FFull};
-
-std::string read_text(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 struct Bench {
     SimNetwork net;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "conformance/conform_test_util.hpp"
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
 #include "conformance/runner.hpp"
@@ -19,16 +20,6 @@ namespace olcb::conform {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr NodeId kDut{0x050101012200ull};
-constexpr NodeId kTool{0x0501010122FFull};
-
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // A memory-config datagram frame (single or first) whose command byte matches `mask`/`value`.
 bool is_memory_command(const CanFrame& f, std::uint8_t mask, std::uint8_t value) {

@@ -46,6 +46,26 @@ bool wait_for_file(const fs::path& file, Child& run) {
     return fs::exists(file);
 }
 
+// Starts a full run on the tool side and unplugs its adapter once the safety backup exists
+// (just before the first write: the encoding checks are under way); nullptr when the backup
+// never appeared.
+std::unique_ptr<Child> run_and_unplug_mid_run(SerialSimnode& sim, const fs::path& backup,
+                                              const std::string& link_wait) {
+    auto run =
+        Child::spawn(LCC_CONFORM_PATH, {"--serial", sim.tool_side(), "--node", kNode, "--backup",
+                                        backup.string(), "--link-wait", link_wait});
+    if (!run || !wait_for_file(backup, *run)) return nullptr;
+    sim.relay.unplug(PtyRelay::Side::B);
+    return run;
+}
+
+// Waits (bounded) for the run to end and reads the rest of its output; false on timeout.
+bool finish(Child& run) {
+    if (!run.wait_for(milliseconds(60000))) return false;
+    run.wait_line("\x01never", milliseconds(2000));
+    return true;
+}
+
 bool has_line(const std::vector<std::pair<std::string, std::string>>& lines,
               const std::string& status, const std::string& id) {
     for (const auto& [s, i] : lines) {
@@ -109,17 +129,12 @@ TEST(LccConformSerial, UnplugMidRunRestoresWhenTheAdapterReturns) {
     TempDir out("lcc-conform-serial-out");
     const auto before = snapshot_images(sim.images.path());
     const fs::path backup = out.path() / "safety.txt";
-    auto run = Child::spawn(LCC_CONFORM_PATH, {"--serial", sim.tool_side(), "--node", kNode,
-                                               "--backup", backup.string(), "--link-wait", "20"});
-    ASSERT_TRUE(run);
-    // The backup exists just before the first write: the encoding checks are under way.
-    ASSERT_TRUE(wait_for_file(backup, *run)) << "the safety backup file never appeared";
-    sim.relay.unplug(PtyRelay::Side::B);
+    auto run = run_and_unplug_mid_run(sim, backup, "20");
+    ASSERT_TRUE(run) << "the safety backup file never appeared";
     // Down long enough for lcc-conform to notice, then the adapter is back under the same path.
     EXPECT_FALSE(run->wait_for(milliseconds(500))) << "lcc-conform gave up at once";
     sim.relay.replug(PtyRelay::Side::B);
-    ASSERT_TRUE(run->wait_for(milliseconds(60000))) << "lcc-conform did not finish";
-    run->wait_line("\x01never", milliseconds(2000));  // the rest of its output
+    ASSERT_TRUE(finish(*run)) << "lcc-conform did not finish";
     EXPECT_EQ(run->wait(), 2) << run->output();
     const auto lines = check_lines(run->output());
     EXPECT_TRUE(has_line(lines, "FAIL", "link.lost")) << run->output();
@@ -139,13 +154,9 @@ TEST(LccConformSerial, UnplugWithoutReturnLeavesTheBackupAndTheCommand) {
     TempDir out("lcc-conform-serial-out");
     const auto before = snapshot_images(sim.images.path());
     const fs::path backup = out.path() / "safety.txt";
-    auto run = Child::spawn(LCC_CONFORM_PATH, {"--serial", sim.tool_side(), "--node", kNode,
-                                               "--backup", backup.string(), "--link-wait", "1"});
-    ASSERT_TRUE(run);
-    ASSERT_TRUE(wait_for_file(backup, *run)) << "the safety backup file never appeared";
-    sim.relay.unplug(PtyRelay::Side::B);
-    ASSERT_TRUE(run->wait_for(milliseconds(60000))) << "lcc-conform did not finish";
-    run->wait_line("\x01never", milliseconds(2000));
+    auto run = run_and_unplug_mid_run(sim, backup, "1");
+    ASSERT_TRUE(run) << "the safety backup file never appeared";
+    ASSERT_TRUE(finish(*run)) << "lcc-conform did not finish";
     EXPECT_EQ(run->wait(), 2) << run->output();
     const auto lines = check_lines(run->output());
     EXPECT_TRUE(has_line(lines, "FAIL", "link.lost")) << run->output();

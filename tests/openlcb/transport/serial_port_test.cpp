@@ -293,6 +293,20 @@ TEST(SerialPort, QueueBeyondTheLimitDropsNewFrames) {
                        line(numbered_frame(0x101, 2)));
 }
 
+// Sends frame and reads it off the master, so the adapter side can then answer it.
+bool send_and_see_on_the_wire(boost::asio::io_context& io, SerialPort& port, PtyPair& pty,
+                              const CanFrame& frame) {
+    port.send(frame);
+    std::string got;
+    return run_until(
+        io,
+        [&] {
+            got += pty.read_master();
+            return got == line(frame);
+        },
+        kLimit);
+}
+
 TEST(SerialPort, EchoOfOurOwnFrameIsDroppedAndOtherNodesFramesDelivered) {
     boost::asio::io_context io;
     PtyPair pty;
@@ -303,15 +317,7 @@ TEST(SerialPort, EchoOfOurOwnFrameIsDroppedAndOtherNodesFramesDelivered) {
 
     const auto ours = numbered_frame(0x101, 1);
     const auto theirs = numbered_frame(0x202, 1);
-    port.send(ours);
-    std::string got;
-    ASSERT_TRUE(run_until(
-        io,
-        [&] {
-            got += pty.read_master();
-            return got == line(ours);
-        },
-        kLimit));
+    ASSERT_TRUE(send_and_see_on_the_wire(io, port, pty, ours));
     // The adapter echoes our frame; another node sends one; a second copy of ours would be a
     // node using our alias, which must stay visible.
     pty.write_master(line(ours) + line(theirs) + line(ours));
@@ -334,15 +340,7 @@ TEST(SerialPort, EchoesAreDeliveredWhenNotDropped) {
 
     const auto ours = numbered_frame(0x101, 1);
     const auto theirs = numbered_frame(0x202, 1);
-    port.send(ours);
-    std::string got;
-    ASSERT_TRUE(run_until(
-        io,
-        [&] {
-            got += pty.read_master();
-            return got == line(ours);
-        },
-        kLimit));
+    ASSERT_TRUE(send_and_see_on_the_wire(io, port, pty, ours));
     pty.write_master(line(ours) + line(theirs));
     ASSERT_TRUE(run_until(
         io, [&] { return received.size() == 2; }, kLimit));
