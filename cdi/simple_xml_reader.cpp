@@ -95,33 +95,19 @@ private:
     const char* at_;
 };
 
-// Element text as pugixml stores it (parse_escapes, parse_eol): entities decoded, CR LF and
-// lone CR turned into LF.
-std::optional<std::string_view> decode_text(const char* p, const char* end, XmlTree& tree) {
-    const char* q = p;
-    while (q < end && !has(*q, kTextSpecial)) ++q;
-    std::string out(p, q);
-    while (q < end) {
-        if (*q == '&') {
-            const std::optional<char> c = predefined_entity(q, end);
-            if (!c) return std::nullopt;
-            out += *c;
-        } else if (*q == '\r') {
-            out += '\n';
-            ++q;
-            if (q < end && *q == '\n') ++q;
-        } else {
-            out += *q++;
-        }
-    }
-    return tree.keep(std::move(out));
-}
+// How pugixml stores decoded characters: element text (parse_eol) turns CR LF and a lone CR
+// into LF; an attribute value (parse_wconv_attribute) turns tab, LF, CR and CR LF into a space.
+enum class Decoding { kText, kAttribute };
 
-// An attribute value as pugixml stores it (parse_escapes, parse_wconv_attribute): entities
-// decoded, tab, LF, CR and CR LF each turned into one space.
-std::optional<std::string_view> decode_value(const char* p, const char* end, XmlTree& tree) {
+// Decodes entities and line ends of [p, end) as pugixml stores them; nullopt for an entity
+// other than the five predefined ones. Undecoded text is returned as a view of the source.
+std::optional<std::string_view> decode(const char* p, const char* end, Decoding how,
+                                       XmlTree& tree) {
+    const bool attribute = how == Decoding::kAttribute;
+    const std::uint8_t special = attribute ? kValueSpecial : kTextSpecial;
+    const char line_end = attribute ? ' ' : '\n';
     const char* q = p;
-    while (q < end && !has(*q, kValueSpecial)) ++q;
+    while (q < end && !has(*q, special)) ++q;
     if (q == end) return std::string_view(p, static_cast<std::size_t>(end - p));
     std::string out(p, q);
     while (q < end) {
@@ -130,10 +116,10 @@ std::optional<std::string_view> decode_value(const char* p, const char* end, Xml
             if (!c) return std::nullopt;
             out += *c;
         } else if (*q == '\r') {
-            out += ' ';
+            out += line_end;
             ++q;
             if (q < end && *q == '\n') ++q;
-        } else if (*q == '\n' || *q == '\t') {
+        } else if (attribute && (*q == '\n' || *q == '\t')) {
             out += ' ';
             ++q;
         } else {
@@ -170,7 +156,8 @@ bool read_simple_xml(std::string_view text, std::size_t max_depth, XmlTree& tree
                 const std::uint32_t index = open.back();
                 if (!tree.has_text(index)) {
                     if (ampersand.within(p, stop) || carriage_return.within(p, stop)) {
-                        const std::optional<std::string_view> decoded = decode_text(p, stop, tree);
+                        const std::optional<std::string_view> decoded =
+                            decode(p, stop, Decoding::kText, tree);
                         if (!decoded) return false;
                         tree.set_text(index, *decoded);
                     } else {
@@ -253,7 +240,8 @@ bool read_simple_xml(std::string_view text, std::size_t max_depth, XmlTree& tree
                 if (q == end || (*q != '"' && *q != '\'')) return false;
                 const char* const value_end = find(q + 1, end, *q);
                 if (value_end == end) return false;
-                const std::optional<std::string_view> value = decode_value(q + 1, value_end, tree);
+                const std::optional<std::string_view> value =
+                    decode(q + 1, value_end, Decoding::kAttribute, tree);
                 if (!value) return false;
                 tree.add_attribute(attribute, *value);
                 q = value_end + 1;
