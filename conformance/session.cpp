@@ -105,19 +105,22 @@ std::optional<NodeInfo> Session::find_node(NodeId id, Duration timeout) {
         return got && *got == id;
     };
     const std::size_t mark = messages_.size();
-    send(msg);
     std::optional<NodeInfo> found;
-    link_.run_until(
-        [&] {
-            for (std::size_t i = mark; i < messages_.size(); ++i) {
-                if (verified(messages_[i].message)) {
-                    found = NodeInfo{id, messages_[i].message.source.alias};
-                    return true;
-                }
+    auto answered = [&] {
+        for (std::size_t i = mark; i < messages_.size(); ++i) {
+            if (verified(messages_[i].message)) {
+                found = NodeInfo{id, messages_[i].message.source.alias};
+                return true;
             }
-            return false;
-        },
-        timeout);
+        }
+        return false;
+    };
+    // Asked twice: a node still reserving its alias (just powered up, or a busy machine's
+    // simnode) ignores the first Verify.
+    send(msg);
+    if (link_.run_until(answered, timeout / 2)) return found;
+    send(msg);
+    link_.run_until(answered, timeout - timeout / 2);
     return found;
 }
 

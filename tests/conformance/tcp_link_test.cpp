@@ -50,6 +50,16 @@ TEST(TcpLinkTest, DefaultNodeOverTcpHasNoFailure) {
     driver.start_all();
     auto guard = boost::asio::make_work_guard(io);
     std::thread server([&] { io.run(); });
+    // Stops and joins the hub's thread on every way out, failed assertions included.
+    struct Joiner {
+        std::thread& thread;
+        boost::asio::io_context& io;
+        ~Joiner() {
+            if (!thread.joinable()) return;
+            io.stop();
+            thread.join();
+        }
+    } joiner{server, io};
 
     const auto t0 = std::chrono::steady_clock::now();
     auto link = connect_tcp("127.0.0.1", port, kTool, error);
