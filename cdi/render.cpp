@@ -9,9 +9,9 @@ namespace olcb::cdi {
 
 namespace {
 
-std::string hex_address(std::int64_t address) {
+std::string hex_address(std::uint64_t address) {
     char buf[24];
-    std::snprintf(buf, sizeof buf, "0x%08" PRIX64, static_cast<std::uint64_t>(address));
+    std::snprintf(buf, sizeof buf, "0x%08" PRIX64, address);
     return buf;
 }
 
