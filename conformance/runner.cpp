@@ -93,12 +93,13 @@ AccessResult SessionMemory::write(std::uint8_t space, std::uint32_t address,
 
 namespace {
 
+// losses_before: the link's loss count when this node's run began.
 NodeReport run_node_checks(Session& session, const NodeInfo& node, const RunOptions& options,
-                           const ProtocolChecks& protocol_checks, std::ostream& progress) {
+                           const ProtocolChecks& protocol_checks, std::ostream& progress,
+                           std::uint64_t losses_before) {
     NodeReport report;
     report.node_id = node.id.to_string();
     Link& link = session.link();
-    const std::uint64_t losses_before = link.losses();
     const auto link_lost = [&] { return link.losses() != losses_before || !link.up(); };
     if (auto snip = session.snip_payload(node)) {
         memory::Snip s = memory::decode_snip(*snip);
@@ -115,7 +116,6 @@ NodeReport run_node_checks(Session& session, const NodeInfo& node, const RunOpti
         report.checks = protocol_checks(session, node, ctx);
         bar.finish();
     }
-    ctx.cdi_progress = nullptr;
     if (options.read_only) {
         for (auto& c : skipped_encoding_checks("--read-only: no write")) report.checks.push_back(c);
         report.restore_summary = "nothing written (--read-only)";
@@ -258,7 +258,8 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
                     const ProtocolChecks& protocol_checks, std::ostream& progress) {
     Link& link = session.link();
     const std::uint64_t losses_before = link.losses();
-    NodeReport report = run_node_checks(session, node, options, protocol_checks, progress);
+    NodeReport report =
+        run_node_checks(session, node, options, protocol_checks, progress, losses_before);
     add_link_check(report, link, losses_before);
     return report;
 }

@@ -17,12 +17,7 @@ const TimePoint t0{};
 
 Message msg(Mti mti, std::uint16_t src, std::optional<std::uint16_t> dst,
             std::vector<std::uint8_t> payload) {
-    Message m;
-    m.mti = mti;
-    m.source.alias = src;
-    if (dst) m.destination = NodeHandle{NodeId{}, *dst};
-    m.payload = std::move(payload);
-    return m;
+    return test::make_message(mti, src, dst, std::move(payload));
 }
 
 std::vector<std::uint8_t> counting(std::size_t n) {

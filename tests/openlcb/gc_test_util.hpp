@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "openlcb/gridconnect.hpp"
+#include "openlcb/message.hpp"
 
 namespace olcb::test {
 
@@ -16,6 +20,17 @@ inline CanFrame gc(std::string_view text) {
     auto f = gridconnect::parse_frame(text);
     EXPECT_TRUE(f.has_value()) << "bad frame literal " << text;
     return f.value_or(CanFrame{});
+}
+
+/// A message from alias src, addressed to dst when given (node IDs left unknown).
+inline Message make_message(Mti mti, std::uint16_t src, std::optional<std::uint16_t> dst,
+                            std::vector<std::uint8_t> payload) {
+    Message m;
+    m.mti = mti;
+    m.source.alias = src;
+    if (dst) m.destination = NodeHandle{NodeId{}, *dst};
+    m.payload = std::move(payload);
+    return m;
 }
 
 /// Pops every pending frame of a machine (anything with pop_frame()) as GridConnect text.

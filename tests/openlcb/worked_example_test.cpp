@@ -25,11 +25,7 @@ const TimePoint t0{};
 
 Strings encode(Mti mti, std::uint16_t src, std::optional<std::uint16_t> dst,
                std::vector<std::uint8_t> payload) {
-    Message m;
-    m.mti = mti;
-    m.source.alias = src;
-    if (dst) m.destination = NodeHandle{NodeId{}, *dst};
-    m.payload = std::move(payload);
+    const Message m = test::make_message(mti, src, dst, std::move(payload));
     std::vector<CanFrame> frames;
     EXPECT_EQ(encode_message(m, frames), FramingError::kNone);
     return texts(frames);

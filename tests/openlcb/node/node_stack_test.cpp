@@ -27,20 +27,9 @@ const Strings kStartup = {
     ":X19100343N050101012200;",
 };
 
-class NodeStackTest : public test::NetFixture {
+class NodeStackTest : public test::StackFixture {
 protected:
-    explicit NodeStackTest(NodeStackConfig config = test::stack_config()) : stack_(config) {
-        net_.add_stack(stack_);
-    }
-    // Starts the node and runs past its reservation; clears what the port saw.
-    void boot() {
-        stack_.start(net_.now());
-        ASSERT_TRUE(net_.run_until([&] { return stack_.initialized(); }, 1s));
-        net_.run_for(0ms);
-        take();
-    }
-
-    NodeStack stack_;
+    using StackFixture::StackFixture;
 };
 
 TEST_F(NodeStackTest, StartupGivesTheWorkedExampleFramesWithRidAfter200ms) {

@@ -10,19 +10,9 @@ namespace {
 using namespace std::chrono_literals;
 using Strings = std::vector<std::string>;
 
-class NodeStackTimerTest : public test::NetFixture {
+class NodeStackTimerTest : public test::StackFixture {
 protected:
-    explicit NodeStackTimerTest(NodeStackConfig config = test::stack_config()) : stack_(config) {
-        net_.add_stack(stack_);
-    }
-    void boot() {
-        stack_.start(net_.now());
-        ASSERT_TRUE(net_.run_until([&] { return stack_.initialized(); }, 1s));
-        net_.run_for(0ms);
-        take();
-    }
-
-    NodeStack stack_;
+    using StackFixture::StackFixture;
 };
 
 TEST_F(NodeStackTimerTest, RunsAtItsTimeWithThatTime) {

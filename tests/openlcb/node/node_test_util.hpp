@@ -59,4 +59,21 @@ protected:
     std::vector<std::string> received_;
 };
 
+/// One NodeStack on the simulated network next to the raw port.
+class StackFixture : public NetFixture {
+protected:
+    explicit StackFixture(NodeStackConfig config = stack_config()) : stack_(config) {
+        net_.add_stack(stack_);
+    }
+    /// Starts the node and runs past its reservation; clears what the port saw.
+    void boot() {
+        stack_.start(net_.now());
+        ASSERT_TRUE(net_.run_until([&] { return stack_.initialized(); }, std::chrono::seconds(1)));
+        net_.run_for(std::chrono::milliseconds(0));
+        take();
+    }
+
+    NodeStack stack_;
+};
+
 }  // namespace olcb::test
