@@ -40,6 +40,8 @@ std::string_view category_name(Category category) {
             return "encoding";
         case Category::kLink:
             return "link";
+        case Category::kNode:
+            return "node";
     }
     return "?";
 }

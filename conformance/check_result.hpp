@@ -23,11 +23,12 @@ enum class Category : std::uint8_t {
     kAcdi,
     kEncoding,
     kLink,  ///< the transport itself (an adapter unplugged, a hub gone): not the node's fault
+    kNode,  ///< the node as a whole: it stopped answering or restarted during the run
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
-/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi" or "encoding".
+/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link" or "node".
 std::string_view category_name(Category category);
 
 /// One executed check.

@@ -9,6 +9,7 @@
 #include "cdi/parser.hpp"
 #include "conformance/encoding_checks.hpp"
 #include "conformance/report.hpp"
+#include "conformance/session_memory.hpp"
 #include "memory/snip.hpp"
 
 namespace olcb::conform {
@@ -20,13 +21,8 @@ extern "C" void on_stop_signal(int) {
     g_stop = 1;
 }
 
-constexpr std::size_t kChunk = 64;
 // A CDI larger than this is not downloaded for the encoding checks (protocol checks judge it).
 constexpr std::uint32_t kMaxCdi = 4u << 20;
-
-AccessResult to_access(const MemResult& r) {
-    return {r.ok, r.error, r.data};
-}
 
 // One FAIL naming the loss when the transport went away during this node's run.
 void add_link_check(NodeReport& report, Link& link, std::uint64_t losses_before) {
@@ -64,32 +60,6 @@ void wait_for_link(Session& session, const NodeInfo& node, const RunOptions& opt
 }
 
 }  // namespace
-
-AccessResult SessionMemory::read(std::uint8_t space, std::uint32_t address, std::size_t count) {
-    AccessResult out{true, 0, {}};
-    out.data.reserve(count);
-    while (out.data.size() < count) {
-        auto n = static_cast<std::uint8_t>(std::min(kChunk, count - out.data.size()));
-        auto at = static_cast<std::uint32_t>(address + out.data.size());
-        MemResult r = session_.read(node_, static_cast<memory::Space>(space), at, n);
-        if (!r.ok) return to_access(r);
-        if (r.data.empty()) return {false, 0x1082, std::move(out.data)};
-        out.data.insert(out.data.end(), r.data.begin(), r.data.end());
-        if (r.data.size() < n) break;  // short read at the end of the space
-    }
-    return out;
-}
-
-AccessResult SessionMemory::write(std::uint8_t space, std::uint32_t address,
-                                  std::span<const std::uint8_t> data) {
-    for (std::size_t done = 0; done < data.size(); done += kChunk) {
-        auto part = data.subspan(done, std::min(kChunk, data.size() - done));
-        MemResult r = session_.write(node_, static_cast<memory::Space>(space),
-                                     static_cast<std::uint32_t>(address + done), part);
-        if (!r.ok) return to_access(r);
-    }
-    return {true, 0, {}};
-}
 
 namespace {
 

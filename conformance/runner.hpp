@@ -13,6 +13,7 @@
 #include "conformance/check_context.hpp"
 #include "conformance/check_result.hpp"
 #include "conformance/session.hpp"
+#include "conformance/session_memory.hpp"
 
 namespace olcb::conform {
 
@@ -35,20 +36,6 @@ struct RunOptions {
 /// learn goes into the context (the encoding checks reuse its CDI layout).
 using ProtocolChecks =
     std::function<std::vector<CheckResult>(Session&, const NodeInfo&, CheckContext&)>;
-
-/// MemoryAccess over a Session: splits reads and writes into 64-byte datagrams.
-class SessionMemory : public MemoryAccess {
-public:
-    /// Access to node's memory through session.
-    SessionMemory(Session& session, NodeInfo node) : session_(session), node_(node) {}
-    AccessResult read(std::uint8_t space, std::uint32_t address, std::size_t count) override;
-    AccessResult write(std::uint8_t space, std::uint32_t address,
-                       std::span<const std::uint8_t> data) override;
-
-private:
-    Session& session_;
-    NodeInfo node_;
-};
 
 /// Runs every check against one node; `progress` receives progress bars when enabled.
 NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& options,
