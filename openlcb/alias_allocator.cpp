@@ -16,6 +16,9 @@ constexpr std::size_t kMaxQueuedEvents = 256;
 AliasAllocator::AliasAllocator(NodeId node, AliasAllocatorConfig config)
     : node_(node), config_(config), generator_(node) {}
 
+AliasAllocator::AliasAllocator(NodeId node, AliasAllocatorConfig config, AliasGenerator generator)
+    : node_(node), config_(config), generator_(generator) {}
+
 void AliasAllocator::start(TimePoint now) {
     if (state_ == State::kIdle || state_ == State::kHalted) begin_reservation(now);
 }

@@ -51,6 +51,9 @@ public:
 
     /// Allocator for node; aliases come from AliasGenerator(node).
     explicit AliasAllocator(NodeId node, AliasAllocatorConfig config = {});
+    /// Allocator for node whose aliases continue generator's sequence (a node that takes a new
+    /// alias at every start-up instead of starting over from its first one).
+    AliasAllocator(NodeId node, AliasAllocatorConfig config, AliasGenerator generator);
 
     /// Starts (or, after halt/release, restarts) reservation with the next generator alias.
     void start(TimePoint now);
@@ -86,6 +89,8 @@ public:
     const AliasCache& cache() const { return cache_; }
     /// Number of reservations begun (1 + restarts).
     std::uint32_t attempts() const { return attempts_; }
+    /// The alias generator; the next reservation takes the alias after its current state's.
+    const AliasGenerator& generator() const { return generator_; }
 
 private:
     void begin_reservation(TimePoint now);

@@ -16,6 +16,9 @@ constexpr std::uint16_t cmti_of(Mti mti) {
     return to_u16(mti) & 0xFFF;
 }
 
+// Bounds the skipping of generator states that fold to the alias the node had before.
+constexpr int kMaxSameAliasSkips = 16;
+
 std::optional<TimePoint> earliest(std::optional<TimePoint> a, std::optional<TimePoint> b) {
     if (!a) return b;
     if (!b) return a;
@@ -58,15 +61,40 @@ bool NodeStack::never_rejected(std::uint16_t mti) {
 
 void NodeStack::start(TimePoint now) {
     now_ = now;
-    if (started_) return;
+    if (started_ || silent_) return;
     started_ = true;
     alias_.start(now);
     collect();
 }
 
 void NodeStack::restart(TimePoint now) {
-    // A fresh allocator: a rebooted node forgets its cache and starts from the first alias.
-    alias_ = AliasAllocator(config_.node_id, config_.alias);
+    drop_state();
+    silent_ = false;
+    start(now);
+}
+
+void NodeStack::go_silent(TimePoint now) {
+    now_ = now;
+    drop_state();
+    silent_ = true;
+}
+
+void NodeStack::drop_state() {
+    if (alias() != 0) previous_alias_ = alias();
+    if (config_.new_alias_on_restart) {
+        // Two generator states can fold to the same 12 bits: step past any that would hand the
+        // node the alias it just had, so it really comes back on another one.
+        AliasGenerator generator = alias_.generator();
+        for (int i = 0; i < kMaxSameAliasSkips; ++i) {
+            AliasGenerator peek = generator;
+            if (peek.next() != previous_alias_) break;
+            generator = peek;
+        }
+        alias_ = AliasAllocator(config_.node_id, config_.alias, generator);
+    } else {
+        // A fresh allocator: a rebooted node forgets its cache and starts from the first alias.
+        alias_ = AliasAllocator(config_.node_id, config_.alias);
+    }
     assembler_.clear();
     receiver_.set_alias(0);
     receiver_.reset();
@@ -75,7 +103,6 @@ void NodeStack::restart(TimePoint now) {
     pending_.clear();
     initialized_ = false;
     started_ = false;
-    start(now);
 }
 
 void NodeStack::reinitialize(TimePoint now) {
@@ -140,7 +167,7 @@ void NodeStack::flush_pending() {
 
 void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
     now_ = now;
-    if (!can::is_openlcb_frame(frame) || frame.len > 8) return;
+    if (silent_ || !can::is_openlcb_frame(frame) || frame.len > 8) return;
     // Without defence (fault injection) a frame using our active alias is taken as if the alias
     // were not ours at all.
     const bool undefended = !config_.builtins.defend_alias && alias_.permitted() &&
@@ -348,6 +375,7 @@ void NodeStack::on_transmit_error(TimePoint now) {
 
 SendStatus NodeStack::send_message(Message msg) {
     if (halted()) return SendStatus::kHalted;
+    if (silent_) return SendStatus::kSilent;
     msg.source = NodeHandle{config_.node_id, alias()};
     if (is_addressed(msg.mti) || is_stream_or_datagram(msg.mti)) {
         if (!msg.destination) return SendStatus::kUnknownDestination;

@@ -52,6 +52,10 @@ struct NodeStackConfig {
     /// on_initialized). Off by default, as OpenMRN: the node stays Initialized; AMD announces the
     /// new mapping.
     bool reinitialize_after_alias_change = false;
+    /// restart() continues the alias generator's sequence, so the node comes back on a different
+    /// alias (allowed: the alias is re-allocated at every start-up). Off by default: it starts
+    /// over from the first generator alias.
+    bool new_alias_on_restart = false;
     /// Messages send_message() holds while the node is not yet Initialized; more are refused.
     std::size_t max_pending_messages = 256;
     /// Frames held for pop_frame(); beyond this new frames are dropped (and counted).
@@ -66,6 +70,7 @@ enum class SendStatus : std::uint8_t {
     kFramingError,        ///< payload too long for the MTI, or similar (see encode_message)
     kQueueFull,           ///< max_pending_messages reached
     kHalted,              ///< duplicate node ID detected: the node stays silent
+    kSilent,              ///< go_silent(): nothing is sent or held until restart()
 };
 
 /// One node on one CAN segment. Feed it every frame of the segment (on_frame) and the time
@@ -120,13 +125,18 @@ public:
     void set_output_handler(OutputHandler handler) { on_output_ = std::move(handler); }
 
     // ---- lifecycle ----
-    /// Begins alias reservation; no effect when already started.
+    /// Begins alias reservation; no effect when already started or silent.
     void start(TimePoint now);
     /// A reboot: drops all reassembly, datagram and pending state (outstanding datagrams are
     /// reported kAborted), forgets the alias cache, and runs start-up again from the first
-    /// generator alias. No AMR is sent: a rebooting node just goes silent and starts over.
-    /// Frames already in the output stay there (they count as handed to the CAN controller).
+    /// generator alias (the next one with NodeStackConfig::new_alias_on_restart). No AMR is
+    /// sent: a rebooting node just goes silent and starts over. Frames already in the output stay
+    /// there (they count as handed to the CAN controller). Ends silence.
     void restart(TimePoint now);
+    /// A crash: drops all state as restart() does but starts nothing; until restart() every frame
+    /// is ignored (no answer, no alias defence) and nothing is sent. Owner timers still run, so
+    /// one of them may call restart() later. Frames already in the output stay there.
+    void go_silent(TimePoint now);
     /// Sends Initialization Complete again with the same alias (e.g. after SNIP data changed),
     /// abandons partial incoming messages and datagrams, and calls on_initialized. Ignored
     /// unless the node is Initialized.
@@ -181,6 +191,8 @@ public:
     bool initialized() const { return initialized_ && alias_.permitted(); }
     /// True after a duplicate node ID stopped the node (only with halt_on_duplicate).
     bool halted() const { return alias_.state() == AliasAllocator::State::kHalted; }
+    /// True between go_silent() and the next restart().
+    bool silent() const { return silent_; }
     /// Mappings learned about other nodes (node ID <-> alias).
     const AliasCache& alias_cache() const { return alias_.cache(); }
     /// The alias state machine (state, attempts).
@@ -222,6 +234,7 @@ private:
     }
     void collect();
     void run_timers(TimePoint now);
+    void drop_state();
 
     NodeStackConfig config_;
     AliasAllocator alias_;
@@ -239,6 +252,8 @@ private:
     bool started_ = false;
     bool initialized_ = false;  // message layer; alias_.permitted() tells the link layer
     bool collecting_ = false;
+    bool silent_ = false;
+    std::uint16_t previous_alias_ = 0;  // alias before the last restart (new_alias_on_restart)
     std::vector<Message> pending_;
     std::vector<CanFrame> out_;  // out_[out_head_..] pending; reused to avoid allocation
     std::size_t out_head_ = 0;
