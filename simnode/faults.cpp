@@ -9,9 +9,11 @@ namespace {
 constexpr std::chrono::milliseconds kDefaultSlowReply{1200};
 constexpr std::uint32_t kDefaultRejectTemporary = 3;
 constexpr std::chrono::milliseconds kDefaultUnsolicitedPeriod{1000};
+constexpr std::chrono::milliseconds kDefaultAbortSilence{3000};
+constexpr std::uint32_t kDefaultRebootOnWrite = 1;
 // Bounds keep a typo from stalling a node for days or rejecting forever.
 constexpr std::uint32_t kMaxDelayMs = 600'000;
-constexpr std::uint32_t kMaxRejects = 1'000'000;
+constexpr std::uint32_t kMaxCount = 1'000'000;
 
 constexpr std::pair<std::string_view, PipBit> kPipBits[] = {
     {"cdi", PipBit::kCdi},
@@ -35,6 +37,83 @@ std::optional<std::uint32_t> parse_uint(std::string_view text, std::uint32_t max
     return v;
 }
 
+// The faults without a parameter: one flag of FaultSet each.
+struct FlagFault {
+    std::string_view name;
+    bool FaultSet::*member;
+};
+
+constexpr FlagFault kFlagFaults[] = {
+    {"snip-mismatch", &FaultSet::snip_mismatch},
+    {"acdi-version", &FaultSet::acdi_version},
+    {"cdi-unterminated", &FaultSet::cdi_unterminated},
+    {"cdi-padding", &FaultSet::cdi_padding},
+    {"cdi-invalid", &FaultSet::cdi_invalid},
+    {"int-byte-order", &FaultSet::int_byte_order},
+    {"string-unterminated", &FaultSet::string_unterminated},
+    {"eventid-byte-order", &FaultSet::eventid_byte_order},
+    {"float-width", &FaultSet::float_width},
+    {"write-dropped", &FaultSet::write_dropped},
+    {"write-not-persisted", &FaultSet::write_not_persisted},
+    {"readonly-writable", &FaultSet::readonly_writable},
+    {"read-past-end", &FaultSet::read_past_end},
+    {"space-info-short", &FaultSet::space_info_short},
+    {"reply-form", &FaultSet::reply_form},
+    {"no-datagram-ack", &FaultSet::no_datagram_ack},
+    {"alias-conflict-ignored", &FaultSet::alias_conflict_ignored},
+    {"reset-rejected", &FaultSet::reset_rejected},
+    {"lock-rejected", &FaultSet::lock_rejected},
+    {"factory-reset-on-version-change", &FaultSet::factory_reset_on_version_change},
+    {"new-alias-on-reboot", &FaultSet::new_alias_on_reboot},
+    {"field-reads-only", &FaultSet::field_reads_only},
+    {"unknown-space-0x1041", &FaultSet::unknown_space_0x1041},
+    {"readonly-0x1041", &FaultSet::readonly_0x1041},
+};
+
+// The faults with a whole-number parameter (0 = off, so min >= 1).
+struct NumberFault {
+    std::string_view name;
+    std::uint32_t fallback, min, max;
+    std::uint32_t (*get)(const FaultSet&);
+    void (*set)(FaultSet&, std::uint32_t);
+};
+
+using Ms = std::chrono::milliseconds;
+constexpr NumberFault kNumberFaults[] = {
+    {"slow-reply", kDefaultSlowReply.count(), 1, kMaxDelayMs,
+     [](const FaultSet& f) { return static_cast<std::uint32_t>(f.slow_reply.count()); },
+     [](FaultSet& f, std::uint32_t v) { f.slow_reply = Ms(v); }},
+    {"reject-temporary", kDefaultRejectTemporary, 1, kMaxCount,
+     [](const FaultSet& f) { return f.reject_temporary; },
+     [](FaultSet& f, std::uint32_t v) { f.reject_temporary = v; }},
+    {"unsolicited-traffic", kDefaultUnsolicitedPeriod.count(), 10, kMaxDelayMs,
+     [](const FaultSet& f) { return static_cast<std::uint32_t>(f.unsolicited_period.count()); },
+     [](FaultSet& f, std::uint32_t v) { f.unsolicited_period = Ms(v); }},
+    {"abort-on-value", kDefaultAbortSilence.count(), 1, kMaxDelayMs,
+     [](const FaultSet& f) { return static_cast<std::uint32_t>(f.abort_on_value.count()); },
+     [](FaultSet& f, std::uint32_t v) { f.abort_on_value = Ms(v); }},
+    {"reboot-on-write", kDefaultRebootOnWrite, 1, kMaxCount,
+     [](const FaultSet& f) { return f.reboot_on_write; },
+     [](FaultSet& f, std::uint32_t v) { f.reboot_on_write = v; }},
+};
+
+bool apply_pip_missing(std::optional<std::string_view> value, FaultSet& faults,
+                       std::string& error) {
+    if (!value) {
+        faults.pip_missing = PipBit::kCdi;
+        return true;
+    }
+    for (const auto& [text, bit] : kPipBits) {
+        if (*value == text) {
+            faults.pip_missing = bit;
+            return true;
+        }
+    }
+    error = "fault 'pip-missing-bit': '" + std::string(*value) +
+            "' is not one of cdi, acdi, snip, datagram, memory, events";
+    return false;
+}
+
 // Applies one "name" or "name=value" to faults; false with error set when it is not valid.
 bool apply(std::string_view item, FaultSet& faults, std::string& error) {
     std::string_view name = item;
@@ -43,77 +122,29 @@ bool apply(std::string_view item, FaultSet& faults, std::string& error) {
         name = trim(item.substr(0, eq));
         value = trim(item.substr(eq + 1));
     }
-    const auto no_value = [&](bool& flag) {
+    for (const FlagFault& f : kFlagFaults) {
+        if (name != f.name) continue;
         if (value) {
             error = "fault '" + std::string(name) + "' takes no value";
             return false;
         }
-        flag = true;
+        faults.*f.member = true;
         return true;
-    };
-    const auto number = [&](std::uint32_t fallback, std::uint32_t max,
-                            std::uint32_t min) -> std::optional<std::uint32_t> {
-        if (!value) return fallback;
-        auto v = parse_uint(*value, max);
-        if (!v || *v < min) {
+    }
+    for (const NumberFault& f : kNumberFaults) {
+        if (name != f.name) continue;
+        std::optional<std::uint32_t> v = f.fallback;
+        if (value) v = parse_uint(*value, f.max);
+        if (!v || *v < f.min) {
             error = "fault '" + std::string(name) + "': value '" + std::string(*value) +
-                    "' is not a whole number in " + std::to_string(min) + ".." +
-                    std::to_string(max);
-            return std::nullopt;
+                    "' is not a whole number in " + std::to_string(f.min) + ".." +
+                    std::to_string(f.max);
+            return false;
         }
-        return v;
-    };
-
-    if (name == "snip-mismatch") return no_value(faults.snip_mismatch);
-    if (name == "acdi-version") return no_value(faults.acdi_version);
-    if (name == "cdi-unterminated") return no_value(faults.cdi_unterminated);
-    if (name == "cdi-padding") return no_value(faults.cdi_padding);
-    if (name == "cdi-invalid") return no_value(faults.cdi_invalid);
-    if (name == "int-byte-order") return no_value(faults.int_byte_order);
-    if (name == "string-unterminated") return no_value(faults.string_unterminated);
-    if (name == "eventid-byte-order") return no_value(faults.eventid_byte_order);
-    if (name == "float-width") return no_value(faults.float_width);
-    if (name == "write-dropped") return no_value(faults.write_dropped);
-    if (name == "write-not-persisted") return no_value(faults.write_not_persisted);
-    if (name == "readonly-writable") return no_value(faults.readonly_writable);
-    if (name == "read-past-end") return no_value(faults.read_past_end);
-    if (name == "space-info-short") return no_value(faults.space_info_short);
-    if (name == "reply-form") return no_value(faults.reply_form);
-    if (name == "no-datagram-ack") return no_value(faults.no_datagram_ack);
-    if (name == "alias-conflict-ignored") return no_value(faults.alias_conflict_ignored);
-    if (name == "pip-missing-bit") {
-        if (!value) {
-            faults.pip_missing = PipBit::kCdi;
-            return true;
-        }
-        for (const auto& [text, bit] : kPipBits) {
-            if (*value == text) {
-                faults.pip_missing = bit;
-                return true;
-            }
-        }
-        error = "fault 'pip-missing-bit': '" + std::string(*value) +
-                "' is not one of cdi, acdi, snip, datagram, memory, events";
-        return false;
-    }
-    if (name == "slow-reply") {
-        auto ms = number(kDefaultSlowReply.count(), kMaxDelayMs, 1);
-        if (!ms) return false;
-        faults.slow_reply = std::chrono::milliseconds(*ms);
+        f.set(faults, *v);
         return true;
     }
-    if (name == "reject-temporary") {
-        auto n = number(kDefaultRejectTemporary, kMaxRejects, 1);
-        if (!n) return false;
-        faults.reject_temporary = *n;
-        return true;
-    }
-    if (name == "unsolicited-traffic") {
-        auto ms = number(kDefaultUnsolicitedPeriod.count(), kMaxDelayMs, 10);
-        if (!ms) return false;
-        faults.unsolicited_period = std::chrono::milliseconds(*ms);
-        return true;
-    }
+    if (name == "pip-missing-bit") return apply_pip_missing(value, faults, error);
     error = "unknown fault '" + std::string(name) + "' (known: ";
     bool first = true;
     for (const auto& f : fault_catalog()) {
@@ -123,6 +154,26 @@ bool apply(std::string_view item, FaultSet& faults, std::string& error) {
     }
     error += ")";
     return false;
+}
+
+// The name parse_faults() reads back to fault `name` of f; nullopt when it is off.
+std::optional<std::string> name_if_set(const FaultSet& f, std::string_view name) {
+    for (const FlagFault& flag : kFlagFaults) {
+        if (name == flag.name) {
+            return f.*flag.member ? std::optional<std::string>(name) : std::nullopt;
+        }
+    }
+    for (const NumberFault& n : kNumberFaults) {
+        if (name != n.name) continue;
+        if (n.get(f) == 0) return std::nullopt;
+        return std::string(name) + "=" + std::to_string(n.get(f));
+    }
+    if (name == "pip-missing-bit" && f.pip_missing) {
+        for (const auto& [text, bit] : kPipBits) {
+            if (bit == *f.pip_missing) return "pip-missing-bit=" + std::string(text);
+        }
+    }
+    return std::nullopt;
 }
 
 }  // namespace
@@ -158,6 +209,19 @@ const std::vector<FaultInfo>& fault_catalog() {
         {"alias-conflict-ignored", "", "alias not defended: no RID on CID, no AMR on conflict"},
         {"unsolicited-traffic", "MS (default 1000)",
          "a Verify Node ID Global every MS milliseconds"},
+        {"abort-on-value", "MS (default 3000)",
+         "a SNIP request while the first 253 int was changed: silent MS ms, then a restart"},
+        {"reboot-on-write", "N (default 1)",
+         "the Nth stored write restarts the node without its Write Reply (once)"},
+        {"reset-rejected", "", "Reset/Reboot rejected with 0x1041; the node does not restart"},
+        {"lock-rejected", "", "Lock/Reserve rejected with 0x1041"},
+        {"factory-reset-on-version-change", "",
+         "a restart while the first 253 int was changed factory-resets the configuration"},
+        {"new-alias-on-reboot", "", "every restart reserves a different alias"},
+        {"field-reads-only", "",
+         "spaces 251/252 return one ACDI field per read, 1 byte off a field start"},
+        {"unknown-space-0x1041", "", "read/write of an unknown space rejected 0x1041, not 0x1081"},
+        {"readonly-0x1041", "", "write to a read-only space rejected 0x1041, not 0x1083"},
     };
     return catalog;
 }
@@ -185,39 +249,8 @@ std::optional<FaultSet> parse_faults(const std::vector<std::string>& names, std:
 
 std::vector<std::string> to_names(const FaultSet& f) {
     std::vector<std::string> out;
-    const auto flag = [&](bool on, const char* name) {
-        if (on) out.emplace_back(name);
-    };
-    flag(f.snip_mismatch, "snip-mismatch");
-    flag(f.acdi_version, "acdi-version");
-    if (f.pip_missing) {
-        for (const auto& [text, bit] : kPipBits) {
-            if (bit == *f.pip_missing) out.push_back("pip-missing-bit=" + std::string(text));
-        }
-    }
-    flag(f.cdi_unterminated, "cdi-unterminated");
-    flag(f.cdi_padding, "cdi-padding");
-    flag(f.cdi_invalid, "cdi-invalid");
-    flag(f.int_byte_order, "int-byte-order");
-    flag(f.string_unterminated, "string-unterminated");
-    flag(f.eventid_byte_order, "eventid-byte-order");
-    flag(f.float_width, "float-width");
-    flag(f.write_dropped, "write-dropped");
-    flag(f.write_not_persisted, "write-not-persisted");
-    flag(f.readonly_writable, "readonly-writable");
-    flag(f.read_past_end, "read-past-end");
-    flag(f.space_info_short, "space-info-short");
-    flag(f.reply_form, "reply-form");
-    flag(f.no_datagram_ack, "no-datagram-ack");
-    if (f.slow_reply.count() > 0) {
-        out.push_back("slow-reply=" + std::to_string(f.slow_reply.count()));
-    }
-    if (f.reject_temporary > 0) {
-        out.push_back("reject-temporary=" + std::to_string(f.reject_temporary));
-    }
-    flag(f.alias_conflict_ignored, "alias-conflict-ignored");
-    if (f.unsolicited_period.count() > 0) {
-        out.push_back("unsolicited-traffic=" + std::to_string(f.unsolicited_period.count()));
+    for (const FaultInfo& info : fault_catalog()) {
+        if (auto name = name_if_set(f, info.name)) out.push_back(std::move(*name));
     }
     return out;
 }

@@ -40,6 +40,21 @@ struct FaultSet {
     bool alias_conflict_ignored = false;  ///< no RID on CID, no AMR on conflict
     /// Period of unsolicited Verify Node ID Global messages (unsolicited-traffic=MS; 0 = off).
     std::chrono::milliseconds unsolicited_period{0};
+    /// Silence after a SNIP request while the watched int differs from its value at creation,
+    /// then a restart (abort-on-value=MS; 0 = off).
+    std::chrono::milliseconds abort_on_value{0};
+    /// The Nth stored write restarts the node without its Write Reply (reboot-on-write=N; 0 =
+    /// off); once per process.
+    std::uint32_t reboot_on_write = 0;
+    bool reset_rejected = false;  ///< Reset/Reboot rejected with 0x1041
+    bool lock_rejected = false;   ///< Lock/Reserve rejected with 0x1041
+    /// Every restart factory-resets the writable spaces while the watched int differs from its
+    /// value at creation.
+    bool factory_reset_on_version_change = false;
+    bool new_alias_on_reboot = false;   ///< every restart reserves a different alias
+    bool field_reads_only = false;      ///< 251/252 reads return one ACDI field (or 1 byte)
+    bool unknown_space_0x1041 = false;  ///< read/write of an unknown space rejected 0x1041
+    bool readonly_0x1041 = false;       ///< write to a read-only space rejected 0x1041
 
     /// True when no fault is set.
     bool none() const;

@@ -31,6 +31,7 @@ constexpr std::string_view kNodeKeys[] = {
     "user-name",
     "user-description",
     "fault",
+    "watch-variable",
 };
 // Keys of the whole process (top level only).
 constexpr std::string_view kProcessKeys[] = {"listen", "connect", "socketcan",
@@ -123,7 +124,10 @@ po::options_description cli_options() {
         "user-description", po::value<std::string>(),
         "initial user description of a fresh image ({n}, {id} as above)")(
         "fault", po::value<std::vector<std::string>>()->value_name("NAME"),
-        "misbehave as NAME (repeatable; see --list-faults, docs/faults.md)");
+        "misbehave as NAME (repeatable; see --list-faults, docs/faults.md)")(
+        "watch-variable", po::value<std::string>()->value_name("PATH"),
+        "the variable abort-on-value and factory-reset-on-version-change watch, as "
+        "lcc-cdi layout names it (default: the first <int> of space 253)");
     po::options_description transport("Transports and logs (top level)");
     transport.add_options()("listen", po::value<std::string>()->value_name("HOST:PORT"),
                             "run a GridConnect TCP hub (port 0 = any free port; "
@@ -307,6 +311,7 @@ public:
 
         const std::string* user_name = single(keys, "user-name");
         const std::string* user_description = single(keys, "user-description");
+        const std::string* watch = single(keys, "watch-variable");
         for (std::uint64_t k = 0; k < count; ++k) {
             NodeConfig config;
             config.node_id = NodeId(base->value() + k);
@@ -322,6 +327,7 @@ public:
                 config.user_description = expand(*user_description, k + 1, config.node_id);
             }
             config.faults = *faults;
+            if (watch) config.watch_variable = *watch;
             scenario_.nodes.push_back(std::move(config));
         }
         return true;

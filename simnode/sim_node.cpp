@@ -1,6 +1,8 @@
 #include "simnode/sim_node.hpp"
 
+#include <algorithm>
 #include <set>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -14,6 +16,39 @@ namespace {
 
 // How far space-info-short undercuts the real highest address.
 constexpr std::uint32_t kSpaceInfoShortBy = 16;
+constexpr std::uint8_t kConfigSpace = 0xFD;
+
+// field-reads-only: where the ACDI fields of 252 and 251 start and how long they are (fact
+// sheet 7); the first of each space is the version byte.
+struct AcdiField {
+    std::uint32_t address, size;
+};
+constexpr AcdiField kManufacturerFields[] = {{0, 1}, {1, 41}, {42, 41}, {83, 21}, {104, 21}};
+constexpr AcdiField kUserFields[] = {{0, 1}, {1, 63}, {64, 64}};
+
+// field-reads-only: cuts a Read Reply of 251/252 to the field it starts at (a string up to and
+// including its NUL) or to 1 byte off a field start; true when it changed.
+bool cut_to_field(memory::ReadReply& r) {
+    std::span<const AcdiField> fields;
+    if (r.space == memory::Space::kAcdiManufacturer) {
+        fields = kManufacturerFields;
+    } else if (r.space == memory::Space::kAcdiUser) {
+        fields = kUserFields;
+    } else {
+        return false;
+    }
+    std::size_t keep = 1;
+    for (const AcdiField& field : fields) {
+        if (r.address != field.address) continue;
+        const std::size_t within = std::min<std::size_t>(field.size, r.data.size());
+        const auto end = r.data.begin() + static_cast<std::ptrdiff_t>(within);
+        const auto nul = std::find(r.data.begin(), end, std::uint8_t{0});
+        keep = static_cast<std::size_t>((nul == end ? end : nul + 1) - r.data.begin());
+    }
+    if (r.data.size() <= keep) return false;
+    r.data.resize(keep);
+    return true;
+}
 
 Protocol pip_protocol(PipBit bit) {
     switch (bit) {
@@ -53,6 +88,18 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
         error = "CDI: " + error;
         return nullptr;
     }
+    if (!config.watch_variable.empty()) {
+        bool found = false;
+        model->layout->visit([&](const cdi::Cursor& c) {
+            found = c.path() == config.watch_variable;
+            return !found;
+        });
+        if (!found) {
+            error = "watch-variable '" + config.watch_variable +
+                    "' names no variable of the CDI (see lcc-cdi layout)";
+            return nullptr;
+        }
+    }
     // Real firmware serves CDIs that break the schema (a third of the device files of the corpus
     // do); refusing them would make the node useless for testing tools against such devices.
     // The owner reports cdi_problem() to the user instead.
@@ -91,6 +138,7 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     if (config.faults.pip_missing)
         sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
     sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
+    sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
 
     return std::unique_ptr<SimNode>(
         new SimNode(std::move(config), std::move(sc), std::move(memory), served));
@@ -109,12 +157,39 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
       }()),
       served_protocols_(served) {
     memory_->serve(server_);
+    if (config_.faults.abort_on_value.count() > 0 || config_.faults.factory_reset_on_version_change)
+        find_watched();
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
     stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
     stack_.set_initialized_handler([this] { on_initialized(); });
 }
 
 SimNode::~SimNode() = default;
+
+std::optional<std::uint32_t> SimNode::watched_address() const {
+    return watched_address_;
+}
+
+void SimNode::find_watched() {
+    const std::string& wanted = config_.watch_variable;
+    memory().model().layout->visit([&](const cdi::Cursor& c) {
+        if (wanted.empty() ? c.space() != kConfigSpace || c.element().kind != cdi::ElementKind::kInt
+                           : c.path() != wanted)
+            return true;
+        watched_space_ = static_cast<std::uint8_t>(c.space());
+        watched_address_ = static_cast<std::uint32_t>(c.address());
+        // Taken as the firmware's own constant: any other stored value is "not my version".
+        watched_snapshot_ =
+            memory_->read(watched_space_, *watched_address_, static_cast<std::uint32_t>(c.size()));
+        return false;
+    });
+}
+
+bool SimNode::watched_changed() const {
+    if (!watched_address_) return false;
+    return memory_->read(watched_space_, *watched_address_,
+                         static_cast<std::uint32_t>(watched_snapshot_.size())) != watched_snapshot_;
+}
 
 memory::Snip SimNode::snip() const {
     memory::Snip s = memory_->snip();
@@ -154,6 +229,10 @@ bool SimNode::on_message(const Message& msg) {
             return true;
         }
         case Mti::kSnipRequest: {
+            if (config_.faults.abort_on_value.count() > 0 && watched_changed()) {
+                abort_node();  // the firmware trips over the value while building its reply
+                return true;
+            }
             Message reply;
             reply.mti = Mti::kSnipReply;
             reply.destination = NodeHandle{msg.source.id, msg.source.alias};
@@ -202,6 +281,33 @@ void SimNode::on_initialized() {
     }
 }
 
+void SimNode::abort_node() {
+    ++counters_.aborts;
+    ++boot_generation_;
+    const std::uint32_t generation = boot_generation_;
+    stack_.go_silent(stack_.now());
+    stack_.schedule(stack_.now() + config_.faults.abort_on_value,
+                    [this, generation](TimePoint now) {
+                        if (generation == boot_generation_) power_up(now);
+                    });
+}
+
+void SimNode::factory_reset() {
+    std::string error;
+    if (!memory_->factory_reset(error)) ++counters_.storage_errors;
+    ++counters_.factory_resets;
+}
+
+void SimNode::power_up(TimePoint now) {
+    memory_->reboot();
+    // Like OpenMRN: a stored config version other than the firmware's wipes the configuration.
+    if (config_.faults.factory_reset_on_version_change && watched_changed()) factory_reset();
+    server_.reset();
+    ++boot_generation_;
+    // The transport is untouched: TCP clients stay connected and see a fresh start-up.
+    stack_.restart(now);
+}
+
 void SimNode::schedule_unsolicited(TimePoint at) {
     stack_.schedule(at, [this](TimePoint now) {
         if (stack_.initialized())
@@ -224,22 +330,77 @@ void SimNode::on_datagram(const ReceivedDatagram& d) {
         stack_.reject_datagram(src, error_code::kCommandUnknown);
         return;
     }
+    memory::Decision decision = decide(src, d.payload);
+    if (!decision.accepted) {
+        stack_.reject_datagram(src, memory::to_u16(decision.reject_error));
+        return;
+    }
+    const memory::SideEffects& fx = decision.effects;
+    const bool write_reboot = fx.written && reboot_on_this_write();
+    if (write_reboot) decision.reply.clear();  // the OK still says Reply Pending
+    send_answer(src, decision);
+
+    if (fx.reboot || fx.factory_reset || write_reboot) {
+        if (fx.factory_reset) {
+            factory_reset();
+        } else if (fx.reboot) {
+            ++counters_.reboots;
+        } else {
+            ++counters_.write_reboots;
+        }
+        power_up(stack_.now());
+        return;
+    }
+    if (fx.written && fx.written->changed) {
+        if (fx.identification_changed) {
+            stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
+        } else {
+            const auto touched = memory_->events_in(memory::to_u8(fx.written->space),
+                                                    fx.written->address, fx.written->length);
+            advertise(touched.data(), touched.data() + touched.size());
+        }
+    }
+}
+
+memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t> payload) {
+    if (auto early = command_faults(payload)) return std::move(*early);
     memory::Source source;
     source.alias = src;
     source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
-    memory::Decision decision = server_.handle(source, d.payload);
-    apply_reply_faults(decision, d.payload);
+    memory::Decision decision = server_.handle(source, payload);
+    apply_reject_faults(decision);
+    apply_reply_faults(decision, payload);
     const memory::SideEffects& fx = decision.effects;
     if (decision.accepted && fx.unique_id_counter &&
         !memory_->store_unique_id_counter(*fx.unique_id_counter)) {
         ++counters_.storage_errors;
         decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
     }
-    if (!decision.accepted) {
-        stack_.reject_datagram(src, memory::to_u16(decision.reject_error));
-        return;
-    }
+    return decision;
+}
 
+std::optional<memory::Decision> SimNode::command_faults(
+    std::span<const std::uint8_t> payload) const {
+    const FaultSet& f = config_.faults;
+    if (!f.reset_rejected && !f.lock_rejected) return std::nullopt;
+    // Decided before the server sees the command: it would clear or take the lock.
+    const memory::DecodeResult asked = memory::decode(payload);
+    if (!asked.ok()) return std::nullopt;
+    if ((f.reset_rejected && std::holds_alternative<memory::ResetReboot>(asked.message)) ||
+        (f.lock_rejected && std::holds_alternative<memory::Lock>(asked.message))) {
+        return memory::Decision::reject(memory::ErrorCode::kSubcommandUnknown);
+    }
+    return std::nullopt;
+}
+
+bool SimNode::reboot_on_this_write() {
+    if (config_.faults.reboot_on_write == 0 || rebooted_on_write_) return false;
+    if (++stored_writes_ < config_.faults.reboot_on_write) return false;
+    rebooted_on_write_ = true;
+    return true;
+}
+
+void SimNode::send_answer(std::uint16_t src, memory::Decision& decision) {
     const std::uint8_t flags =
         datagram::ok_flags(decision.reply_pending, decision.reply_timeout_exponent);
     if (decision.reply.empty()) {
@@ -258,31 +419,6 @@ void SimNode::on_datagram(const ReceivedDatagram& d) {
         stack_.accept_datagram(src, flags);
         send_reply(src, std::move(decision.reply));
     }
-
-    if (fx.reboot || fx.factory_reset) {
-        if (fx.factory_reset) {
-            std::string error;
-            if (!memory_->factory_reset(error)) ++counters_.storage_errors;
-            ++counters_.factory_resets;
-        } else {
-            ++counters_.reboots;
-        }
-        memory_->reboot();
-        server_.reset();
-        ++boot_generation_;
-        // The transport is untouched: TCP clients stay connected and see a fresh start-up.
-        stack_.restart(stack_.now());
-        return;
-    }
-    if (fx.written && fx.written->changed) {
-        if (fx.identification_changed) {
-            stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
-        } else {
-            const auto touched = memory_->events_in(memory::to_u8(fx.written->space),
-                                                    fx.written->address, fx.written->length);
-            advertise(touched.data(), touched.data() + touched.size());
-        }
-    }
 }
 
 void SimNode::send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply) {
@@ -292,10 +428,16 @@ void SimNode::send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply) {
 void SimNode::apply_reply_faults(memory::Decision& decision,
                                  std::span<const std::uint8_t> request) {
     const FaultSet& f = config_.faults;
-    if (decision.reply.empty() || !(f.read_past_end || f.space_info_short || f.reply_form)) return;
+    if (decision.reply.empty() ||
+        !(f.read_past_end || f.space_info_short || f.reply_form || f.field_reads_only)) {
+        return;
+    }
     memory::DecodeResult reply = memory::decode(decision.reply);
     if (!reply.ok()) return;
     bool changed = false;
+    if (f.field_reads_only) {
+        if (auto* r = std::get_if<memory::ReadReply>(&reply.message)) changed = cut_to_field(*r);
+    }
     if (f.read_past_end) {
         const auto* fail = std::get_if<memory::ReadReplyFail>(&reply.message);
         const memory::DecodeResult asked = memory::decode(request);
@@ -329,6 +471,17 @@ void SimNode::apply_reply_faults(memory::Decision& decision,
             reply.message);
     }
     if (changed) decision.reply = memory::encode(reply.message);
+}
+
+void SimNode::apply_reject_faults(memory::Decision& decision) const {
+    const FaultSet& f = config_.faults;
+    const memory::ErrorCode code = decision.reject_error;
+    // The server gives 0x1081 only to reads and writes, 0x1083 only to writes.
+    if (!decision.accepted &&
+        ((f.unknown_space_0x1041 && code == memory::ErrorCode::kSpaceUnknown) ||
+         (f.readonly_0x1041 && code == memory::ErrorCode::kReadOnly))) {
+        decision.reject_error = memory::ErrorCode::kSubcommandUnknown;
+    }
 }
 
 }  // namespace olcb::simnode

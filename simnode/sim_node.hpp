@@ -36,12 +36,18 @@ struct NodeConfig {
     std::string user_name;             ///< initial 251 name, for a FRESH image only
     std::string user_description;      ///< initial 251 description, for a FRESH image only
     FaultSet faults;                   ///< misbehaviours (none by default)
+    /// Cursor::path() of the variable abort-on-value and factory-reset-on-version-change watch
+    /// ("" = the first <int> of space 253).
+    std::string watch_variable;
 };
 
 /// Counters of what a node did, for tests and the program's statistics.
 struct NodeCounters {
-    std::uint32_t reboots = 0;            ///< Reset/Reboot commands obeyed
-    std::uint32_t factory_resets = 0;     ///< Factory Reset commands obeyed
+    std::uint32_t reboots = 0;  ///< Reset/Reboot commands obeyed
+    /// Factory resets done: Factory Reset commands and factory-reset-on-version-change.
+    std::uint32_t factory_resets = 0;
+    std::uint32_t aborts = 0;             ///< abort-on-value crashes
+    std::uint32_t write_reboots = 0;      ///< reboot-on-write restarts
     std::uint64_t datagrams = 0;          ///< datagrams received
     std::uint64_t temporary_rejects = 0;  ///< datagrams rejected by reject-temporary
     std::uint32_t storage_errors = 0;     ///< factory reset or counter writes that failed
@@ -92,18 +98,32 @@ public:
     std::uint64_t replies() const { return replies_; }
     /// The first validation error of the served CDI ("" when it is valid).
     const std::string& cdi_problem() const { return memory().model().first_error; }
+    /// Address in space 253 of the int abort-on-value and factory-reset-on-version-change watch
+    /// (the first <int> of 253 in document order); nullopt when neither fault is set or the CDI
+    /// has no such int.
+    std::optional<std::uint32_t> watched_address() const;
 
 private:
     SimNode(NodeConfig config, NodeStackConfig stack_config, std::unique_ptr<NodeMemory> memory,
             ProtocolSet served);
     bool on_message(const Message& msg);
     void on_datagram(const ReceivedDatagram& datagram);
+    memory::Decision decide(std::uint16_t src, std::span<const std::uint8_t> payload);
+    std::optional<memory::Decision> command_faults(std::span<const std::uint8_t> payload) const;
+    void send_answer(std::uint16_t src, memory::Decision& decision);
+    bool reboot_on_this_write();
+    void find_watched();
+    bool watched_changed() const;
+    void abort_node();
+    void factory_reset();
+    void power_up(TimePoint now);
     void on_initialized();
     void advertise(const EventSlot* only_begin, const EventSlot* only_end);
     void advertise_all();
     void identified(EventId id, bool producer);
     void send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply);
     void apply_reply_faults(memory::Decision& decision, std::span<const std::uint8_t> request);
+    void apply_reject_faults(memory::Decision& decision) const;
     void schedule_unsolicited(TimePoint at);
 
     NodeConfig config_;
@@ -115,6 +135,11 @@ private:
     std::uint64_t replies_ = 0;          // numbers replies for slow-reply
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;
+    std::uint32_t stored_writes_ = 0;  // counts writes for reboot-on-write
+    bool rebooted_on_write_ = false;   // reboot-on-write fires once per process
+    std::uint8_t watched_space_ = 253;
+    std::optional<std::uint32_t> watched_address_;  // see watched_address()
+    std::vector<std::uint8_t> watched_snapshot_;    // its bytes when the node was created
 };
 
 }  // namespace olcb::simnode

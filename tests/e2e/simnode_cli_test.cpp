@@ -53,9 +53,10 @@ TEST(SimnodeCli, EveryFaultHasAScenarioThatRuns) {
         ++count;
         const auto file = source_path("scenarios/faults/" + name + ".ini");
         ASSERT_TRUE(std::filesystem::exists(file)) << file;
+        // One image directory per scenario: they do not all serve the same CDI.
         const auto [rc, out] =
             run_program(SIMNODE_PATH, {file.string(), "--listen", "127.0.0.1:0", "--image-dir",
-                                       images.str(), "--run-for", "0.3"});
+                                       (images.path() / name).string(), "--run-for", "0.3"});
         EXPECT_EQ(rc, 0) << name << "\n" << out;
     }
     EXPECT_GE(count, 21);

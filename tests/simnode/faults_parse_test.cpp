@@ -30,6 +30,31 @@ TEST(ParseFaults, DefaultsOfParameters) {
     EXPECT_EQ(f->pip_missing, PipBit::kCdi);
 }
 
+TEST(ParseFaults, RestartAndMemoryFaults) {
+    std::string error;
+    auto f = parse_faults({"abort-on-value, reboot-on-write", "reset-rejected,lock-rejected",
+                           "factory-reset-on-version-change", "new-alias-on-reboot",
+                           "field-reads-only", "unknown-space-0x1041", "readonly-0x1041"},
+                          error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->abort_on_value, std::chrono::milliseconds(3000));
+    EXPECT_EQ(f->reboot_on_write, 1u);
+    EXPECT_TRUE(f->reset_rejected && f->lock_rejected && f->factory_reset_on_version_change &&
+                f->new_alias_on_reboot && f->field_reads_only && f->unknown_space_0x1041 &&
+                f->readonly_0x1041);
+    f = parse_faults({"abort-on-value=600000", "reboot-on-write=5"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->abort_on_value, std::chrono::milliseconds(600000));
+    EXPECT_EQ(f->reboot_on_write, 5u);
+    EXPECT_EQ(to_names(*f),
+              (std::vector<std::string>{"abort-on-value=600000", "reboot-on-write=5"}));
+    EXPECT_FALSE(parse_faults({"abort-on-value=0"}, error));
+    EXPECT_NE(error.find("1..600000"), std::string::npos) << error;
+    EXPECT_FALSE(parse_faults({"abort-on-value=600001"}, error));
+    EXPECT_FALSE(parse_faults({"reboot-on-write=0"}, error));
+    EXPECT_FALSE(parse_faults({"field-reads-only=1"}, error));
+}
+
 TEST(ParseFaults, EmptyIsAGoodNode) {
     std::string error;
     auto f = parse_faults({"", " , "}, error);
@@ -62,7 +87,7 @@ TEST(ParseFaults, NamesRoundTrip) {
 
 TEST(ParseFaults, CatalogHasEveryFaultOnce) {
     const auto names = fault_names();
-    EXPECT_EQ(names.size(), 21u);
+    EXPECT_EQ(names.size(), 30u);
     EXPECT_EQ(std::set<std::string>(names.begin(), names.end()).size(), names.size());
     for (const auto& info : fault_catalog()) EXPECT_FALSE(info.summary.empty()) << info.name;
 }

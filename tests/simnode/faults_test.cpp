@@ -277,5 +277,90 @@ TEST_F(FaultTest, UnsolicitedTraffic) {
     EXPECT_EQ(count_prefix(take(), ":X19490343N"), 3u);
 }
 
+TEST_F(FaultTest, GoodNodeLocksAndReportsStandardErrors) {
+    start(default_config());
+    Answer a = exchange({0x20, 0x88, 2, 1, 0x0D, 0, 0, 1});
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ(*a.reply, (std::vector<std::uint8_t>{0x20, 0x8A, 2, 1, 0x0D, 0, 0, 1}));
+    a = exchange(read_cmd(0x10, 0, 4));
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1081);
+    a = exchange(write_cmd(0xFF, 0, {'x'}));
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1083);
+    EXPECT_EQ(read(0xFC, 0, 64).size(), 64u) << "a good node fills the count asked";
+}
+
+TEST_F(FaultTest, LockRejected) {
+    start_with({"lock-rejected"});
+    const Answer a = exchange({0x20, 0x88, 2, 1, 0x0D, 0, 0, 1});
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1041);
+    EXPECT_FALSE(a.reply);
+    EXPECT_EQ(node_->server().lock_holder(), 0u);
+    EXPECT_EQ(read(0xFD, 15, 1), (std::vector<std::uint8_t>{2})) << "the rest still works";
+}
+
+// A string as stored in an ACDI field: its bytes and the NUL.
+std::vector<std::uint8_t> with_nul(std::string_view s) {
+    auto bytes = bytes_of(s);
+    bytes.push_back(0);
+    return bytes;
+}
+
+TEST_F(FaultTest, FieldReadsOnly) {
+    start_with({"field-reads-only"});
+    EXPECT_EQ(read(0xFC, 0, 64), (std::vector<std::uint8_t>{4})) << "version byte alone";
+    EXPECT_EQ(read(0xFC, 1, 64), with_nul("OpenLCB Tools"));
+    EXPECT_EQ(read(0xFC, 1, 4), bytes_of("Open")) << "never more than asked";
+    EXPECT_EQ(read(0xFC, 42, 64), with_nul("simnode default"));
+    EXPECT_EQ(read(0xFC, 83, 64), with_nul("1.0"));
+    EXPECT_EQ(read(0xFC, 104, 64), with_nul("0.1.0"));
+    EXPECT_EQ(read(0xFC, 2, 64), bytes_of("p")) << "off a field start: one byte";
+    EXPECT_EQ(read(0xFC, 124, 64).size(), 1u);
+    const Answer end = exchange(read_cmd(0xFC, 125, 8));
+    ASSERT_TRUE(end.reply);
+    EXPECT_EQ((*end.reply)[1], 0x58) << "at the end still a Read Reply Fail";
+    EXPECT_EQ((*end.reply)[7], 0x10);
+    EXPECT_EQ((*end.reply)[8], 0x82);
+
+    EXPECT_EQ(read(0xFB, 0, 64), (std::vector<std::uint8_t>{2}));
+    EXPECT_EQ(read(0xFB, 1, 64), with_nul("Test node"));
+    EXPECT_EQ(read(0xFB, 64, 64), with_nul("Bench"));
+    EXPECT_EQ(read(0xFB, 10, 64).size(), 1u);
+    const std::vector<std::uint8_t> full(63, 'x');
+    write_ok(0xFB, 1, full);
+    EXPECT_EQ(read(0xFB, 1, 64), full) << "a field without NUL is returned whole, no more";
+    EXPECT_EQ(read(0xFD, 0, 8).size(), 8u) << "other spaces are read as usual";
+}
+
+TEST_F(FaultTest, UnknownSpace0x1041) {
+    start_with({"unknown-space-0x1041"});
+    for (const auto& cmd : {read_cmd(0x10, 0, 4), write_cmd(0x10, 0, {1}), read_cmd(0xFE, 0, 4),
+                            write_cmd(0xFE, 0, {1})}) {
+        const Answer a = exchange(cmd);
+        EXPECT_TRUE(a.rejected);
+        EXPECT_EQ(a.code, 0x1041);
+        EXPECT_FALSE(a.reply);
+    }
+    const Answer info = exchange({0x20, 0x84, 0x10});
+    ASSERT_TRUE(info.reply) << "Get Address Space Information is unchanged";
+    EXPECT_EQ((*info.reply)[1], 0x86);
+    EXPECT_EQ(read(0xFD, 15, 1), (std::vector<std::uint8_t>{2}));
+}
+
+TEST_F(FaultTest, Readonly0x1041) {
+    start_with({"readonly-0x1041"});
+    for (const auto& cmd : {write_cmd(0xFF, 0, {'x'}), write_cmd(0xFC, 1, {'x'})}) {
+        const Answer a = exchange(cmd);
+        EXPECT_TRUE(a.rejected);
+        EXPECT_EQ(a.code, 0x1041);
+    }
+    EXPECT_EQ(read(0xFF, 0, 2), bytes_of("<?"));
+    write_ok(0xFD, 15, {3});
+    const Answer unknown = exchange(read_cmd(0x10, 0, 4));
+    EXPECT_EQ(unknown.code, 0x1081) << "only the read-only code changes";
+}
+
 }  // namespace
 }  // namespace olcb::simnode::test
