@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <initializer_list>
+#include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <variant>
 
 #include "cdi/parser.hpp"
@@ -24,6 +27,98 @@ constexpr std::uint16_t kUnknownAddressedMti = 0x04F9;
 constexpr std::uint16_t kUnknownGlobalMti = 0x0930;
 // A node ID that is not ours, for the lock and CID checks.
 constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
+// Most bytes of the CDI (or of any node-supplied text) a message quotes.
+constexpr std::size_t kMaxQuote = 80;
+// Short replies a FAIL message lists before giving the total.
+constexpr std::size_t kShortReadsListed = 3;
+// 1-byte reads short_read_checks() makes per space to learn whether a short reply was the end.
+constexpr std::size_t kMaxEndProbes = 8;
+
+std::string hex(unsigned v, int width = 4) {
+    char b[16];
+    std::snprintf(b, sizeof b, "0x%0*X", width, v);
+    return b;
+}
+
+// At most kMaxQuote bytes, cut before a UTF-8 continuation byte so the quote stays valid text.
+std::string clip(std::string_view text) {
+    if (text.size() <= kMaxQuote) return std::string(text);
+    std::size_t n = kMaxQuote;
+    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
+    return std::string(text.substr(0, n)) + "...";
+}
+
+std::string quoted(std::string_view text) {
+    return "\"" + clip(text) + "\"";
+}
+
+// What an exchange did, in words; a failure without a code says so instead of "error 0x0000".
+std::string describe(const MemResult& r) {
+    if (r.timed_out) return "no answer";
+    if (r.rejected)
+        return r.error ? "Datagram Rejected " + hex(r.error)
+                       : "Datagram Rejected without an error code";
+    if (!r.ok) return r.error ? "error " + hex(r.error) : "failed without an error code";
+    return std::to_string(r.data.size()) + " bytes";
+}
+
+// Judges a request the standard refuses with `want`; the message quotes what came instead.
+struct Refusal {
+    bool pass = false;
+    std::string message;
+    std::string seen;
+};
+
+Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t want) {
+    const std::string standard = "; the standard gives " + hex(want);
+    if (r.timed_out) return {false, what + ": no answer" + standard, "no answer"};
+    if (r.ok) {
+        const std::string got = r.data.empty() ? "accepted" : "returned " + describe(r);
+        return {false, what + " " + got + standard, got};
+    }
+    const std::string code = r.error ? hex(r.error) : "no error code";
+    if (r.error == want) return {true, what + " refused with " + code, code};
+    return {false, what + " refused with " + code + standard, code};
+}
+
+// Get Address Space Information for space, remembered in ctx.spaces.
+SpaceInfo query_space_info(Session& s, const NodeInfo& node, std::uint8_t space, CheckContext& ctx,
+                           MemResult* result = nullptr) {
+    memory::Message reply;
+    const auto payload = memory::encode(memory::GetSpaceInfo{static_cast<Space>(space)});
+    MemResult r = s.command(node, payload, &reply);
+    ctx.temporary_rejects += r.temporary_rejects;
+    SpaceInfo info;
+    if (r.ok) {
+        if (auto* p = std::get_if<memory::SpaceInfoReply>(&reply)) {
+            info = {true, true, p->read_only, p->highest_address, p->lowest_address};
+        } else if (std::holds_alternative<memory::SpaceInfoNotPresent>(reply)) {
+            info.answered = true;
+        }
+    }
+    ctx.spaces[space] = info;
+    if (result) *result = std::move(r);
+    return info;
+}
+
+// One string both sides should hold, named for the message.
+struct Field {
+    const char* name;
+    const std::string* want;
+    const std::string* got;
+};
+
+// "SNIP model "B" differs from <source> "A"" for the first field that differs; "" when none.
+std::string first_difference(std::initializer_list<Field> fields, const std::string& source,
+                             std::string& want, std::string& got) {
+    for (const Field& f : fields) {
+        if (*f.want == *f.got) continue;
+        want = quoted(*f.want);
+        got = quoted(*f.got);
+        return std::string("SNIP ") + f.name + " " + got + " differs from " + source + " " + want;
+    }
+    return {};
+}
 
 class Checks {
 public:
@@ -59,32 +154,30 @@ private:
     void skip(std::string id, Category c, std::string section, std::string why) {
         add_status(std::move(id), c, Status::kSkip, std::move(section), std::move(why));
     }
-    static std::string hex(unsigned v, int width = 4) {
-        char b[16];
-        std::snprintf(b, sizeof b, "0x%0*X", width, v);
-        return b;
-    }
+    // The node's alias now: a node that re-initialised may have taken another one.
+    std::uint16_t alias() const { return s_.alias_of(node_); }
 
     bool from_node(const CanFrame& f) const {
-        return f.extended && can::source_alias(f.id) == node_.alias;
+        return f.extended && can::source_alias(f.id) == alias();
     }
 
     // --- frame / message: everything injected at once, answers collected in one window ---
     void frame_and_message() {
         const std::uint16_t me = s_.tool_alias();
+        const std::uint16_t node = alias();
         const std::size_t fmark = s_.frame_mark();
         const std::size_t mmark = s_.message_mark();
         s_.inject(can::make_ame(me));
         s_.inject(can::make_ame(me, node_.id));
-        s_.inject(can::make_cid(7, NodeId{kOtherNodeId}, node_.alias));
-        CanFrame unknown_addr = can::make_frame(
-            can::message_header(kUnknownAddressedMti & 0x0FFF, me),
-            std::array<std::uint8_t, 2>{static_cast<std::uint8_t>(node_.alias >> 8),
-                                        static_cast<std::uint8_t>(node_.alias & 0xFF)});
+        s_.inject(can::make_cid(7, NodeId{kOtherNodeId}, node));
+        CanFrame unknown_addr =
+            can::make_frame(can::message_header(kUnknownAddressedMti & 0x0FFF, me),
+                            std::array<std::uint8_t, 2>{static_cast<std::uint8_t>(node >> 8),
+                                                        static_cast<std::uint8_t>(node & 0xFF)});
         s_.inject(unknown_addr);
         Message verify_addr;
         verify_addr.mti = Mti::kVerifyNodeIdAddressed;
-        verify_addr.destination = NodeHandle{node_.id, node_.alias};
+        verify_addr.destination = NodeHandle{node_.id, node};
         s_.send(verify_addr);
         s_.wait(o_.window);
         std::size_t amd = 0, rid = 0;
@@ -104,7 +197,7 @@ private:
         bool oir = false, verified = false;
         for (const auto& r : s_.messages_since(mmark)) {
             const Message& m = r.message;
-            if (m.source.alias != node_.alias) continue;
+            if (m.source.alias != node) continue;
             if (m.mti == Mti::kOptionalInteractionRejected && m.payload.size() >= 4 &&
                 (m.payload[2] << 8 | m.payload[3]) == kUnknownAddressedMti && (m.payload[0] & 0x10))
                 oir = true;
@@ -127,7 +220,7 @@ private:
         s_.wait(o_.window);
         bool answered = false;
         for (const auto& r : s_.messages_since(smark))
-            if (r.message.source.alias == node_.alias) answered = true;
+            if (r.message.source.alias == alias()) answered = true;
         add("message.unknown-global-ignored", Category::kMessage, !answered,
             "MessageNetworkS 3.5.2", "unknown global MTI 0x0930 ignored silently", "silence",
             "a message from the node");
@@ -153,19 +246,10 @@ private:
     }
 
     SpaceInfo space_info(std::uint8_t space) {
-        memory::Message reply;
-        const auto payload = memory::encode(memory::GetSpaceInfo{static_cast<Space>(space)});
-        MemResult r = s_.command(node_, payload, &reply);
+        MemResult r;
+        SpaceInfo info = query_space_info(s_, node_, space, ctx_, &r);
+        r.temporary_rejects = 0;  // counted by query_space_info
         note(r);
-        SpaceInfo info;
-        if (r.ok) {
-            if (auto* p = std::get_if<memory::SpaceInfoReply>(&reply)) {
-                info = {true, true, p->read_only, p->highest_address, p->lowest_address};
-            } else if (std::holds_alternative<memory::SpaceInfoNotPresent>(reply)) {
-                info.answered = true;
-            }
-        }
-        ctx_.spaces[space] = info;
         return info;
     }
 
@@ -181,7 +265,7 @@ private:
         if (auto* p = std::get_if<memory::ConfigOptionsReply>(&reply); r.ok && p) ctx_.options = *p;
         add("memory.config-options", Category::kMemory, ctx_.options.has_value(),
             "MemoryConfigurationS 4.13", "Get Configuration Options answered", "reply 20 82",
-            r.timed_out ? "no reply" : "error " + hex(r.error));
+            r.ok ? "a reply other than 20 82" : describe(r));
         for (std::uint8_t sp : {0xFF, 0xFC, 0xFB}) space_info(sp);
         const SpaceInfo& ff = ctx_.spaces[0xFF];
         add("cdi.space-info", Category::kCdi, ff.present && ff.read_only,
@@ -197,7 +281,7 @@ private:
         note(r);
         cdi_read_ok_ = r.ok && !r.data.empty();
         add("cdi.read", Category::kCdi, cdi_read_ok_, "MemoryConfigurationS 4.4",
-            "space 0xFF read in 64-byte reads", "data", "error " + hex(r.error));
+            "space 0xFF read in 64-byte reads", "data", r.ok ? "no data" : describe(r));
         cdi_forms_ok_ = r.reply_in_request_form;
         ctx_.cdi_nul_found = !r.data.empty() && r.data.back() == 0;
         ctx_.cdi_bytes = r.data;
@@ -229,22 +313,7 @@ private:
         add("cdi.no-bom", Category::kCdi, !bom, "CDI 5", "no byte-order mark", "no BOM", "BOM");
         add("cdi.utf8", Category::kCdi, is_valid_utf8(ctx_.cdi_bytes), "CDI 5", "valid UTF-8",
             "UTF-8", "invalid byte sequence");
-        const std::string first(text.substr(0, text.find('\n')));
-        std::string trimmed = first;
-        while (!trimmed.empty() && (trimmed.back() == '\r' || trimmed.back() == ' '))
-            trimmed.pop_back();
-        if (trimmed == "<?xml version=\"1.0\"?>") {
-            add("cdi.xml-declaration", Category::kCdi, true, "CDI 5",
-                "first line is the XML declaration");
-        } else if (trimmed.starts_with("<?xml")) {
-            add_status(
-                "cdi.xml-declaration", Category::kCdi, Status::kWarn, "CDI 5",
-                "first line is an XML declaration other than <?xml version=\"1.0\"?>: " + trimmed);
-        } else {
-            add("cdi.xml-declaration", Category::kCdi, false, "CDI 5",
-                "first line is <?xml version=\"1.0\"?>", "<?xml version=\"1.0\"?>",
-                trimmed.substr(0, 60));
-        }
+        xml_declaration(text);
         cdi::ValidationReport report = cdi::validate(text);
         add("cdi.well-formed", Category::kCdi, report.schema.well_formed, "CDI 5",
             "well-formed XML", "well-formed", "not well-formed");
@@ -277,8 +346,36 @@ private:
             else
                 add("cdi.schema-location", Category::kCdi, sane, "CDI 5",
                     "schema location names an openlcb.org CDI schema",
-                    "http://openlcb.org/schema/cdi/.../cdi.xsd", loc);
+                    "http://openlcb.org/schema/cdi/.../cdi.xsd", clip(loc));
         }
+    }
+
+    // Judges the first line only: a one-line CDI goes on with <cdi ...> after the declaration.
+    void xml_declaration(std::string_view text) {
+        static constexpr std::string_view kDeclaration = "<?xml version=\"1.0\"?>";
+        const std::string_view first = text.substr(0, text.find('\n'));
+        if (first.starts_with(kDeclaration)) {
+            add("cdi.xml-declaration", Category::kCdi, true, "CDI 5",
+                "first line starts with the XML declaration <?xml version=\"1.0\"?>");
+            return;
+        }
+        const bool declaration = first.starts_with("<?xml") &&
+                                 (first.size() == 5 || std::string_view(" \t\r?").find(first[5]) !=
+                                                           std::string_view::npos);
+        if (declaration) {
+            const std::size_t end = first.find("?>");
+            const std::string_view decl =
+                end == std::string_view::npos ? first : first.substr(0, end + 2);
+            add_status("cdi.xml-declaration", Category::kCdi, Status::kWarn, "CDI 5",
+                       "first line is an XML declaration other than <?xml version=\"1.0\"?>: " +
+                           clip(decl));
+            return;
+        }
+        std::string_view line = first;
+        if (line.ends_with('\r')) line.remove_suffix(1);
+        add("cdi.xml-declaration", Category::kCdi, false, "CDI 5",
+            "first line is not the XML declaration <?xml version=\"1.0\"?>",
+            std::string(kDeclaration), quoted(line));
     }
 
     void acdi() {
@@ -293,10 +390,10 @@ private:
         add("acdi.manufacturer-version", Category::kAcdi,
             m.ok && !m.data.empty() && m.data[0] == a.fixed, "CDI 5.1.2",
             "space 252 byte 0 equals <acdi fixed>", std::to_string(a.fixed),
-            m.ok && !m.data.empty() ? std::to_string(m.data[0]) : "unreadable");
+            m.ok && !m.data.empty() ? std::to_string(m.data[0]) : "unreadable: " + describe(m));
         add("acdi.user-version", Category::kAcdi, u.ok && !u.data.empty() && u.data[0] == a.var,
             "CDI 5.1.2", "space 251 byte 0 equals <acdi var>", std::to_string(a.var),
-            u.ok && !u.data.empty() ? std::to_string(u.data[0]) : "unreadable");
+            u.ok && !u.data.empty() ? std::to_string(u.data[0]) : "unreadable: " + describe(u));
         // A CDI that lays its own variables over the ACDI blocks (some real devices put
         // configuration in space 252) makes the node disagree with ACDI whatever it does: that
         // is the CDI's fault, reported once here, and the ACDI size check is moot.
@@ -354,26 +451,7 @@ private:
                     "differs");
             }
         }
-        if (ctx_.snip && ctx_.acdi_manufacturer && ctx_.acdi_user) {
-            memory::Snip from = memory::snip_from_acdi(*ctx_.acdi_manufacturer, *ctx_.acdi_user);
-            const memory::Snip& sn = *ctx_.snip;
-            const bool same = sn.manufacturer == from.manufacturer && sn.model == from.model &&
-                              sn.hardware_version == from.hardware_version &&
-                              sn.software_version == from.software_version &&
-                              sn.user_name == from.user_name &&
-                              sn.user_description == from.user_description;
-            add("snip.matches-acdi", Category::kSnip, same, "SimpleNodeInformationS; CDI 5.1.2",
-                "SNIP strings equal the ACDI 252/251 strings", from.model, sn.model);
-        }
-        if (ctx_.snip && doc && doc->identification) {
-            const auto& id = *doc->identification;
-            const memory::Snip& sn = *ctx_.snip;
-            const bool same = sn.manufacturer == id.manufacturer && sn.model == id.model &&
-                              sn.hardware_version == id.hardware_version &&
-                              sn.software_version == id.software_version;
-            add("snip.matches-cdi", Category::kSnip, same, "CDI 5.1.1",
-                "SNIP strings equal the CDI <identification>", id.model, sn.model);
-        }
+        snip_agreement();
         if (ctx_.options) {
             const std::uint16_t c = ctx_.options->available_commands;
             const bool r252 = ctx_.acdi_manufacturer.has_value();
@@ -399,6 +477,44 @@ private:
         }
     }
 
+    // SNIP against ACDI and against the CDI <identification>, naming the first field that differs.
+    void snip_agreement() {
+        const cdi::Document* doc = ctx_.document.get();
+        if (ctx_.snip && ctx_.acdi_manufacturer && ctx_.acdi_user) {
+            const memory::Snip from =
+                memory::snip_from_acdi(*ctx_.acdi_manufacturer, *ctx_.acdi_user);
+            const memory::Snip& sn = *ctx_.snip;
+            std::string want, got;
+            std::string diff = first_difference(
+                {{"manufacturer", &from.manufacturer, &sn.manufacturer},
+                 {"model", &from.model, &sn.model},
+                 {"hardware version", &from.hardware_version, &sn.hardware_version},
+                 {"software version", &from.software_version, &sn.software_version}},
+                "ACDI 252", want, got);
+            if (diff.empty())
+                diff = first_difference(
+                    {{"user name", &from.user_name, &sn.user_name},
+                     {"user description", &from.user_description, &sn.user_description}},
+                    "ACDI 251", want, got);
+            add("snip.matches-acdi", Category::kSnip, diff.empty(),
+                "SimpleNodeInformationS; CDI 5.1.2",
+                diff.empty() ? "SNIP strings equal the ACDI 252/251 strings" : diff, want, got);
+        }
+        if (ctx_.snip && doc && doc->identification) {
+            const auto& id = *doc->identification;
+            const memory::Snip& sn = *ctx_.snip;
+            std::string want, got;
+            const std::string diff =
+                first_difference({{"manufacturer", &id.manufacturer, &sn.manufacturer},
+                                  {"model", &id.model, &sn.model},
+                                  {"hardware version", &id.hardware_version, &sn.hardware_version},
+                                  {"software version", &id.software_version, &sn.software_version}},
+                                 "CDI <identification>", want, got);
+            add("snip.matches-cdi", Category::kSnip, diff.empty(), "CDI 5.1.1",
+                diff.empty() ? "SNIP strings equal the CDI <identification>" : diff, want, got);
+        }
+    }
+
     void forms_and_bounds() {
         const std::uint8_t sp = data_space_.value_or(0xFF);
         const auto space = static_cast<Space>(sp);
@@ -406,15 +522,13 @@ private:
         MemResult a = s_.read(node_, space, 0, 8, SpaceForm::kByte6);
         note(a);
         add("memory.read-byte6-form", Category::kMemory, a.ok, "MemoryConfigurationS 4.4",
-            "read of space " + std::to_string(sp) + " in the byte-6 form", "data",
-            "error " + hex(a.error));
+            "read of space " + std::to_string(sp) + " in the byte-6 form", "data", describe(a));
         bool forms = a.ok && a.reply_in_request_form && cdi_forms_ok_;
         if (shortable) {
             MemResult b = s_.read(node_, space, 0, 8, SpaceForm::kShort);
             note(b);
             add("memory.read-short-form", Category::kMemory, b.ok, "MemoryConfigurationS 4.4",
-                "read of space " + std::to_string(sp) + " in the short form", "data",
-                "error " + hex(b.error));
+                "read of space " + std::to_string(sp) + " in the short form", "data", describe(b));
             forms = forms && b.ok && b.reply_in_request_form;
         }
         add("memory.reply-form", Category::kMemory, forms, "MemoryConfigurationS 4.4",
@@ -425,13 +539,12 @@ private:
             note(e);
             add("memory.read-short-at-end", Category::kMemory, e.ok && e.data.size() == 4,
                 "MemoryConfigurationS 4.4", "read across the end of 0xFF returns the 4 bytes left",
-                "4 bytes",
-                e.ok ? std::to_string(e.data.size()) + " bytes" : "error " + hex(e.error));
+                "4 bytes", describe(e));
             MemResult p = s_.read(node_, Space::kCdi, ff.highest_address + 1, 8);
             note(p);
-            add("memory.read-past-end", Category::kMemory, !p.ok && p.error == 0x1082,
-                "MemoryConfigurationS 4.4", "read past the end of 0xFF fails with 0x1082", "0x1082",
-                p.ok ? "data" : hex(p.error));
+            const Refusal past = judge_refusal(p, "read past the end of 0xFF", 0x1082);
+            add("memory.read-past-end", Category::kMemory, past.pass, "MemoryConfigurationS 4.4",
+                past.message, "0x1082", past.seen);
         }
         std::set<std::uint8_t> used = {0xFF, 0xFE, 0xFD, 0xFC, 0xFB, 0xFA, 0xF9, 0xF8, 0xEF};
         if (ctx_.layout)
@@ -441,25 +554,40 @@ private:
         while (used.count(unknown)) ++unknown;
         MemResult u = s_.read(node_, static_cast<Space>(unknown), 0, 8);
         note(u);
-        add("memory.unknown-space", Category::kMemory, !u.ok && u.error == 0x1081,
-            "MemoryConfigurationS 4.4",
-            "read of unknown space " + std::to_string(unknown) + " refused with 0x1081", "0x1081",
-            u.ok ? "data" : hex(u.error));
+        const Refusal refused =
+            judge_refusal(u, "read of unknown space " + std::to_string(unknown), 0x1081);
+        add("memory.unknown-space", Category::kMemory, refused.pass, "MemoryConfigurationS 4.4",
+            refused.message, "0x1081", refused.seen);
     }
 
     void lock() {
+        MemResult last;
         auto lock_cmd = [&](std::uint64_t id) -> std::optional<std::uint64_t> {
             memory::Message reply;
-            MemResult r = s_.command(node_, memory::encode(memory::Lock{id}), &reply);
-            note(r);
-            if (auto* p = std::get_if<memory::LockReply>(&reply); r.ok && p) return p->node_id;
+            last = s_.command(node_, memory::encode(memory::Lock{id}), &reply);
+            note(last);
+            if (auto* p = std::get_if<memory::LockReply>(&reply); last.ok && p) return p->node_id;
             return std::nullopt;
         };
         const std::uint64_t me = s_.tool_id().value();
         auto first = lock_cmd(me);
+        if (!first && !last.ok && !last.timed_out) {
+            // Refusing an optional command is allowed; the code it gave is still worth a look.
+            const std::string code = last.error ? hex(last.error) : "no error code";
+            add_status("memory.lock", Category::kMemory, Status::kWarn, "MemoryConfigurationS 4.15",
+                       "Lock/Reserve rejected with " + code +
+                           " (optional command; lcc-conform writes without the lock)");
+            return;
+        }
         if (!first) {
             skip("memory.lock", Category::kMemory, "MemoryConfigurationS 4.15",
                  "Lock/Reserve not answered (optional)");
+            return;
+        }
+        if (*first != me && *first != 0) {
+            // Another tool holds the lock: zeros would release it behind that tool's back.
+            skip("memory.lock", Category::kMemory, "MemoryConfigurationS 4.15",
+                 "the node is locked by " + NodeId(*first).to_string() + ": lock check not run");
             return;
         }
         auto second = lock_cmd(kOtherNodeId);
@@ -486,10 +614,10 @@ private:
             if (!r.ok || r.data.empty()) continue;
             MemResult w = s_.write(node_, static_cast<Space>(sp), 0, r.data);
             note(w);
-            add("memory.readonly-refused", Category::kMemory, !w.ok && !w.timed_out,
-                "MemoryConfigurationS 4.6",
-                "write to read-only space " + std::to_string(sp) + " refused", "0x1083",
-                w.ok ? "write accepted" : "no answer");
+            const Refusal refused =
+                judge_refusal(w, "write to read-only space " + std::to_string(sp), 0x1083);
+            add("memory.readonly-refused", Category::kMemory, refused.pass,
+                "MemoryConfigurationS 4.6", refused.message, "0x1083", refused.seen);
         }
         // Temporary rejects are legal (the retried request succeeded, or another check failed),
         // but a node that needs them on an idle bus is worth a look: warn, never fail.
@@ -539,7 +667,87 @@ private:
     std::optional<std::uint8_t> data_space_;
 };
 
+// The short replies of one space that were not the end of it. One that nothing was read after is
+// settled by a 1-byte read where it ended (data: not the end; 0x1082: the end), then by Space Info.
+std::vector<const ShortRead*> short_reads_inside(Session& s, const NodeInfo& node,
+                                                 std::uint8_t space, CheckContext& ctx) {
+    auto open = [&](const ShortRead& r) {
+        return r.node == node.id && r.space == space && !r.continued && !r.at_end;
+    };
+    std::optional<SpaceInfo> info;
+    auto inside = [&](const ShortRead& r) {
+        if (!info) {
+            auto known = ctx.spaces.find(space);
+            info = known != ctx.spaces.end() && known->second.answered
+                       ? known->second
+                       : query_space_info(s, node, space, ctx);
+        }
+        return info->present && r.address + std::uint64_t{r.got} <= info->highest_address;
+    };
+    std::set<std::uint64_t> probed;
+    const std::size_t count = s.short_reads().size();  // the probes below may add more
+    for (std::size_t i = 0; i < count && probed.size() < kMaxEndProbes; ++i) {
+        const ShortRead r = s.short_reads()[i];
+        const std::uint64_t end = r.address + std::uint64_t{r.got};
+        if (!open(r) || !inside(r) || !probed.insert(end).second) continue;
+        s.read(node, static_cast<Space>(space), static_cast<std::uint32_t>(end), 1);
+    }
+    std::vector<const ShortRead*> out;
+    for (std::size_t i = 0; i < count; ++i) {
+        const ShortRead& r = s.short_reads()[i];
+        if (r.node != node.id || r.space != space) continue;
+        if (r.continued || (open(r) && inside(r))) out.push_back(&r);
+    }
+    return out;
+}
+
+CheckResult short_read_check(Session& s, const NodeInfo& node, std::uint8_t space,
+                             CheckContext& ctx) {
+    char id[8];
+    std::snprintf(id, sizeof id, "%02x", space);
+    CheckResult c{std::string("memory.short-read.") + id,
+                  Category::kMemory,
+                  Status::kPass,
+                  "",
+                  "MemoryConfigurationS 4.4",
+                  "",
+                  ""};
+    const std::string name = hex(space, 2);
+    const std::uint64_t reads = s.reads(node.id, space);
+    const std::vector<const ShortRead*> bad = short_reads_inside(s, node, space, ctx);
+    if (bad.empty()) {
+        c.message = std::to_string(reads) + " reads of space " + name +
+                    " returned the count asked or ended at the end of the space";
+        return c;
+    }
+    std::string list;
+    for (std::size_t i = 0; i < bad.size() && i < kShortReadsListed; ++i) {
+        list += (i ? "; " : "") + std::string("at ") + hex(bad[i]->address, 8) + " asked " +
+                std::to_string(bad[i]->asked) + " got " + std::to_string(bad[i]->got);
+    }
+    c.status = Status::kFail;
+    c.message = "space " + name + ": " + std::to_string(bad.size()) + " of " +
+                std::to_string(reads) + " reads returned fewer bytes than asked away from the " +
+                "end of the space (" + list + (bad.size() > kShortReadsListed ? "; ..." : "") + ")";
+    c.expected =
+        "the count asked: only the end of the space may shorten a Read Reply "
+        "(MemoryConfigurationS 4.4)";
+    c.seen = std::to_string(bad.size()) + " short replies, first " + list.substr(0, list.find(';'));
+    return c;
+}
+
 }  // namespace
+
+std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& node,
+                                           CheckContext& ctx) {
+    std::vector<CheckResult> out;
+    for (unsigned sp = 0; sp <= 0xFF; ++sp) {
+        const auto space = static_cast<std::uint8_t>(sp);
+        if (session.reads(node.id, space) > 0)
+            out.push_back(short_read_check(session, node, space, ctx));
+    }
+    return out;
+}
 
 bool is_valid_utf8(std::span<const std::uint8_t> b) {
     std::size_t i = 0;

@@ -28,6 +28,12 @@ struct ProtocolOptions {
 std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
                                              const ProtocolOptions& options, CheckContext& ctx);
 
+/// One memory.short-read.<space> check per space this node was read from (two lower-case hex
+/// digits, e.g. memory.short-read.fb): FAIL when a Read Reply OK was shorter than asked away from
+/// the end of the space.
+std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& node,
+                                           CheckContext& ctx);
+
 /// True when bytes are valid UTF-8 (no overlongs, surrogates or values past U+10FFFF).
 bool is_valid_utf8(std::span<const std::uint8_t> bytes);
 

@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "memory/snip.hpp"
+#include "openlcb/can_defs.hpp"
 #include "openlcb/error_codes.hpp"
 
 namespace olcb::conform {
@@ -12,6 +13,19 @@ namespace {
 // A run against a chatty node must not grow without bound; beyond these, records are dropped.
 constexpr std::size_t kMaxFrames = 1'000'000;
 constexpr std::size_t kMaxMessages = 200'000;
+constexpr std::size_t kMaxNodes = 10'000;
+constexpr std::size_t kMaxShortReads = 100'000;
+
+// CAN-MTIs of the global messages that carry the sender's node ID and so map its alias.
+constexpr std::uint16_t kCanMtiInitComplete = 0x100;
+constexpr std::uint16_t kCanMtiInitCompleteSimple = 0x101;
+constexpr std::uint16_t kCanMtiVerified = 0x170;
+constexpr std::uint16_t kCanMtiVerifiedSimple = 0x171;
+
+bool is_verified(const Message& m, NodeId id) {
+    return (m.mti == Mti::kVerifiedNodeId || m.mti == Mti::kVerifiedNodeIdSimple) &&
+           NodeId::from_bytes(m.payload) == id;
+}
 
 bool is_short_form(std::span<const std::uint8_t> payload) {
     return payload.size() >= 2 && payload[1] < 0x80 && (payload[1] & 0x03) != 0;
@@ -44,6 +58,26 @@ bool is_write_command(std::span<const std::uint8_t> payload) {
     return payload.size() >= 2 && (payload[1] & 0xC0) == 0x00;
 }
 
+// Fills ok, data and error from a reply datagram.
+void take_reply(const memory::Message& reply, MemResult& result) {
+    std::visit(
+        [&](const auto& m) {
+            using T = std::decay_t<decltype(m)>;
+            if constexpr (std::is_same_v<T, memory::ReadReply>) {
+                result.ok = true;
+                result.data = m.data;
+            } else if constexpr (std::is_same_v<T, memory::ReadReplyFail> ||
+                                 std::is_same_v<T, memory::WriteReplyFail> ||
+                                 std::is_same_v<T, memory::ReadStreamReplyFail> ||
+                                 std::is_same_v<T, memory::WriteStreamReplyFail>) {
+                result.error = memory::to_u16(m.error);
+            } else {
+                result.ok = true;
+            }
+        },
+        reply);
+}
+
 }  // namespace
 
 Session::Session(Link& link) : link_(link) {
@@ -64,9 +98,157 @@ Session::Session(Link& link) : link_(link) {
     stack.set_outcome_handler([this](const DatagramOutcome& o) {
         outcomes_[o.id] = OutcomeRecord{o, link_.now(), ++seq_};
     });
-    link_.set_frame_observer([this](const CanFrame& f, TimePoint) {
+    link_.set_frame_observer([this](const CanFrame& f, TimePoint at) {
         if (frames_.size() < kMaxFrames) frames_.push_back(f);
+        if (!injecting_) observe(f, at);
     });
+}
+
+void Session::inject(const CanFrame& frame) {
+    injecting_ = true;
+    link_.send_frame(frame);
+    injecting_ = false;
+}
+
+NodeTrack* Session::track_for(NodeId id) {
+    auto it = tracks_.find(id);
+    if (it != tracks_.end()) return &it->second;
+    if (tracks_.size() >= kMaxNodes) return nullptr;
+    return &tracks_[id];
+}
+
+void Session::set_alias(NodeId id, std::uint16_t alias) {
+    NodeTrack* t = track_for(id);
+    if (!t) return;
+    if (t->alias != 0 && t->alias != alias) {
+        auto old = aliases_.find(t->alias);
+        if (old != aliases_.end() && old->second.owner == id) old->second.owner.reset();
+    }
+    AliasState& a = aliases_[alias];
+    // The alias moved to another node: the previous owner no longer has it.
+    if (a.owner && *a.owner != id) {
+        auto prev = tracks_.find(*a.owner);
+        if (prev != tracks_.end() && prev->second.alias == alias) prev->second.alias = 0;
+    }
+    a.owner = id;
+    t->alias = alias;
+}
+
+void Session::observe_control(const CanFrame& f, TimePoint) {
+    const std::uint16_t src = can::source_alias(f.id);
+    switch (can::classify_control(f.id)) {
+        case can::ControlFrame::kCid7:
+        case can::ControlFrame::kCid6:
+        case can::ControlFrame::kCid5:
+        case can::ControlFrame::kCid4:
+            aliases_[src].cid_seen = true;
+            break;
+        case can::ControlFrame::kRid: {
+            AliasState& a = aliases_[src];
+            // A node defending its active alias sends RID without CIDs: not a reservation.
+            const bool active = a.owner && track(*a.owner).alias == src;
+            if (a.cid_seen || !active) a.rid_pending = true;
+            a.cid_seen = false;
+            break;
+        }
+        case can::ControlFrame::kAmd: {
+            if (f.len != 6) break;
+            auto id = NodeId::from_bytes({f.data.data(), 6});
+            if (!id) break;
+            AliasState& a = aliases_[src];
+            const bool reserved = a.rid_pending;
+            a.rid_pending = false;
+            a.cid_seen = false;
+            set_alias(*id, src);
+            if (NodeTrack* t = track_for(*id); t && reserved) ++t->reservations;
+            break;
+        }
+        default:
+            break;
+    }
+}
+
+void Session::observe(const CanFrame& f, TimePoint at) {
+    if (!can::is_openlcb_frame(f)) return;
+    const std::uint16_t src = can::source_alias(f.id);
+    if (can::is_control(f.id)) {
+        observe_control(f, at);
+    } else if (can::frame_format(f.id) == can::FrameFormat::kGlobalAddressed && f.len == 6) {
+        const std::uint16_t mti = can::can_mti(f.id);
+        const bool init = mti == kCanMtiInitComplete || mti == kCanMtiInitCompleteSimple;
+        if (init || mti == kCanMtiVerified || mti == kCanMtiVerifiedSimple) {
+            if (auto id = NodeId::from_bytes({f.data.data(), 6})) {
+                set_alias(*id, src);
+                if (NodeTrack* t = track_for(*id); t && init) ++t->initializations;
+            }
+        }
+    }
+    auto it = aliases_.find(src);
+    if (it == aliases_.end() || !it->second.owner) return;
+    auto t = tracks_.find(*it->second.owner);
+    if (t != tracks_.end() && t->second.alias == src) t->second.last_heard = at;
+}
+
+NodeTrack Session::track(NodeId id) const {
+    auto it = tracks_.find(id);
+    return it == tracks_.end() ? NodeTrack{} : it->second;
+}
+
+std::uint16_t Session::alias_of(const NodeInfo& node) const {
+    auto it = tracks_.find(node.id);
+    return it != tracks_.end() && it->second.alias != 0 ? it->second.alias : node.alias;
+}
+
+bool Session::ping(const NodeInfo& node, Duration timeout) {
+    const std::size_t mark = messages_.size();
+    std::size_t scanned = mark;
+    auto answered = [&] {
+        for (; scanned < messages_.size(); ++scanned)
+            if (is_verified(messages_[scanned].message, node.id)) return true;
+        return false;
+    };
+    Message addressed;
+    addressed.mti = Mti::kVerifyNodeIdAddressed;
+    addressed.destination = NodeHandle{node.id, alias_of(node)};
+    send(addressed);
+    if (link_.run_until(answered, timeout / 2)) return true;
+    // The alias may have changed unseen: the global form reaches the node on any alias.
+    Message global;
+    global.mti = Mti::kVerifyNodeIdGlobal;
+    const auto bytes = node.id.to_bytes();
+    global.payload.assign(bytes.begin(), bytes.end());
+    send(global);
+    return link_.run_until(answered, timeout - timeout / 2);
+}
+
+std::uint64_t Session::reads(NodeId node, std::uint8_t space) const {
+    auto it = reads_.find({node.value(), space});
+    return it == reads_.end() ? 0 : it->second;
+}
+
+void Session::record_read(const NodeInfo& node, std::uint8_t space, std::uint32_t address,
+                          std::uint8_t count, const MemResult& r) {
+    if (r.timed_out) return;
+    // A rejected read (an unknown space) says nothing about reply lengths.
+    if (!r.rejected) ++reads_[{node.id.value(), space}];
+    const bool data = r.ok && !r.data.empty();
+    const bool end =
+        (r.ok && r.data.empty()) || (!r.ok && !r.rejected && r.error == error_code::kOutOfBounds);
+    if (data || end) {
+        // A short reply that ended here: this read tells whether the space really ended.
+        auto [first, last] = open_short_reads_.equal_range({node.id.value(), space, address});
+        for (auto it = first; it != last; ++it) {
+            short_reads_[it->second].continued = data;
+            short_reads_[it->second].at_end = end;
+        }
+        open_short_reads_.erase(first, last);
+    }
+    const std::size_t got = std::min<std::size_t>(r.data.size(), count);
+    if (!r.ok || got >= count || short_reads_.size() >= kMaxShortReads) return;
+    short_reads_.push_back({node.id, space, address, count, got, false, false});
+    open_short_reads_.emplace(
+        ReadKey{node.id.value(), space, address + static_cast<std::uint32_t>(got)},
+        short_reads_.size() - 1);
 }
 
 bool Session::start(Duration timeout) {
@@ -99,11 +281,7 @@ std::optional<NodeInfo> Session::find_node(NodeId id, Duration timeout) {
     msg.mti = Mti::kVerifyNodeIdGlobal;
     auto bytes = id.to_bytes();
     msg.payload.assign(bytes.begin(), bytes.end());
-    auto verified = [&](const Message& m) {
-        if (m.mti != Mti::kVerifiedNodeId && m.mti != Mti::kVerifiedNodeIdSimple) return false;
-        auto got = NodeId::from_bytes(m.payload);
-        return got && *got == id;
-    };
+    auto verified = [&](const Message& m) { return is_verified(m, id); };
     const std::size_t mark = messages_.size();
     std::optional<NodeInfo> found;
     auto answered = [&] {
@@ -174,9 +352,10 @@ std::vector<ReceivedMessage> Session::messages_since(std::size_t mark) const {
 std::optional<ProtocolSet> Session::protocol_support(const NodeInfo& node) {
     Message msg;
     msg.mti = Mti::kProtocolSupportInquiry;
-    msg.destination = NodeHandle{node.id, node.alias};
+    const std::uint16_t alias = alias_of(node);
+    msg.destination = NodeHandle{node.id, alias};
     auto reply = [&](const Message& m) {
-        return m.mti == Mti::kProtocolSupportReply && m.source.alias == node.alias;
+        return m.mti == Mti::kProtocolSupportReply && m.source.alias == alias;
     };
     const std::size_t mark = messages_.size();
     if (send(msg) != SendStatus::kSent) return std::nullopt;
@@ -199,7 +378,8 @@ std::optional<ProtocolSet> Session::protocol_support(const NodeInfo& node) {
 std::optional<std::vector<std::uint8_t>> Session::snip_payload(const NodeInfo& node) {
     Message msg;
     msg.mti = Mti::kSnipRequest;
-    msg.destination = NodeHandle{node.id, node.alias};
+    const std::uint16_t alias = alias_of(node);
+    msg.destination = NodeHandle{node.id, alias};
     const std::size_t mark = messages_.size();
     if (send(msg) != SendStatus::kSent) return std::nullopt;
     std::vector<std::uint8_t> bytes;
@@ -210,7 +390,7 @@ std::optional<std::vector<std::uint8_t>> Session::snip_payload(const NodeInfo& n
         [&] {
             for (; scanned < messages_.size(); ++scanned) {
                 const Message& m = messages_[scanned].message;
-                if (m.mti != Mti::kSnipReply || m.source.alias != node.alias) continue;
+                if (m.mti != Mti::kSnipReply || m.source.alias != alias) continue;
                 any = true;
                 bytes.insert(bytes.end(), m.payload.begin(), m.payload.end());
                 if (bytes.size() > memory::kSnipMaxPayload * 2) return true;
@@ -228,7 +408,8 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     const bool request_short = is_short_form(payload);
     const std::size_t mark = messages_.size();
     const TimePoint sent_at = link_.now();
-    auto id = link_.stack().send_datagram(node.alias, payload, sent_at);
+    const std::uint16_t alias = alias_of(node);
+    auto id = link_.stack().send_datagram(alias, payload, sent_at);
     if (!id) {
         result.error = error_code::kTemporaryError;
         result.rejected = true;
@@ -240,7 +421,7 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     auto find_reply = [&] {
         for (; !reply_index && scanned < messages_.size(); ++scanned) {
             const Message& m = messages_[scanned].message;
-            if (m.mti != Mti::kDatagram || m.source.alias != node.alias) continue;
+            if (m.mti != Mti::kDatagram || m.source.alias != alias) continue;
             auto d = memory::decode(m.payload);
             if (!d.ok() || !is_reply(d.message)) continue;
             reply_index = scanned;
@@ -290,29 +471,16 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     result.reply_latency = ev.at - sent_at;
     result.reply_in_request_form = is_short_form(ev.message.payload) == request_short;
     if (reply) *reply = *decoded;
-    std::visit(
-        [&](const auto& m) {
-            using T = std::decay_t<decltype(m)>;
-            if constexpr (std::is_same_v<T, memory::ReadReply>) {
-                result.ok = true;
-                result.data = m.data;
-            } else if constexpr (std::is_same_v<T, memory::ReadReplyFail> ||
-                                 std::is_same_v<T, memory::WriteReplyFail> ||
-                                 std::is_same_v<T, memory::ReadStreamReplyFail> ||
-                                 std::is_same_v<T, memory::WriteStreamReplyFail>) {
-                result.error = memory::to_u16(m.error);
-            } else {
-                result.ok = true;
-            }
-        },
-        *decoded);
+    take_reply(*decoded, result);
     return result;
 }
 
 MemResult Session::read(const NodeInfo& node, memory::Space space, std::uint32_t address,
                         std::uint8_t count, memory::SpaceForm form) {
     const auto payload = memory::encode(memory::Read{space, address, count, form});
-    return exchange(node, payload, true, nullptr);
+    MemResult r = exchange(node, payload, true, nullptr);
+    record_read(node, memory::to_u8(space), address, count, r);
+    return r;
 }
 
 MemResult Session::write(const NodeInfo& node, memory::Space space, std::uint32_t address,
@@ -336,7 +504,8 @@ MemResult Session::read_range(const NodeInfo& node, memory::Space space, std::ui
     total.datagram_ok_seen = true;
     total.reply_pending = true;
     std::uint32_t done = 0;
-    while (done < length) {
+    // Every pass adds at least one byte or ends the loop, so `length` passes are enough.
+    for (std::uint64_t pass = 0; done < length && pass < length; ++pass) {
         const auto count = static_cast<std::uint8_t>(std::min<std::uint32_t>(length - done, 64));
         MemResult r = read(node, space, address + done, count);
         total.temporary_rejects += r.temporary_rejects;
@@ -353,6 +522,7 @@ MemResult Session::read_range(const NodeInfo& node, memory::Space space, std::ui
         total.reply_pending = total.reply_pending && r.reply_pending;
         total.reply_in_request_form = total.reply_in_request_form && r.reply_in_request_form;
         if (r.data.size() > count) r.data.resize(count);  // never trust the node's length
+        if (r.data.empty()) break;                        // the end of the space
         bool nul = false;
         if (stop_at_nul) {
             auto it = std::find(r.data.begin(), r.data.end(), std::uint8_t{0});
@@ -364,7 +534,7 @@ MemResult Session::read_range(const NodeInfo& node, memory::Space space, std::ui
         total.data.insert(total.data.end(), r.data.begin(), r.data.end());
         done += static_cast<std::uint32_t>(r.data.size());
         if (progress) progress(total.data.size());
-        if (nul || r.data.size() < count || r.data.empty()) break;
+        if (nul) break;
     }
     return total;
 }

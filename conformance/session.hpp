@@ -9,6 +9,8 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "conformance/link.hpp"
@@ -39,6 +41,27 @@ struct MemResult {
     unsigned temporary_rejects = 0;     ///< 0x2xxx rejects that were retried
 };
 
+/// What the session has seen of one node.
+struct NodeTrack {
+    std::uint16_t alias = 0;            ///< current alias (0: never seen)
+    std::uint32_t initializations = 0;  ///< Initialization Complete messages seen from it
+    /// Alias reservations seen: an AMD with its node ID from an alias that sent RID since that
+    /// alias's previous AMD (AMDs answering an AME do not count).
+    std::uint32_t reservations = 0;
+    TimePoint last_heard{};  ///< time of the last frame from its current alias
+};
+
+/// A Read Reply OK that carried fewer bytes than asked.
+struct ShortRead {
+    NodeId node;                ///< the node that answered
+    std::uint8_t space = 0;     ///< space read
+    std::uint32_t address = 0;  ///< address read
+    std::uint8_t asked = 0;     ///< count asked
+    std::size_t got = 0;        ///< bytes returned
+    bool continued = false;     ///< a later read at address+got returned data
+    bool at_end = false;        ///< a later read at address+got failed 0x1082 or returned nothing
+};
+
 /// One received message with its arrival time.
 struct ReceivedMessage {
     Message message;
@@ -60,6 +83,18 @@ public:
     /// Sends Verify Node ID global with id and waits for that node's Verified Node ID.
     std::optional<NodeInfo> find_node(NodeId id, Duration timeout = std::chrono::seconds(1));
 
+    /// What the session has seen of node id (a default NodeTrack when never seen).
+    NodeTrack track(NodeId id) const;
+    /// The node's current alias as tracked from the traffic, else node.alias.
+    std::uint16_t alias_of(const NodeInfo& node) const;
+    /// Verify Node ID addressed to the node's current alias; when no answer in half the timeout,
+    /// Verify Node ID global carrying its node ID; true when it answered.
+    bool ping(const NodeInfo& node, Duration timeout);
+    /// Every Read Reply OK shorter than asked, in arrival order (bounded).
+    const std::vector<ShortRead>& short_reads() const { return short_reads_; }
+    /// Read requests answered with a Read Reply (OK or Fail), per node and space.
+    std::uint64_t reads(NodeId node, std::uint8_t space) const;
+
     /// Sends a message from our node.
     SendStatus send(Message msg);
     /// Every message arriving (from now on) within window that matches.
@@ -75,8 +110,8 @@ public:
     std::vector<ReceivedMessage> messages_since(std::size_t mark) const;
     /// Mark for messages_since().
     std::size_t message_mark() const { return messages_.size(); }
-    /// Puts a raw frame on the segment (our own stack does not see it).
-    void inject(const CanFrame& frame) { link_.send_frame(frame); }
+    /// Puts a raw frame on the segment (our own stack does not see it, nor does node tracking).
+    void inject(const CanFrame& frame);
     /// Drives the network for d (silence windows).
     void wait(Duration d) { link_.run_until({}, d); }
     /// The link under this session.
@@ -100,9 +135,11 @@ public:
     /// Any memory-config command; returns the decoded reply datagram when one came.
     MemResult command(const NodeInfo& node, std::span<const std::uint8_t> payload,
                       memory::Message* reply = nullptr);
-    /// Reads [address, address+length) in 64-byte reads, stopping at a NUL (stop_at_nul; the NUL
-    /// is kept as the last data byte), a short reply, or 0x1082 (ok stays true for these);
-    /// progress(bytes_so_far) is called after each read.
+    /// Reads [address, address+length) in reads of up to 64 bytes, each going on where the
+    /// previous reply's data ended (a short reply is not the end); stops at a NUL (stop_at_nul;
+    /// the NUL is kept as the last data byte), an empty reply or 0x1082 (the end of the space: ok
+    /// stays true with what was read), or any other error; progress(bytes_so_far) is called after
+    /// each read.
     MemResult read_range(const NodeInfo& node, memory::Space space, std::uint32_t address,
                          std::uint32_t length, bool stop_at_nul,
                          const std::function<void(std::size_t)>& progress = {});
@@ -122,14 +159,34 @@ private:
         std::uint64_t seq = 0;
     };
 
+    // What the session knows of one alias seen on the segment.
+    struct AliasState {
+        std::optional<NodeId> owner;  // node whose AMD, Initialization Complete or Verified came
+        bool cid_seen = false;        // CID from it since its last AMD: a reservation under way
+        bool rid_pending = false;     // RID of a reservation, not yet followed by AMD
+    };
+    using ReadKey = std::tuple<std::uint64_t, std::uint8_t, std::uint32_t>;
+
     MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                        bool always_reply, memory::Message* reply);
+    void observe(const CanFrame& frame, TimePoint at);
+    void observe_control(const CanFrame& frame, TimePoint at);
+    void set_alias(NodeId id, std::uint16_t alias);
+    NodeTrack* track_for(NodeId id);
+    void record_read(const NodeInfo& node, std::uint8_t space, std::uint32_t address,
+                     std::uint8_t count, const MemResult& r);
 
     Link& link_;
     std::vector<Event> messages_;
     std::vector<CanFrame> frames_;
     std::map<std::uint32_t, OutcomeRecord> outcomes_;
     std::uint64_t seq_ = 0;
+    bool injecting_ = false;  // frames we inject are not the node's: tracking skips them
+    std::map<NodeId, NodeTrack> tracks_;
+    std::map<std::uint16_t, AliasState> aliases_;
+    std::vector<ShortRead> short_reads_;
+    std::multimap<ReadKey, std::size_t> open_short_reads_;  // keyed by where the data ended
+    std::map<std::pair<std::uint64_t, std::uint8_t>, std::uint64_t> reads_;
     Duration reply_timeout_ = std::chrono::milliseconds(3000);
 };
 

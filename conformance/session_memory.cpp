@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "openlcb/error_codes.hpp"
+
 namespace olcb::conform {
 namespace {
 
@@ -16,14 +18,22 @@ AccessResult to_access(const MemResult& r) {
 AccessResult SessionMemory::read(std::uint8_t space, std::uint32_t address, std::size_t count) {
     AccessResult out{true, 0, {}};
     out.data.reserve(count);
+    // Every pass adds at least one byte or returns, so the loop ends after `count` passes.
     while (out.data.size() < count) {
         auto n = static_cast<std::uint8_t>(std::min(kChunk, count - out.data.size()));
         auto at = static_cast<std::uint32_t>(address + out.data.size());
         MemResult r = session_.read(node_, static_cast<memory::Space>(space), at, n);
+        const bool end = (r.ok && r.data.empty()) ||
+                         (!r.ok && !r.rejected && r.error == error_code::kOutOfBounds);
+        if (end) {
+            // The end of the space: what came before it is the answer.
+            if (!out.data.empty()) return out;
+            return {false, error_code::kOutOfBounds, {}};
+        }
         if (!r.ok) return to_access(r);
-        if (r.data.empty()) return {false, 0x1082, std::move(out.data)};
+        if (r.data.size() > n) r.data.resize(n);  // never trust the node's length
+        // A short reply is not the end: the next read goes on where its data ended.
         out.data.insert(out.data.end(), r.data.begin(), r.data.end());
-        if (r.data.size() < n) break;  // short read at the end of the space
     }
     return out;
 }

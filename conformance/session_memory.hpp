@@ -11,7 +11,8 @@
 
 namespace olcb::conform {
 
-/// MemoryAccess over a Session: splits reads and writes into 64-byte datagrams.
+/// MemoryAccess over a Session: splits reads and writes into 64-byte datagrams; a read goes on
+/// after a short reply and ends only at the count, the end of the space or an error.
 class SessionMemory : public MemoryAccess {
 public:
     /// Access to node's memory through session.

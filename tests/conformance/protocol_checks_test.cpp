@@ -2,15 +2,18 @@
 // fault of docs/faults.md (J1's share) caught with its category.
 #include <gtest/gtest.h>
 #include <algorithm>
+#include <cctype>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <variant>
 
 #include "conformance/conform_test_util.hpp"
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
 #include "conformance/session.hpp"
+#include "conformance/sim_bench.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/sim_node.hpp"
@@ -18,47 +21,22 @@
 namespace olcb::conform {
 namespace {
 
-struct Bench {
-    SimNetwork net;
-    std::unique_ptr<simnode::SimNode> dut;
-    std::unique_ptr<Link> link;
-    std::unique_ptr<Session> session;
+using Bench = testing::SimBench;
+using testing::dump;
+using testing::find_check;
 
-    explicit Bench(const std::vector<std::string>& faults = {}) {
-        std::string error;
-        simnode::NodeConfig cfg;
-        cfg.node_id = kDut;
-        cfg.cdi = read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios/default.xml");
-        cfg.user_name = "simnode default";
-        auto fs = simnode::parse_faults(faults, error);
-        EXPECT_TRUE(fs) << error;
-        if (fs) cfg.faults = *fs;
-        dut = simnode::SimNode::create(cfg, error);
-        EXPECT_TRUE(dut) << error;
-        net.add_stack(dut->stack());
-        dut->stack().start(net.now());
-        link = make_sim_link(net, kTool);
-        session = std::make_unique<Session>(*link);
-    }
-
-    std::vector<CheckResult> run(CheckContext& ctx) {
-        EXPECT_TRUE(session->start());
-        auto node = session->find_node(kDut);
-        EXPECT_TRUE(node);
-        if (!node) return {};
-        return run_protocol_checks(*session, *node, ProtocolOptions{}, ctx);
-    }
-};
-
-std::string dump(const std::vector<CheckResult>& results) {
-    std::string s;
+// No message may show the code 0x0000 (a failure without a code says what happened instead).
+void expect_no_empty_code(const std::vector<CheckResult>& results) {
     for (const auto& r : results) {
-        s += std::string(status_name(r.status)) + " " + r.id + " [" +
-             std::string(category_name(r.category)) + "] " + r.message;
-        if (r.status == Status::kFail) s += " expected=" + r.expected + " seen=" + r.seen;
-        s += "\n";
+        for (const std::string* text : {&r.message, &r.expected, &r.seen}) {
+            for (std::size_t at = text->find("0x0000"); at != std::string::npos;
+                 at = text->find("0x0000", at + 1)) {
+                const bool longer = at + 6 < text->size() &&
+                                    std::isxdigit(static_cast<unsigned char>((*text)[at + 6]));
+                EXPECT_TRUE(longer) << r.id << ": " << *text;  // 0x0000ABCD is an address
+            }
+        }
     }
-    return s;
 }
 
 TEST(SessionTest, DiscoversAndReadsTheSimNode) {
@@ -90,6 +68,27 @@ TEST(ProtocolChecksTest, DefaultNodeHasNoFailure) {
     EXPECT_TRUE(ctx.layout.has_value());
     EXPECT_TRUE(ctx.cdi_nul_found);
     EXPECT_TRUE(ctx.snip.has_value());
+    for (const char* id :
+         {"memory.readonly-refused", "memory.unknown-space", "memory.read-past-end"}) {
+        const CheckResult* c = find_check(results, id);
+        ASSERT_NE(c, nullptr) << id;
+        EXPECT_EQ(c->status, Status::kPass) << id;
+    }
+    EXPECT_NE(find_check(results, "memory.readonly-refused")->message.find("refused with 0x1083"),
+              std::string::npos);
+    // The deliberate read across the end of 0xFF is short, and at the end: no failure.
+    auto shorts = short_read_checks(*b.session, *b.session->find_node(kDut), ctx);
+    const CheckResult* ff = find_check(shorts, "memory.short-read.ff");
+    ASSERT_NE(ff, nullptr) << dump(shorts);
+    EXPECT_EQ(ff->status, Status::kPass);
+    EXPECT_NE(ff->message.find("reads of space 0xFF returned the count asked or ended at the end "
+                               "of the space"),
+              std::string::npos)
+        << ff->message;
+    for (const auto& r : shorts) EXPECT_EQ(r.status, Status::kPass) << dump(shorts);
+    ASSERT_NE(find_check(shorts, "memory.short-read.fc"), nullptr);
+    ASSERT_NE(find_check(shorts, "memory.short-read.fb"), nullptr);
+    expect_no_empty_code(results);
 }
 
 struct FaultCase {
@@ -107,6 +106,7 @@ TEST_P(FaultTest, FailsWithTheFaultsCategory) {
         return r.status == Status::kFail && r.category == GetParam().category;
     });
     EXPECT_TRUE(caught) << GetParam().fault << "\n" << dump(results);
+    expect_no_empty_code(results);
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, FaultTest,
@@ -123,7 +123,9 @@ INSTANTIATE_TEST_SUITE_P(Faults, FaultTest,
                                            FaultCase{"no-datagram-ack", Category::kDatagram},
                                            FaultCase{"slow-reply", Category::kMemory},
                                            FaultCase{"alias-conflict-ignored", Category::kFrame},
-                                           FaultCase{"unsolicited-traffic", Category::kMessage}),
+                                           FaultCase{"unsolicited-traffic", Category::kMessage},
+                                           FaultCase{"unknown-space-0x1041", Category::kMemory},
+                                           FaultCase{"readonly-0x1041", Category::kMemory}),
                          [](const auto& info) {
                              std::string n = info.param.fault;
                              for (char& c : n)
@@ -141,6 +143,239 @@ TEST(FaultTest, TemporaryRejectsAreRetriedAndPass) {
                            [](const auto& r) { return r.id == "datagram.temporary-rejects"; });
     ASSERT_NE(it, results.end());
     EXPECT_EQ(it->status, Status::kWarn);
+}
+
+TEST(ShortReadChecksTest, FieldReadsOnlyNodeIsReadCompletelyAndCaught) {
+    Bench b({"field-reads-only"});
+    CheckContext ctx;
+    auto results = b.run(ctx);
+    // Whole strings were read, so ACDI and SNIP agree and the version bytes are judged.
+    for (const char* id : {"snip.matches-acdi", "acdi.manufacturer-version", "acdi.user-version"}) {
+        const CheckResult* c = find_check(results, id);
+        ASSERT_NE(c, nullptr) << id << "\n" << dump(results);
+        EXPECT_EQ(c->status, Status::kPass) << dump(results);
+    }
+    ASSERT_TRUE(ctx.acdi_manufacturer && ctx.acdi_user);
+    EXPECT_EQ(ctx.acdi_manufacturer->size(), 125u);
+    EXPECT_EQ(ctx.acdi_user->size(), 128u);
+    auto shorts = short_read_checks(*b.session, *b.session->find_node(kDut), ctx);
+    for (const char* id : {"memory.short-read.fc", "memory.short-read.fb"}) {
+        const CheckResult* c = find_check(shorts, id);
+        ASSERT_NE(c, nullptr) << id << "\n" << dump(shorts);
+        EXPECT_EQ(c->status, Status::kFail) << dump(shorts);
+        EXPECT_EQ(c->section, "MemoryConfigurationS 4.4");
+        EXPECT_EQ(c->category, Category::kMemory);
+        EXPECT_EQ(c->expected,
+                  "the count asked: only the end of the space may shorten a Read Reply "
+                  "(MemoryConfigurationS 4.4)");
+        EXPECT_NE(c->message.find("at 0x00000000 asked 64 got 1"), std::string::npos) << c->message;
+    }
+    EXPECT_NE(find_check(shorts, "memory.short-read.fc")->message.find("space 0xFC"),
+              std::string::npos);
+    EXPECT_EQ(find_check(shorts, "memory.short-read.ff")->status, Status::kPass);
+}
+
+TEST(ShortReadChecksTest, AShortReplyNothingFollowedIsSettledByAProbe) {
+    Bench b({"field-reads-only"});
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    ASSERT_EQ(b.session->read(*node, memory::Space::kAcdiManufacturer, 0, 64).data.size(), 1u);
+    CheckContext ctx;
+    auto shorts = short_read_checks(*b.session, *node, ctx);
+    ASSERT_EQ(shorts.size(), 1u) << dump(shorts);
+    EXPECT_EQ(shorts[0].id, "memory.short-read.fc");
+    EXPECT_EQ(shorts[0].status, Status::kFail);
+    EXPECT_TRUE(ctx.spaces.count(0xFC));  // Space Info was asked
+    EXPECT_TRUE(b.session->short_reads().front().continued);
+}
+
+TEST(ProtocolChecksTest, SnipMismatchNamesTheFieldAndBothValues) {
+    Bench b({"snip-mismatch"});
+    CheckContext ctx;
+    auto results = b.run(ctx);
+    const CheckResult* acdi = find_check(results, "snip.matches-acdi");
+    ASSERT_NE(acdi, nullptr);
+    ASSERT_EQ(acdi->status, Status::kFail);
+    ASSERT_TRUE(ctx.snip);
+    EXPECT_NE(acdi->message.find("SNIP model \"" + ctx.snip->model + "\" differs from ACDI 252 \""),
+              std::string::npos)
+        << acdi->message;
+    EXPECT_FALSE(acdi->expected.empty());
+    EXPECT_EQ(acdi->seen, "\"" + ctx.snip->model + "\"");
+    const CheckResult* cdi = find_check(results, "snip.matches-cdi");
+    ASSERT_NE(cdi, nullptr);
+    EXPECT_EQ(cdi->status, Status::kFail);
+    EXPECT_EQ(cdi->expected, "\"simnode default\"");  // <model> of scenarios/default.xml
+}
+
+TEST(RejectCodeTest, OtherCodesFailQuotingTheCodeGot) {
+    Bench b({"unknown-space-0x1041", "readonly-0x1041"});
+    CheckContext ctx;
+    auto results = b.run(ctx);
+    const CheckResult* unknown = find_check(results, "memory.unknown-space");
+    ASSERT_NE(unknown, nullptr);
+    EXPECT_EQ(unknown->status, Status::kFail);
+    EXPECT_NE(unknown->message.find("refused with 0x1041; the standard gives 0x1081"),
+              std::string::npos)
+        << unknown->message;
+    EXPECT_EQ(unknown->seen, "0x1041");
+    std::vector<std::string> readonly;
+    for (const auto& r : results)
+        if (r.id == "memory.readonly-refused") readonly.push_back(r.message);
+    ASSERT_EQ(readonly.size(), 2u) << dump(results);
+    EXPECT_EQ(readonly[0],
+              "write to read-only space 255 refused with 0x1041; the standard gives "
+              "0x1083");
+    EXPECT_EQ(readonly[1],
+              "write to read-only space 252 refused with 0x1041; the standard gives "
+              "0x1083");
+    for (const auto& r : results) {
+        if (r.id == "memory.readonly-refused") EXPECT_EQ(r.status, Status::kFail);
+    }
+}
+
+TEST(RejectCodeTest, ReadPastEndQuotesWhatCame) {
+    Bench b({"read-past-end"});
+    CheckContext ctx;
+    auto results = b.run(ctx);
+    const CheckResult* past = find_check(results, "memory.read-past-end");
+    ASSERT_NE(past, nullptr);
+    EXPECT_EQ(past->status, Status::kFail);
+    EXPECT_EQ(past->message,
+              "read past the end of 0xFF returned 8 bytes; the standard gives 0x1082");
+}
+
+TEST(RejectCodeTest, ARejectedLockWarnsWithItsCode) {
+    Bench b({"lock-rejected"});
+    CheckContext ctx;
+    auto results = b.run(ctx);
+    const CheckResult* lock = find_check(results, "memory.lock");
+    ASSERT_NE(lock, nullptr);
+    EXPECT_EQ(lock->status, Status::kWarn);
+    EXPECT_EQ(lock->message,
+              "Lock/Reserve rejected with 0x1041 (optional command; lcc-conform writes without the "
+              "lock)");
+    Bench good;
+    CheckContext good_ctx;
+    EXPECT_EQ(find_check(good.run(good_ctx), "memory.lock")->status, Status::kPass);
+}
+
+// The default CDI with its first line replaced by `first` and, with one_line, no line breaks.
+std::string cdi_variant(const std::string& first, bool one_line) {
+    std::string cdi = testing::default_cdi();
+    cdi = first + cdi.substr(cdi.find('\n'));
+    if (one_line) std::replace(cdi.begin(), cdi.end(), '\n', ' ');
+    return cdi;
+}
+
+const CheckResult& xml_declaration(const std::string& cdi) {
+    static std::vector<CheckResult> results;
+    Bench b({}, cdi);
+    CheckContext ctx;
+    results = b.run(ctx);
+    const CheckResult* c = find_check(results, "cdi.xml-declaration");
+    static const CheckResult missing{"missing", Category::kCdi, Status::kSkip, "", "", "", ""};
+    return c ? *c : missing;
+}
+
+TEST(XmlDeclarationTest, AOneLineCdiPasses) {
+    const CheckResult& c = xml_declaration(cdi_variant("<?xml version=\"1.0\"?>", true));
+    EXPECT_EQ(c.status, Status::kPass) << c.message;
+}
+
+TEST(XmlDeclarationTest, AnotherDeclarationWarnsQuotingOnlyIt) {
+    const CheckResult& c =
+        xml_declaration(cdi_variant("<?xml version=\"1.0\" encoding=\"utf-8\"?>", true));
+    EXPECT_EQ(c.status, Status::kWarn);
+    EXPECT_EQ(c.message,
+              "first line is an XML declaration other than <?xml version=\"1.0\"?>: <?xml "
+              "version=\"1.0\" encoding=\"utf-8\"?>");
+}
+
+TEST(XmlDeclarationTest, NoDeclarationFailsQuotingAtMost80Bytes) {
+    const std::string cdi = cdi_variant("", true).substr(1);  // starts with <cdi ...>
+    const CheckResult& c = xml_declaration(cdi);
+    EXPECT_EQ(c.status, Status::kFail);
+    EXPECT_EQ(c.expected, "<?xml version=\"1.0\"?>");
+    EXPECT_EQ(c.seen, "\"" + cdi.substr(0, 80) + "...\"");
+    EXPECT_LE(c.message.size() + c.seen.size(), 200u);
+}
+
+TEST(NodeTrackTest, ChecksReachANodeThatRestartedOnANewAlias) {
+    Bench b({"new-alias-on-reboot"});
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    ASSERT_TRUE(b.reboot(*node));
+    ASSERT_NE(b.session->alias_of(*node), node->alias);
+    CheckContext ctx;
+    auto results = run_protocol_checks(*b.session, *node, ProtocolOptions{}, ctx);
+    ASSERT_GT(results.size(), 25u);
+    for (const auto& r : results) EXPECT_NE(r.status, Status::kFail) << dump(results);
+}
+
+// A scripted node and a session on one segment.
+struct ScriptedBench {
+    SimNetwork net;
+    testing::ScriptedNode node{net, kDut};
+    std::unique_ptr<Link> link = make_sim_link(net, kTool);
+    Session session{*link};
+
+    std::optional<NodeInfo> start() {
+        EXPECT_TRUE(session.start());
+        return session.find_node(kDut);
+    }
+};
+
+TEST(ProtocolChecksTest, AFailureWithoutACodeSaysWhatHappened) {
+    ScriptedBench b;
+    // Space 0xFF is empty: its first read already fails with 0x1082 (ok, no data).
+    b.node.answer = [](const memory::Message& m) -> testing::ScriptedNode::Answer {
+        const auto* read = std::get_if<memory::Read>(&m);
+        if (!read || read->space != memory::Space::kCdi) return {0x1041, {}};
+        return {0,
+                memory::encode(memory::ReadReplyFail{
+                    read->space, read->address, memory::ErrorCode::kOutOfBounds, "", read->form})};
+    };
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    CheckContext ctx;
+    auto results = run_protocol_checks(b.session, *node, ProtocolOptions{}, ctx);
+    const CheckResult* read = find_check(results, "cdi.read");
+    ASSERT_NE(read, nullptr);
+    EXPECT_EQ(read->status, Status::kFail);
+    EXPECT_EQ(read->seen, "no data");
+    const CheckResult* options = find_check(results, "memory.config-options");
+    ASSERT_NE(options, nullptr);
+    EXPECT_EQ(options->seen, "Datagram Rejected 0x1041");
+    expect_no_empty_code(results);
+}
+
+// A node whose space 0xFD answers a read at 0 with 1 byte and rejects every other read, so a
+// 1-byte read where the short reply ended cannot tell whether it was the end: Space Info does.
+std::vector<CheckResult> short_read_with_highest(std::uint32_t highest) {
+    ScriptedBench b;
+    b.node.answer = [highest](const memory::Message& m) -> testing::ScriptedNode::Answer {
+        if (const auto* info = std::get_if<memory::GetSpaceInfo>(&m))
+            return {0, memory::encode(memory::SpaceInfoReply{info->space, highest, false, {}, ""})};
+        const auto* read = std::get_if<memory::Read>(&m);
+        if (!read || read->address != 0) return {0x1041, {}};
+        return {0, memory::encode(memory::ReadReply{read->space, 0, {0x41}, read->form})};
+    };
+    auto node = b.start();
+    if (!node) return {};
+    EXPECT_EQ(b.session.read(*node, memory::Space::kConfig, 0, 64).data.size(), 1u);
+    CheckContext ctx;
+    return short_read_checks(b.session, *node, ctx);
+}
+
+TEST(ShortReadChecksTest, SpaceInfoSettlesAShortReplyNothingElseCould) {
+    auto inside = short_read_with_highest(100);
+    ASSERT_EQ(inside.size(), 1u) << dump(inside);
+    EXPECT_EQ(inside[0].id, "memory.short-read.fd");
+    EXPECT_EQ(inside[0].status, Status::kFail) << dump(inside);
+    auto at_end = short_read_with_highest(0);  // a 1-byte space: the reply was whole
+    ASSERT_EQ(at_end.size(), 1u) << dump(at_end);
+    EXPECT_EQ(at_end[0].status, Status::kPass) << dump(at_end);
 }
 
 TEST(Utf8Test, AcceptsValidRejectsInvalid) {

@@ -1,0 +1,170 @@
+// The Session follows each node by node ID (a node that restarts on a new alias is reached there)
+// and never takes a short Read Reply for the end of a space.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "conformance/session.hpp"
+#include "conformance/session_memory.hpp"
+#include "conformance/sim_bench.hpp"
+#include "openlcb/can_defs.hpp"
+
+namespace olcb::conform {
+namespace {
+
+using namespace std::chrono_literals;
+using memory::Space;
+using testing::SimBench;
+
+TEST(NodeTrackTest, StartUpIsOneReservationAndOneInitialization) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const NodeTrack t = b.session->track(kDut);
+    EXPECT_EQ(t.alias, b.dut->stack().alias());
+    EXPECT_EQ(t.reservations, 1u);
+    EXPECT_EQ(t.initializations, 1u);
+    EXPECT_LE(b.link->now() - t.last_heard, 10ms);  // its Verified Node ID just came
+    EXPECT_EQ(b.session->track(NodeId{0x0501010122AAull}).alias, 0);
+}
+
+TEST(NodeTrackTest, ANodeThatRestartsOnANewAliasIsReachedThere) {
+    SimBench b({"new-alias-on-reboot"});
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const NodeTrack before = b.session->track(kDut);
+    ASSERT_TRUE(b.reboot(*node));
+    const NodeTrack after = b.session->track(kDut);
+    ASSERT_NE(after.alias, node->alias) << "the fault should give a new alias";
+    EXPECT_EQ(after.alias, b.dut->stack().alias());
+    EXPECT_EQ(b.session->alias_of(*node), after.alias);
+    EXPECT_EQ(after.reservations, before.reservations + 1);
+    EXPECT_EQ(after.initializations, before.initializations + 1);
+    // The NodeInfo still holds the old alias: every operation must use the tracked one.
+    MemResult r = b.session->read(*node, Space::kCdi, 0, 5);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(std::string(r.data.begin(), r.data.end()), "<?xml");
+    EXPECT_TRUE(b.session->protocol_support(*node).has_value());
+    EXPECT_TRUE(b.session->snip_payload(*node).has_value());
+    EXPECT_TRUE(b.session->ping(*node, 500ms));
+}
+
+TEST(NodeTrackTest, ARestartOnTheSameAliasIsStillAReservation) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    ASSERT_TRUE(b.reboot(*node));
+    const NodeTrack t = b.session->track(kDut);
+    EXPECT_EQ(t.alias, node->alias);
+    EXPECT_EQ(t.reservations, 2u);
+    EXPECT_EQ(t.initializations, 2u);
+}
+
+TEST(NodeTrackTest, AnAmdAnsweringAnAmeOrADefenceIsNoReservation) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const TimePoint heard = b.session->track(kDut).last_heard;
+    b.session->wait(100ms);
+    // CID with the node's alias: it defends with RID; then AMEs: it answers AMD, twice.
+    b.session->inject(can::make_cid(7, NodeId{0x020112FE0001ull}, node->alias));
+    b.session->wait(50ms);
+    const std::size_t mark = b.session->frame_mark();
+    b.session->inject(can::make_ame(b.session->tool_alias()));
+    b.session->inject(can::make_ame(b.session->tool_alias(), kDut));
+    b.session->wait(100ms);
+    std::size_t amd = 0;
+    for (const CanFrame& f : b.session->frames_since(mark)) {
+        if (can::is_control(f.id) && can::source_alias(f.id) == node->alias &&
+            can::classify_control(f.id) == can::ControlFrame::kAmd)
+            ++amd;
+    }
+    ASSERT_EQ(amd, 2u);
+    const NodeTrack t = b.session->track(kDut);
+    EXPECT_EQ(t.reservations, 1u);
+    EXPECT_EQ(t.alias, node->alias);
+    EXPECT_GT(t.last_heard, heard);
+}
+
+TEST(NodeTrackTest, PingAnswersForAPresentNodeOnly) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    EXPECT_TRUE(b.session->ping(*node, 500ms));
+    const TimePoint before = b.link->now();
+    EXPECT_FALSE(b.session->ping(NodeInfo{NodeId{0x0501010122AAull}, 0x123}, 500ms));
+    EXPECT_EQ(b.link->now() - before, 500ms);
+}
+
+// The bytes a well-behaved node holds in [address, address+length) of space.
+std::vector<std::uint8_t> reference(Space space, std::uint32_t address, std::uint32_t length) {
+    SimBench good;
+    auto node = good.start();
+    if (!node) return {};
+    return good.session->read_range(*node, space, address, length, false).data;
+}
+
+TEST(ShortReadTest, ReadRangeGoesOnWhereAShortReplyEnded) {
+    SimBench b({"field-reads-only"});
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    MemResult m = b.session->read_range(*node, Space::kAcdiManufacturer, 0, 125, false);
+    ASSERT_TRUE(m.ok);
+    EXPECT_EQ(m.data.size(), 125u);
+    EXPECT_EQ(m.data, reference(Space::kAcdiManufacturer, 0, 125));
+    ASSERT_FALSE(b.session->short_reads().empty());
+    const ShortRead& first = b.session->short_reads().front();
+    EXPECT_EQ(first.node, kDut);
+    EXPECT_EQ(first.space, 0xFC);
+    EXPECT_EQ(first.address, 0u);
+    EXPECT_EQ(first.asked, 64);
+    EXPECT_EQ(first.got, 1u);  // the version byte alone
+    EXPECT_TRUE(first.continued);
+    EXPECT_FALSE(first.at_end);
+    EXPECT_GE(b.session->reads(kDut, 0xFC), 2u);
+    EXPECT_EQ(b.session->reads(kDut, 0xFB), 0u);
+}
+
+TEST(ShortReadTest, SessionMemoryReadsTheWholeUserBlock) {
+    SimBench b({"field-reads-only"});
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    SessionMemory memory(*b.session, *node);
+    AccessResult r = memory.read(0xFB, 0, 128);
+    ASSERT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.data, reference(Space::kAcdiUser, 0, 128));
+    const std::uint64_t reads = b.session->reads(kDut, 0xFB);
+    EXPECT_GT(reads, 3u);    // 64-byte reads alone would be 2
+    EXPECT_LE(reads, 128u);  // and never more than one per byte
+}
+
+TEST(ShortReadTest, TheEndOfTheSpaceEndsAReadAndIsRecorded) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    // 0xFF is smaller than 1 MiB: the reads end at 0x1082, ok with the whole space.
+    MemResult all = b.session->read_range(*node, Space::kCdi, 0, 1u << 20, false);
+    ASSERT_TRUE(all.ok);
+    const std::size_t size = all.data.size();
+    ASSERT_GT(size, 100u);
+    EXPECT_EQ(all.data.back(), 0);  // the NUL is the last byte of the space
+    ASSERT_EQ(b.session->short_reads().size(), 1u);
+    const ShortRead& s = b.session->short_reads()[0];
+    EXPECT_EQ(s.address + s.got, size);
+    EXPECT_FALSE(s.continued);
+    EXPECT_TRUE(s.at_end);
+    SessionMemory memory(*b.session, *node);
+    const auto last = static_cast<std::uint32_t>(size - 4);
+    AccessResult tail = memory.read(0xFF, last, 100);
+    ASSERT_TRUE(tail.ok);
+    EXPECT_EQ(tail.data.size(), 4u);
+    AccessResult past = memory.read(0xFF, static_cast<std::uint32_t>(size), 8);
+    EXPECT_FALSE(past.ok);
+    EXPECT_EQ(past.error, 0x1082);
+}
+
+}  // namespace
+}  // namespace olcb::conform
