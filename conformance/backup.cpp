@@ -91,6 +91,28 @@ bool SafetyBackup::capture(MemoryAccess& memory, const std::vector<RangeRequest>
     return save(error);
 }
 
+bool SafetyBackup::capture_available(MemoryAccess& memory,
+                                     const std::vector<RangeRequest>& requests,
+                                     std::vector<std::pair<RangeRequest, std::string>>& missing,
+                                     std::string& error) {
+    for (const RangeRequest& r : requests) {
+        AccessResult got = memory.read(r.space, r.address, r.length);
+        if (got.ok && got.data.size() == r.length) {
+            ranges_.push_back({r.space, r.address, std::move(got.data)});
+            continue;
+        }
+        char buf[64];
+        if (got.ok) {
+            std::snprintf(buf, sizeof buf, "%zu of %u bytes came back", got.data.size(), r.length);
+        } else {
+            std::snprintf(buf, sizeof buf, "read failed with 0x%04X%s", got.error,
+                          got.error == 0x2010 ? " (timed out)" : "");
+        }
+        missing.emplace_back(r, buf);
+    }
+    return save(error);
+}
+
 std::string SafetyBackup::to_text() const {
     std::ostringstream out;
     out << kHeader << "\n";
@@ -258,6 +280,20 @@ RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
     }
     outcome.identical = outcome.differences.empty();
     return outcome;
+}
+
+RestoreGuard::~RestoreGuard() {
+    if (!armed_) return;
+    try {
+        restore(backup_, memory_);
+    } catch (...) {
+        // A destructor must not throw; the backup file is still on disk for `restore FILE`.
+    }
+}
+
+RestoreOutcome RestoreGuard::finish() {
+    armed_ = false;
+    return restore(backup_, memory_);
 }
 
 std::string default_backup_path(const std::string& node_id) {

@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace olcb::conform {
@@ -59,6 +60,12 @@ public:
     /// which case nothing may be written to the node.
     bool capture(MemoryAccess& memory, const std::vector<RangeRequest>& requests,
                  std::string& error);
+    /// Reads every requested range it can, appends those ranges and saves the file (synced)
+    /// before returning; the ranges that could not be read go to `missing` with why. False with
+    /// `error` only when the file cannot be written (then nothing may be written to the node).
+    bool capture_available(MemoryAccess& memory, const std::vector<RangeRequest>& requests,
+                           std::vector<std::pair<RangeRequest, std::string>>& missing,
+                           std::string& error);
     /// Writes the file atomically (temporary file, fsync, rename).
     bool save(std::string& error) const;
     /// Loads a backup file; nullopt with `error` set when it is missing or malformed.
@@ -96,6 +103,27 @@ struct RestoreOutcome {
 
 /// Writes every saved range back and reads it again.
 RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory);
+
+/// Restores a backup when the run leaves without finish() (an exception, an early return):
+/// the "nothing is lost" rule made structural.
+class RestoreGuard {
+public:
+    /// Guards `backup` (restored through `memory`); both must outlive the guard.
+    RestoreGuard(const SafetyBackup& backup, MemoryAccess& memory)
+        : backup_(backup), memory_(memory) {}
+    RestoreGuard(const RestoreGuard&) = delete;
+    RestoreGuard& operator=(const RestoreGuard&) = delete;
+    ~RestoreGuard();
+    /// Restores now and reads everything back; the guard is then done.
+    RestoreOutcome finish();
+    /// The node is out of reach: nothing is written, the backup file stays for the user.
+    void abandon() { armed_ = false; }
+
+private:
+    const SafetyBackup& backup_;
+    MemoryAccess& memory_;
+    bool armed_ = true;
+};
 
 /// The default backup file name for a node: ./lcc-conform-backup-<node id without dots>.txt.
 std::string default_backup_path(const std::string& node_id);

@@ -28,7 +28,8 @@ enum class Category : std::uint8_t {
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
-/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link" or "node".
+/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link" or
+/// "node".
 std::string_view category_name(Category category);
 
 /// One executed check.
@@ -49,6 +50,9 @@ struct NodeReport {
     std::string name;     ///< SNIP manufacturer + model + user name, for humans
     std::vector<CheckResult> checks;
     std::string restore_summary;  ///< "memory byte-identical to before" or what differs
+    /// The run could not finish: the node never came back (its backup file is kept) or the
+    /// node was gone before anything could be checked; the exit status is then 2.
+    bool incomplete = false;
 
     /// Number of checks with this status.
     std::size_t count(Status status) const;

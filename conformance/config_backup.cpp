@@ -35,7 +35,9 @@ bool backed_up(const cdi::Element& e) {
     return e.kind != cdi::ElementKind::kAction && cdi::value_kind_of(e).has_value();
 }
 
-std::string key_of(const cdi::Layout& layout, const cdi::Cursor& c) {
+}  // namespace
+
+std::string backup_key(const cdi::Layout& layout, const cdi::Cursor& c) {
     const cdi::Segment& seg = layout.document().segments[c.segment_index()];
     std::string key =
         seg.name.empty() ? "seg" + std::to_string(c.segment_index()) : escape_backup_text(seg.name);
@@ -50,6 +52,8 @@ std::string key_of(const cdi::Layout& layout, const cdi::Cursor& c) {
     key += "." + part_name(v.name, index_in(*siblings, v));
     return key;
 }
+
+namespace {
 
 void append_utf8(std::string& out, std::uint32_t cp) {
     if (cp < 0x80) {
@@ -139,7 +143,7 @@ std::vector<ConfigEntry> config_entries(const cdi::Layout& layout) {
     std::vector<ConfigEntry> out;
     layout.visit([&](const cdi::Cursor& c) {
         if (!backed_up(c.element())) return;
-        out.push_back({key_of(layout, c), &c.element(), c.space(), c.address()});
+        out.push_back({backup_key(layout, c), &c.element(), c.space(), c.address()});
     });
     return out;
 }

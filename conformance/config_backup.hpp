@@ -28,6 +28,9 @@ struct ConfigEntry {
     std::uint64_t address = 0;
 };
 
+/// The JMRI backup key of the variable at the cursor (also what --exclude/--only match).
+std::string backup_key(const cdi::Layout& layout, const cdi::Cursor& cursor);
+
 /// Every value variable of the layout in document order, with its JMRI key (actions, blobs and
 /// unknown elements are left out).
 std::vector<ConfigEntry> config_entries(const cdi::Layout& layout);

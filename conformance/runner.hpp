@@ -1,5 +1,6 @@
-// The whole conformance run for one node: protocol checks, then encoding checks under the safety
-// backup, then the restore; and the exit code of a run.
+// The whole conformance run for one node, as phases (conformance/runner.cpp): protocol checks,
+// then the encoding checks under the safety backup and the node's lock, one variable at a time,
+// with the node watched for death or restart, then the restore; and the exit code of a run.
 #pragma once
 
 #include <chrono>
@@ -12,6 +13,7 @@
 #include "conformance/backup.hpp"
 #include "conformance/check_context.hpp"
 #include "conformance/check_result.hpp"
+#include "conformance/protection.hpp"
 #include "conformance/session.hpp"
 #include "conformance/session_memory.hpp"
 
@@ -27,6 +29,10 @@ struct RunOptions {
     bool progress = false;    ///< draw progress bars on the progress stream
     /// How long a link lost mid-run is waited for before the restore is left to the user.
     std::chrono::seconds link_wait{60};
+    /// How long a node that stopped answering or restarted is waited for (--node-wait).
+    std::chrono::seconds node_wait{30};
+    /// Protected settings, --exclude / --only, --write-protected.
+    ProtectionRules protection;
     /// The command that restores a kept backup FILE later, e.g. "lcc-conform --serial DEV
     /// restore" (named in the message when the restore cannot happen now).
     std::string restore_command = "lcc-conform restore";
@@ -46,7 +52,8 @@ NodeReport run_node(Session& session, const NodeInfo& node, const RunOptions& op
 std::optional<RestoreOutcome> restore_file(Session& session, const std::string& path,
                                            std::string& error);
 
-/// 0 when every check passed (or warned/skipped) and restores were identical, 1 otherwise.
+/// 0 when every check passed (or warned/skipped) and restores were identical, 1 when a check
+/// failed, 2 when a node's run could not finish (NodeReport::incomplete).
 int exit_code(const std::vector<NodeReport>& reports);
 
 /// Makes SIGINT and SIGTERM request a stop (the run restores, then exits) instead of killing.

@@ -86,7 +86,8 @@ void print_help(const po::options_description& opts) {
            "       lcc-conform restore FILE            put a safety or JMRI backup back\n\n"
            "Checks every node found (or --node ID) and prints one line per check.\n"
            "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
-           "error,\nor the link went down during the run.\n\n"
+           "error,\nthe link went down during the run, or a node did not come back (its backup "
+           "is kept\nand the restore command printed).\n\n"
         << opts;
 }
 
@@ -107,6 +108,14 @@ int main_checked(int argc, char** argv) {
         "sample", po::value<std::size_t>()->default_value(3),
         "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
         "reboot", "reset the node and check written values persist")(
+        "exclude", po::value<std::vector<std::string>>()->composing(),
+        "never write variables whose backup key matches GLOB (repeatable), e.g. 'Internal data.*'")(
+        "only", po::value<std::vector<std::string>>()->composing(),
+        "write only variables whose backup key matches GLOB (repeatable)")(
+        "write-protected",
+        "also probe protected settings (read-only hints, 'do not change'), one at a time")(
+        "node-wait", po::value<unsigned>()->default_value(30),
+        "seconds to wait for a node that stopped answering or restarted")(
         "backup", po::value<std::string>(),
         "safety backup file (default ./lcc-conform-backup-<node>.txt)")(
         "json", po::value<std::string>(), "write the JSON report to FILE")(
@@ -209,6 +218,10 @@ int main_checked(int argc, char** argv) {
     ro.reboot = vm.count("reboot") > 0;
     if (vm.count("backup")) ro.backup_path = vm["backup"].as<std::string>();
     ro.link_wait = std::chrono::seconds(vm["link-wait"].as<unsigned>());
+    ro.node_wait = std::chrono::seconds(vm["node-wait"].as<unsigned>());
+    if (vm.count("exclude")) ro.protection.exclude = vm["exclude"].as<std::vector<std::string>>();
+    if (vm.count("only")) ro.protection.only = vm["only"].as<std::vector<std::string>>();
+    ro.protection.write_protected = vm.count("write-protected") > 0;
     ro.restore_command = "lcc-conform" + transport_arguments(vm) + " restore";
     ro.progress = is_terminal(2);
     bool colour = is_terminal(1) && !vm.count("no-color");

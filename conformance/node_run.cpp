@@ -1,0 +1,385 @@
+#include "conformance/node_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+
+#include "cdi/parser.hpp"
+#include "conformance/protocol_checks.hpp"
+#include "memory/memory_config_codec.hpp"
+#include "memory/snip.hpp"
+
+namespace olcb::conform {
+namespace {
+
+// A CDI larger than this is not downloaded for the encoding checks (protocol checks judge it).
+constexpr std::uint32_t kMaxCdi = 4u << 20;
+// Longest wait for the Initialization Complete after a deliberate Reset/Reboot.
+constexpr std::chrono::seconds kRebootWait{10};
+
+auto wall() {
+    return std::chrono::steady_clock::now();
+}
+
+bool inside(const RangeRequest& outer, std::uint8_t space, std::uint32_t address,
+            std::uint32_t size) {
+    return outer.space == space && address >= outer.address &&
+           std::uint64_t{address} + size <= std::uint64_t{outer.address} + outer.length;
+}
+
+}  // namespace
+
+NodeRun::NodeRun(Session& session, const NodeInfo& node, const RunOptions& options,
+                 const ProtocolChecks& protocol_checks, std::ostream& progress)
+    : session_(session),
+      node_(node),
+      options_(options),
+      protocol_checks_(protocol_checks),
+      progress_(progress),
+      bar_(progress, options.progress),
+      watch_(session, node),
+      memory_(session, node) {}
+
+NodeReport NodeRun::run() {
+    losses_before_ = session_.link().losses();
+    report_.node_id = node_.id.to_string();
+    identify();
+    protocol();
+    if (writes_allowed() && load_layout()) {
+        plan();
+        if (capture_backup() && take_lock()) {
+            encode();
+            after_incident();
+            restore_and_verify();
+            release_lock();
+        }
+    }
+    findings();
+    return std::move(report_);
+}
+
+void NodeRun::identify() {
+    if (auto snip = session_.snip_payload(node_)) {
+        memory::Snip s = memory::decode_snip(*snip);
+        report_.name = s.manufacturer + " " + s.model;
+        if (!s.user_name.empty()) report_.name += " \"" + s.user_name + "\"";
+    }
+}
+
+void NodeRun::protocol() {
+    if (!protocol_checks_) return;
+    ctx_.cdi_progress = [this](std::size_t n) { bar_.update(n, wall()); };
+    bar_.start("protocol checks, reading CDI", 0, wall());
+    report_.checks = protocol_checks_(session_, node_, ctx_);
+    bar_.finish();
+    // Nothing has been written yet; a node that died meanwhile gets no write at all.
+    incident_ = watch_.check_now("running the protocol checks");
+}
+
+void NodeRun::skip_writes(const std::string& reason, const std::string& summary) {
+    for (auto& c : skipped_encoding_checks(reason)) report_.checks.push_back(c);
+    report_.restore_summary = summary;
+}
+
+bool NodeRun::writes_allowed() {
+    if (incident_) {
+        report_.checks.push_back(incident_result(*incident_));
+        skip_writes("the node stopped answering or restarted before any write",
+                    "nothing written (see node.*)");
+        if (!watch_.wait_for_return(options_.node_wait)) report_.incomplete = true;
+        return false;
+    }
+    if (options_.read_only) {
+        skip_writes("--read-only: no write", "nothing written (--read-only)");
+        return false;
+    }
+    if (stop_requested()) {
+        skip_writes("interrupted", "nothing written (interrupted)");
+        return false;
+    }
+    return true;
+}
+
+bool NodeRun::load_layout() {
+    // Without the protocol checks' layout (none ran, or their read stopped at a wrong highest
+    // address), the CDI is read here up to its NUL.
+    if (!ctx_.document || !ctx_.layout) {
+        bar_.start("reading CDI", 0, wall());
+        MemResult cdi_bytes = session_.read_range(node_, memory::Space::kCdi, 0, kMaxCdi, true,
+                                                  [&](std::size_t n) { bar_.update(n, wall()); });
+        bar_.finish();
+        std::string xml(cdi_bytes.data.begin(), cdi_bytes.data.end());
+        if (auto nul = xml.find('\0'); nul != std::string::npos) xml.resize(nul);
+        auto parsed = cdi::parse(xml);
+        ctx_.layout.reset();
+        ctx_.document.reset();
+        if (cdi_bytes.ok && parsed.document) {
+            ctx_.document = std::make_unique<cdi::Document>(std::move(*parsed.document));
+            ctx_.layout = cdi::build_layout(*ctx_.document).layout;
+        }
+    }
+    if (ctx_.document && ctx_.layout) return true;
+    skip_writes("no usable CDI layout (see the cdi checks)", "nothing written");
+    return false;
+}
+
+void NodeRun::plan() {
+    eo_.sample = options_.sample;
+    eo_.blob = options_.blob;
+    eo_.reboot = options_.reboot;
+    eo_.acdi_user = ctx_.document->acdi.has_value();
+    eo_.protection = options_.protection;
+    plan_ = plan_encoding(*ctx_.layout, eo_);
+    // Spaces the standard makes read-only (CDI, ACDI manufacturer) are never written, even when
+    // a CDI lays variables there: cdi.acdi-spaces reports such a CDI.
+    const std::size_t planned = plan_.probes.size();
+    std::erase_if(plan_.probes, [](const Probe& p) { return p.space == 0xFF || p.space == 0xFC; });
+    read_only_skipped_ = planned - plan_.probes.size();
+}
+
+bool NodeRun::capture_backup() {
+    backup_ = std::make_unique<SafetyBackup>(
+        options_.backup_path.empty() ? default_backup_path(report_.node_id) : options_.backup_path,
+        report_.node_id);
+    std::vector<std::pair<RangeRequest, std::string>> missing;
+    std::string error;
+    bool saved =
+        backup_->capture_available(memory_, ranges_to_backup(plan_.probes, eo_), missing, error);
+    if (saved && !missing.empty()) {
+        // A merged range that could not be read is retried variable by variable: one unreadable
+        // variable must not cost the test of its neighbours.
+        std::vector<RangeRequest> singles;
+        for (const Probe& p : plan_.probes) {
+            for (const auto& [range, why] : missing) {
+                if (inside(range, p.space, p.address, p.size)) {
+                    singles.push_back({p.space, p.address, p.size});
+                }
+            }
+        }
+        std::vector<std::pair<RangeRequest, std::string>> still;
+        saved = backup_->capture_available(memory_, singles, still, error);
+        for (const auto& [range, why] : still) {
+            auto unreadable = std::find_if(plan_.probes.begin(), plan_.probes.end(), [&](auto& p) {
+                return inside(range, p.space, p.address, p.size);
+            });
+            if (unreadable == plan_.probes.end()) continue;
+            report_.checks.push_back(
+                {"encoding.unreadable", Category::kEncoding, Status::kSkip,
+                 unreadable->key + ": " + why + "; not tested (its original could not be saved)",
+                 "lcc-conform safety rule", "", ""});
+            plan_.probes.erase(unreadable);
+        }
+    }
+    // Without the user name's original the ACDI user-name check writes nothing.
+    const auto& ranges = backup_->ranges();
+    eo_.acdi_user =
+        eo_.acdi_user && std::any_of(ranges.begin(), ranges.end(), [](auto& r) {
+            return inside({r.space, r.address, static_cast<std::uint32_t>(r.bytes.size())}, 251, 1,
+                          63);
+        });
+    if (!saved) {
+        skip_writes("no safety backup, nothing written: " + error,
+                    "nothing written (" + error + ")");
+        return false;
+    }
+    guard_ = std::make_unique<RestoreGuard>(*backup_, memory_);
+    return true;
+}
+
+bool NodeRun::take_lock() {
+    memory::Message reply;
+    const std::uint64_t me = session_.tool_id().value();
+    MemResult r = session_.command(node_, memory::encode(memory::Lock{me}), &reply);
+    const auto* held = std::get_if<memory::LockReply>(&reply);
+    if (r.ok && held != nullptr) {
+        if (held->node_id == me) {
+            locked_ = true;
+            return true;
+        }
+        if (held->node_id != 0) {
+            guard_->abandon();  // nothing was written
+            backup_->remove_file();
+            const std::string who = NodeId(held->node_id).to_string();
+            skip_writes("node is locked by " + who + " (Lock/Reserve): nothing written",
+                        "nothing written (locked by " + who + ")");
+            return false;
+        }
+    }
+    // Lock/Reserve is optional: a node that rejects or ignores it (memory.lock says which) is
+    // written without it.
+    return true;
+}
+
+void NodeRun::release_lock() {
+    if (!locked_ || report_.incomplete || !session_.link().up()) return;
+    session_.command(node_, memory::encode(memory::Lock{0}));
+    locked_ = false;
+}
+
+EncodingHooks NodeRun::hooks() {
+    EncodingHooks h;
+    h.stop = [this] { return stop_requested() || link_lost(); };
+    h.after_access = [this](const AccessStep& step) {
+        if (!incident_) incident_ = watch_.after(step);
+        return !incident_;
+    };
+    h.reboot = [this] { return reboot(); };
+    h.snip_user_name = [this]() -> std::optional<std::string> {
+        auto payload = session_.snip_payload(node_);
+        if (!payload) return std::nullopt;
+        return memory::decode_snip(*payload).user_name;
+    };
+    h.progress = [this](std::size_t done, std::size_t) { bar_.update(done, wall()); };
+    return h;
+}
+
+RebootOutcome NodeRun::reboot() {
+    const NodeTrack before = session_.track(node_.id);
+    const std::uint8_t reset[] = {0x20, 0xA9};
+    MemResult r = session_.command(node_, reset);
+    if (r.rejected && !r.timed_out && r.error != 0 &&
+        session_.track(node_.id).initializations == before.initializations) {
+        return {false, r.error, false};
+    }
+    // The node may come back on another alias: the session takes it from the AMD and the
+    // Initialization Complete, and every later request uses it.
+    const bool back = session_.link().run_until(
+        [&] { return session_.track(node_.id).initializations != before.initializations; },
+        std::min<Duration>(options_.node_wait, kRebootWait));
+    if (!back) {
+        incident_ = watch_.check_now("waiting for the node to come back after Reset/Reboot");
+        if (incident_) return {false, 0, true};
+    }
+    watch_.rebase();
+    if (locked_) {
+        // A reset clears the lock (MemoryConfigurationS 4.15): take it again.
+        session_.command(node_, memory::encode(memory::Lock{session_.tool_id().value()}));
+    }
+    return {true, 0, false};
+}
+
+void NodeRun::encode() {
+    bar_.start("encoding checks", 0, wall());
+    EncodingOutcome out = run_encoding_checks(plan_.probes, memory_, eo_, hooks());
+    bar_.finish();
+    for (auto& c : unwritten_checks(plan_.unwritten, eo_.protection.write_protected)) {
+        report_.checks.push_back(std::move(c));
+    }
+    for (auto& c : out.results) report_.checks.push_back(std::move(c));
+    if (read_only_skipped_ != 0) {
+        report_.checks.push_back(CheckResult{
+            "encoding.read-only-spaces", Category::kEncoding, Status::kSkip,
+            std::to_string(read_only_skipped_) +
+                " variables in the read-only spaces 252/255 not written (see cdi.acdi-spaces)",
+            "MemoryConfigurationS 4.2", "", ""});
+    }
+    in_flight_ = std::move(out.in_flight);
+}
+
+void NodeRun::after_incident() {
+    if (!incident_) return;
+    const CheckResult failed = incident_result(*incident_);
+    report_.checks.push_back(failed);
+    progress_ << "lcc-conform: " << failed.message << "; waiting up to "
+              << options_.node_wait.count() << " s for it to come back" << std::endl;
+    if (!watch_.wait_for_return(options_.node_wait)) {
+        keep_backup("the node did not come back within " +
+                    std::to_string(options_.node_wait.count()) + " s");
+        report_.incomplete = true;
+        return;
+    }
+    // The variable in flight first: it is the one a node may act on at its next start.
+    for (const InFlight& f : in_flight_) memory_.write(f.space, f.address, f.original);
+    in_flight_.clear();
+}
+
+void NodeRun::keep_backup(const std::string& why) {
+    guard_->abandon();
+    const std::string path = std::filesystem::absolute(backup_->path()).string();
+    report_.restore_summary = "not restored: " + why;
+    report_.checks.push_back(
+        {"encoding.restore", Category::kEncoding, Status::kFail,
+         "not restored: " + why + "; backup kept in " + path +
+             "; when the node is reachable again run: " + options_.restore_command + " " + path,
+         "lcc-conform safety rule", "", ""});
+}
+
+bool NodeRun::link_lost() const {
+    Link& link = session_.link();
+    return link.losses() != losses_before_ || !link.up();
+}
+
+void NodeRun::wait_for_link() {
+    Link& link = session_.link();
+    progress_ << "lcc-conform: the link went down"
+              << (link.loss_reason().empty() ? "" : " (" + link.loss_reason() + ")")
+              << "; waiting up to " << options_.link_wait.count()
+              << " s for it to return to restore the node" << std::endl;
+    // The link's clock: simulated in tests, steady on real transports.
+    const TimePoint deadline = link.now() + options_.link_wait;
+    while (!stop_requested() && link.now() < deadline) {
+        const Duration left = deadline - link.now();
+        if (!link.up() && !link.run_until([&] { return link.up() || stop_requested(); }, left)) {
+            continue;
+        }
+        if (stop_requested()) return;
+        // Up again: the node must answer before its memory is trusted to the restore.
+        if (session_.find_node(node_.id)) {
+            progress_ << "lcc-conform: link back; restoring" << std::endl;
+            return;
+        }
+    }
+}
+
+void NodeRun::restore_and_verify() {
+    if (report_.incomplete) return;  // the backup is kept for the user
+    if (link_lost()) {
+        // What ran after the loss measured the link, not the node.
+        for (CheckResult& c : report_.checks) {
+            if (c.category == Category::kEncoding || c.id == "snip.follows-acdi-user-write") {
+                c.status = Status::kSkip;
+                c.message = "not judged: the link went down mid-run";
+                c.expected.clear();
+                c.seen.clear();
+            }
+        }
+        wait_for_link();
+        if (!session_.link().up()) {
+            keep_backup("the link is still down");
+            return;
+        }
+    }
+    const RestoreOutcome outcome = guard_->finish();
+    report_.restore_summary = outcome.summary();
+    CheckResult restored{"encoding.restore",
+                         Category::kEncoding,
+                         outcome.identical ? Status::kPass : Status::kFail,
+                         outcome.summary(),
+                         "lcc-conform safety rule",
+                         "",
+                         ""};
+    if (outcome.identical) {
+        backup_->remove_file();
+    } else {
+        const std::string path = std::filesystem::absolute(backup_->path()).string();
+        restored.message += "; backup kept in " + path +
+                            "; when the node is reachable again run: " + options_.restore_command +
+                            " " + path;
+    }
+    report_.checks.push_back(std::move(restored));
+}
+
+void NodeRun::findings() {
+    Link& link = session_.link();
+    if (!report_.incomplete && link.up() && !link_lost()) {
+        for (auto& c : short_read_checks(session_, node_, ctx_)) report_.checks.push_back(c);
+    }
+    if (link.losses() == losses_before_ && link.up()) return;
+    std::string message = "the link went down during the run";
+    if (!link.loss_reason().empty()) message += ": " + link.loss_reason();
+    message += link.up() ? " (it came back)" : " (still down)";
+    report_.checks.push_back(
+        CheckResult{"link.lost", Category::kLink, Status::kFail, message, "", "", ""});
+}
+
+}  // namespace olcb::conform

@@ -1,0 +1,73 @@
+// One node's conformance run as a list of short phases over shared state (run_node() in
+// runner.hpp is its public face). The safety backup's restore is held by a RestoreGuard from the
+// moment it is captured, so every way out of the run puts the node's bytes back.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "conformance/backup.hpp"
+#include "conformance/check_context.hpp"
+#include "conformance/encoding_checks.hpp"
+#include "conformance/node_watch.hpp"
+#include "conformance/report.hpp"
+#include "conformance/runner.hpp"
+#include "conformance/session_memory.hpp"
+
+namespace olcb::conform {
+
+/// The state and phases of one node's run.
+class NodeRun {
+public:
+    /// A run of `node` through `session` as `options` say.
+    NodeRun(Session& session, const NodeInfo& node, const RunOptions& options,
+            const ProtocolChecks& protocol_checks, std::ostream& progress);
+    /// Runs every phase in order and returns the report.
+    NodeReport run();
+
+private:
+    void identify();
+    void protocol();
+    bool writes_allowed();
+    bool load_layout();
+    void plan();
+    bool capture_backup();
+    bool take_lock();
+    void encode();
+    void release_lock();
+    void after_incident();
+    void restore_and_verify();
+    void findings();
+
+    void skip_writes(const std::string& reason, const std::string& summary);
+    EncodingHooks hooks();
+    RebootOutcome reboot();
+    bool link_lost() const;
+    void wait_for_link();
+    void keep_backup(const std::string& why);
+
+    Session& session_;
+    NodeInfo node_;
+    const RunOptions& options_;
+    const ProtocolChecks& protocol_checks_;
+    std::ostream& progress_;
+    NodeReport report_;
+    CheckContext ctx_;
+    ProgressBar bar_;
+    NodeWatch watch_;
+    std::uint64_t losses_before_ = 0;
+    EncodingOptions eo_;
+    EncodingPlan plan_;
+    std::size_t read_only_skipped_ = 0;
+    SessionMemory memory_;
+    std::unique_ptr<SafetyBackup> backup_;
+    std::unique_ptr<RestoreGuard> guard_;
+    bool locked_ = false;
+    std::optional<NodeIncident> incident_;
+    std::vector<InFlight> in_flight_;
+};
+
+}  // namespace olcb::conform

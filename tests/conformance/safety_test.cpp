@@ -1,0 +1,224 @@
+// run_node against the simnode faults that model what real nodes do to a careless tool
+// (real-world.md §1, §5), in-process on the simulated clock: the node is never killed or reset
+// by the run, a node that dies or restarts is reported as such, and its memory always ends
+// byte-identical; a node that never comes back leaves a backup that restores it later.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "conformance/conform_test_util.hpp"
+#include "conformance/protocol_checks.hpp"
+#include "conformance/runner.hpp"
+#include "openlcb/sim_network.hpp"
+#include "simnode/sim_node.hpp"
+
+namespace olcb::conform {
+namespace {
+
+namespace fs = std::filesystem;
+using Memory = std::map<std::uint8_t, std::vector<std::uint8_t>>;
+
+class SafetyTest : public ::testing::Test {
+protected:
+    void TearDown() override { fs::remove(backup_); }
+
+    void start(const std::string& faults, const std::string& cdi_file = "default.xml") {
+        simnode::NodeConfig config;
+        config.node_id = kDut;
+        const fs::path dir = fs::path(OLCB_SOURCE_DIR) / "scenarios";
+        config.cdi =
+            read_text(fs::exists(dir / cdi_file) ? dir / cdi_file : dir / "faults" / cdi_file);
+        config.user_name = "simnode safety";
+        std::string error;
+        auto parsed = simnode::parse_faults({faults}, error);
+        ASSERT_TRUE(parsed) << error;
+        config.faults = *parsed;
+        dut_ = simnode::SimNode::create(config, error);
+        ASSERT_TRUE(dut_) << error;
+        net_.set_logging(false);
+        net_.add_stack(dut_->stack());
+        dut_->stack().start(net_.now());
+        link_ = make_sim_link(net_, kTool);
+        session_ = std::make_unique<Session>(*link_);
+        ASSERT_TRUE(session_->start());
+        node_ = session_->find_node(kDut);
+        ASSERT_TRUE(node_);
+        backup_ = fs::temp_directory_path() / ("safety_test_" + std::to_string(::getpid()));
+        before_ = memory();
+    }
+
+    Memory memory() const {
+        Memory m;
+        for (std::uint8_t sp : dut_->memory().served_spaces()) {
+            if (sp != 0xFF && sp != 0xFC) m[sp] = dut_->memory().read(sp, 0, 1u << 16);
+        }
+        return m;
+    }
+
+    NodeReport run(RunOptions options = {}) {
+        options.backup_path = backup_.string();
+        options.node_wait = std::chrono::seconds(5);
+        ProtocolChecks checks = [](Session& s, const NodeInfo& n, CheckContext& ctx) {
+            return run_protocol_checks(s, n, ProtocolOptions{}, ctx);
+        };
+        return run_node(*session_, *node_, options, checks, progress_);
+    }
+
+    static const CheckResult* find(const NodeReport& r, const std::string& id) {
+        for (const auto& c : r.checks) {
+            if (c.id == id) return &c;
+        }
+        return nullptr;
+    }
+    static std::string failures(const NodeReport& r) {
+        std::string out;
+        for (const auto& c : r.checks) {
+            if (c.status == Status::kFail) out += "\n  " + c.id + ": " + c.message;
+        }
+        return out;
+    }
+
+    SimNetwork net_;
+    std::unique_ptr<simnode::SimNode> dut_;
+    std::unique_ptr<Link> link_;
+    std::unique_ptr<Session> session_;
+    std::optional<NodeInfo> node_;
+    std::ostringstream progress_;
+    fs::path backup_;
+    Memory before_;
+};
+
+TEST_F(SafetyTest, OpenMrnLikeNodeWithRebootIsNeitherKilledNorReset) {
+    start("abort-on-value,factory-reset-on-version-change", "openmrn-like.xml");
+    RunOptions o;
+    o.reboot = true;
+    const NodeReport r = run(o);
+    EXPECT_EQ(dut_->counters().aborts, 0u);
+    EXPECT_EQ(dut_->counters().factory_resets, 0u);
+    EXPECT_EQ(dut_->counters().reboots, 1u);
+    EXPECT_EQ(find(r, "encoding.persist-after-reboot")->status, Status::kPass)
+        << find(r, "encoding.persist-after-reboot")->message;
+    const CheckResult* prot = find(r, "encoding.protected");
+    ASSERT_NE(prot, nullptr);
+    EXPECT_NE(prot->message.find("Internal data"), std::string::npos) << prot->message;
+    EXPECT_EQ(find(r, "node.rebooted"), nullptr);
+    EXPECT_EQ(memory(), before_);
+    EXPECT_FALSE(r.incomplete);
+}
+
+TEST_F(SafetyTest, WriteProtectedProbesInternalDataOneAtATimeAndTheNodeSurvives) {
+    start("abort-on-value,factory-reset-on-version-change", "openmrn-like.xml");
+    RunOptions o;
+    o.reboot = true;
+    o.protection.write_protected = true;
+    const NodeReport r = run(o);
+    EXPECT_EQ(dut_->counters().aborts, 0u);
+    EXPECT_EQ(dut_->counters().factory_resets, 0u);
+    EXPECT_EQ(find(r, "encoding.protected"), nullptr);  // nothing left alone
+    EXPECT_EQ(memory(), before_);
+    EXPECT_EQ(find(r, "encoding.restore")->status, Status::kPass);
+}
+
+TEST_F(SafetyTest, RebootOnWriteIsReportedWithTheVariableAndNothingMoreIsWritten) {
+    start("reboot-on-write=5");
+    const NodeReport r = run();
+    ASSERT_EQ(dut_->counters().write_reboots, 1u);
+    const CheckResult* rebooted = find(r, "node.rebooted");
+    ASSERT_NE(rebooted, nullptr) << failures(r);
+    EXPECT_EQ(rebooted->category, Category::kNode);
+    EXPECT_NE(rebooted->message.find("last test value written"), std::string::npos)
+        << rebooted->message;
+    // The 5th write is the original going back into the first variable after its 4 test values.
+    EXPECT_NE(rebooted->message.find("restoring Node identity.User Name"), std::string::npos)
+        << rebooted->message;
+    // The writes after the reboot are the restore alone: no encoding check failed because of it.
+    for (const char* id : {"encoding.int", "encoding.string", "encoding.eventid"}) {
+        EXPECT_NE(find(r, id)->status, Status::kFail) << id << ": " << find(r, id)->message;
+    }
+    EXPECT_EQ(find(r, "encoding.restore")->status, Status::kPass);
+    EXPECT_EQ(memory(), before_);
+    EXPECT_EQ(exit_code({r}), 1);
+}
+
+TEST_F(SafetyTest, AbortOnValueNeverFiresOnTheDefaultNode) {
+    start("abort-on-value");
+    RunOptions o;
+    o.protection.write_protected = true;
+    const NodeReport r = run(o);
+    EXPECT_EQ(dut_->counters().aborts, 0u);
+    EXPECT_EQ(r.count(Status::kFail), 0u) << failures(r);
+    EXPECT_EQ(memory(), before_);
+}
+
+TEST_F(SafetyTest, RejectedResetAndLockQuoteTheCodeWithoutAFailure) {
+    start("reset-rejected,lock-rejected");
+    RunOptions o;
+    o.reboot = true;
+    const NodeReport r = run(o);
+    EXPECT_EQ(r.count(Status::kFail), 0u) << failures(r);
+    const CheckResult* persist = find(r, "encoding.persist-after-reboot");
+    EXPECT_EQ(persist->status, Status::kSkip);
+    EXPECT_EQ(persist->message, "Reset/Reboot rejected with 0x1041; persistence not tested");
+    const CheckResult* lock = find(r, "memory.lock");
+    EXPECT_EQ(lock->status, Status::kWarn);
+    EXPECT_NE(lock->message.find("0x1041"), std::string::npos) << lock->message;
+    EXPECT_EQ(memory(), before_);
+}
+
+TEST_F(SafetyTest, NewAliasOnRebootIsFollowed) {
+    start("new-alias-on-reboot");
+    RunOptions o;
+    o.reboot = true;
+    const std::uint16_t first = node_->alias;
+    const NodeReport r = run(o);
+    EXPECT_NE(session_->alias_of(*node_), first);
+    EXPECT_EQ(r.count(Status::kFail), 0u) << failures(r);
+    EXPECT_EQ(find(r, "encoding.persist-after-reboot")->status, Status::kPass);
+    EXPECT_EQ(memory(), before_);
+}
+
+TEST_F(SafetyTest, FieldReadsOnlyIsFlaggedAndTheRunStillTestsAndRestores251) {
+    start("field-reads-only");
+    const NodeReport r = run();
+    const CheckResult* fb = find(r, "memory.short-read.fb");
+    ASSERT_NE(fb, nullptr);
+    EXPECT_EQ(fb->status, Status::kFail) << fb->message;
+    EXPECT_EQ(find(r, "snip.matches-acdi")->status, Status::kPass)
+        << find(r, "snip.matches-acdi")->message;
+    EXPECT_EQ(find(r, "snip.follows-acdi-user-write")->status, Status::kPass);
+    EXPECT_EQ(find(r, "encoding.string")->status, Status::kPass);
+    EXPECT_EQ(find(r, "encoding.restore")->status, Status::kPass);
+    EXPECT_EQ(memory(), before_);
+}
+
+TEST_F(SafetyTest, ANodeHoldingAnotherLockIsNotWritten) {
+    start("");
+    // Another tool holds the node's lock.
+    const std::vector<std::uint8_t> lock = {0x20, 0x88, 0x02, 0x01, 0x12, 0xFE, 0x00, 0x09};
+    dut_->server().handle({0x020112FE0009ull, 0x123}, lock);
+    ASSERT_NE(dut_->server().lock_holder(), 0u);
+    const NodeReport r = run();
+    const CheckResult* i = find(r, "encoding.int");
+    EXPECT_EQ(i->status, Status::kSkip);
+    EXPECT_NE(i->message.find("locked by 02.01.12.FE.00.09"), std::string::npos) << i->message;
+    EXPECT_FALSE(fs::exists(backup_));
+    EXPECT_EQ(memory(), before_);
+}
+
+TEST_F(SafetyTest, ANodeThatNeverComesBackKeepsTheBackupAndItRestoresLater) {
+    start("abort-on-value=60000,factory-reset-on-version-change", "openmrn-like.xml");
+    // A node that already holds a changed Version dies at the next SNIP request: here the
+    // protocol checks' own. Nothing is written; the run says why and exits 2.
+    RunOptions o;
+    o.protection.write_protected = true;
+    dut_->memory().space(253)->write(128, std::vector<std::uint8_t>{0x00, 0x07});
+    const NodeReport r = run(o);
+    ASSERT_NE(find(r, "node.stopped-answering"), nullptr) << failures(r);
+    EXPECT_TRUE(r.incomplete);
+    EXPECT_EQ(exit_code({r}), 2);
+}
+
+}  // namespace
+}  // namespace olcb::conform
