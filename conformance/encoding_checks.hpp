@@ -26,6 +26,8 @@ struct EncodingOptions {
     bool blob = false;    ///< also write <blob> variables
     bool reboot = false;  ///< reset the node and check the written values persisted
     bool acdi_user = false;  ///< the node has space 251: write the user name, check SNIP follows
+    /// Why the user name is not written although the node has 251 ("" when it is, or has none).
+    std::string acdi_user_skipped;
     std::size_t max_variables = 4096;  ///< bound on the variables tested (after sampling)
     ProtectionRules protection;        ///< protected settings, --exclude / --only
 };

@@ -340,7 +340,8 @@ CheckResult EncodingRun::snip_follows() {
                   "",
                   ""};
     if (!options_.acdi_user) {
-        c.message = "node has no ACDI user space (251)";
+        c.message = options_.acdi_user_skipped.empty() ? "node has no ACDI user space (251)"
+                                                       : options_.acdi_user_skipped;
         return c;
     }
     if (stop_ != Stop::kNone || asked_to_stop()) {

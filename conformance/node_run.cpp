@@ -141,42 +141,25 @@ bool NodeRun::capture_backup() {
     backup_ = std::make_unique<SafetyBackup>(
         options_.backup_path.empty() ? default_backup_path(report_.node_id) : options_.backup_path,
         report_.node_id);
-    std::vector<std::pair<RangeRequest, std::string>> missing;
+    Missing missing;
     std::string error;
     bool saved =
         backup_->capture_available(memory_, ranges_to_backup(plan_.probes, eo_), missing, error);
-    if (saved && !missing.empty()) {
-        // A merged range that could not be read is retried variable by variable: one unreadable
-        // variable must not cost the test of its neighbours.
-        std::vector<RangeRequest> singles;
-        for (const Probe& p : plan_.probes) {
-            for (const auto& [range, why] : missing) {
-                if (inside(range, p.space, p.address, p.size)) {
-                    singles.push_back({p.space, p.address, p.size});
-                }
-            }
-        }
-        std::vector<std::pair<RangeRequest, std::string>> still;
-        saved = backup_->capture_available(memory_, singles, still, error);
-        for (const auto& [range, why] : still) {
-            auto unreadable = std::find_if(plan_.probes.begin(), plan_.probes.end(), [&](auto& p) {
-                return inside(range, p.space, p.address, p.size);
-            });
-            if (unreadable == plan_.probes.end()) continue;
-            report_.checks.push_back(
-                {"encoding.unreadable", Category::kEncoding, Status::kSkip,
-                 unreadable->key + ": " + why + "; not tested (its original could not be saved)",
-                 "lcc-conform safety rule", "", ""});
-            plan_.probes.erase(unreadable);
-        }
-    }
+    if (saved && !missing.empty()) saved = retry_one_by_one(missing, error);
     // Without the user name's original the ACDI user-name check writes nothing.
     const auto& ranges = backup_->ranges();
-    eo_.acdi_user =
-        eo_.acdi_user && std::any_of(ranges.begin(), ranges.end(), [](auto& r) {
-            return inside({r.space, r.address, static_cast<std::uint32_t>(r.bytes.size())}, 251, 1,
-                          63);
-        });
+    const bool name_saved = std::any_of(ranges.begin(), ranges.end(), [](auto& r) {
+        return inside({r.space, r.address, static_cast<std::uint32_t>(r.bytes.size())}, 251, 1, 63);
+    });
+    if (eo_.acdi_user && !name_saved) {
+        eo_.acdi_user = false;
+        std::string why = "not readable";
+        for (const auto& [range, reason] : missing) {
+            if (inside(range, 251, 1, 63)) why = reason;
+        }
+        eo_.acdi_user_skipped =
+            "the user name (space 251 @1) could not be saved (" + why + "): not written";
+    }
     if (!saved) {
         skip_writes("no safety backup, nothing written: " + error,
                     "nothing written (" + error + ")");
@@ -184,6 +167,32 @@ bool NodeRun::capture_backup() {
     }
     guard_ = std::make_unique<RestoreGuard>(*backup_, memory_);
     return true;
+}
+
+bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
+    // A merged range that could not be read is retried variable by variable: one unreadable
+    // variable must not cost the test of its neighbours.
+    std::vector<RangeRequest> singles;
+    for (const Probe& p : plan_.probes) {
+        for (const auto& [range, why] : missing) {
+            if (inside(range, p.space, p.address, p.size))
+                singles.push_back({p.space, p.address, p.size});
+        }
+    }
+    Missing still;
+    const bool saved = backup_->capture_available(memory_, singles, still, error);
+    for (const auto& [range, why] : still) {
+        auto unreadable = std::find_if(plan_.probes.begin(), plan_.probes.end(), [&](auto& p) {
+            return inside(range, p.space, p.address, p.size);
+        });
+        if (unreadable == plan_.probes.end()) continue;
+        report_.checks.push_back(
+            {"encoding.unreadable", Category::kEncoding, Status::kSkip,
+             unreadable->key + ": " + why + "; not tested (its original could not be saved)",
+             "lcc-conform safety rule", "", ""});
+        plan_.probes.erase(unreadable);
+    }
+    return saved;
 }
 
 bool NodeRun::take_lock() {

@@ -34,7 +34,9 @@ private:
     bool writes_allowed();
     bool load_layout();
     void plan();
+    using Missing = std::vector<std::pair<RangeRequest, std::string>>;
     bool capture_backup();
+    bool retry_one_by_one(const Missing& missing, std::string& error);
     bool take_lock();
     void encode();
     void release_lock();

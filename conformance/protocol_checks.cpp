@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -79,6 +80,41 @@ Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t
     const std::string code = r.error ? hex(r.error) : "no error code";
     if (r.error == want) return {true, what + " refused with " + code, code};
     return {false, what + " refused with " + code + standard, code};
+}
+
+// An ACDI block read field by field, each string up to its NUL: some nodes (OpenLcbCLib) serve
+// only reads that start at a field and refuse the bytes after a string's NUL, which no tool
+// needs. The block comes back whole, each string field padded with zeros after its NUL.
+MemResult read_acdi_block(Session& s, const NodeInfo& node, Space space) {
+    using namespace memory::acdi;
+    struct Field {
+        std::size_t offset, size;
+    };
+    static constexpr Field kManufacturer[] = {{kManufacturerVersionOffset, 1},
+                                              {kManufacturerOffset, kManufacturerSize},
+                                              {kModelOffset, kModelSize},
+                                              {kHardwareVersionOffset, kHardwareVersionSize},
+                                              {kSoftwareVersionOffset, kSoftwareVersionSize}};
+    static constexpr Field kUser[] = {{kUserVersionOffset, 1},
+                                      {kUserNameOffset, kUserNameSize},
+                                      {kUserDescriptionOffset, kUserDescriptionSize}};
+    const bool user = space == Space::kAcdiUser;
+    const std::span<const Field> fields =
+        user ? std::span<const Field>(kUser) : std::span<const Field>(kManufacturer);
+    MemResult total;
+    total.ok = true;
+    total.data.assign(user ? kUserBlockSize : kManufacturerBlockSize, 0);
+    for (const Field& f : fields) {
+        MemResult r = s.read_range(node, space, static_cast<std::uint32_t>(f.offset),
+                                   static_cast<std::uint32_t>(f.size), f.size > 1);
+        total.temporary_rejects += r.temporary_rejects;
+        if (!r.ok || r.data.empty()) {
+            r.ok = false;
+            return r;
+        }
+        std::copy_n(r.data.begin(), std::min(r.data.size(), f.size), total.data.begin() + f.offset);
+    }
+    return total;
 }
 
 // Get Address Space Information for space, remembered in ctx.spaces.
@@ -381,10 +417,10 @@ private:
     void acdi() {
         if (!ctx_.document || !ctx_.document->acdi) return;
         const auto& a = *ctx_.document->acdi;
-        MemResult m = s_.read_range(node_, Space::kAcdiManufacturer, 0, 125, false);
+        MemResult m = read_acdi_block(s_, node_, Space::kAcdiManufacturer);
         note(m);
         if (m.ok) ctx_.acdi_manufacturer = m.data;
-        MemResult u = s_.read_range(node_, Space::kAcdiUser, 0, 128, false);
+        MemResult u = read_acdi_block(s_, node_, Space::kAcdiUser);
         note(u);
         if (u.ok) ctx_.acdi_user = u.data;
         add("acdi.manufacturer-version", Category::kAcdi,

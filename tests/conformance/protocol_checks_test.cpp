@@ -168,7 +168,9 @@ TEST(ShortReadChecksTest, FieldReadsOnlyNodeIsReadCompletelyAndCaught) {
         EXPECT_EQ(c->expected,
                   "the count asked: only the end of the space may shorten a Read Reply "
                   "(MemoryConfigurationS 4.4)");
-        EXPECT_NE(c->message.find("at 0x00000000 asked 64 got 1"), std::string::npos) << c->message;
+        // ACDI is read field by field: the name field (at 1, 63 or 41 bytes) comes back cut
+        // after its NUL, which the standard does not allow either.
+        EXPECT_NE(c->message.find("at 0x00000001 asked"), std::string::npos) << c->message;
     }
     EXPECT_NE(find_check(shorts, "memory.short-read.fc")->message.find("space 0xFC"),
               std::string::npos);
