@@ -23,7 +23,7 @@ int hex_digit(char c) {
 }
 
 std::string plain_hex(std::span<const std::uint8_t> bytes) {
-    static const char* kDigits = "0123456789ABCDEF";
+    constexpr const char* kDigits = "0123456789ABCDEF";
     std::string out;
     out.reserve(bytes.size() * 2);
     for (std::uint8_t b : bytes) {
@@ -42,7 +42,7 @@ std::string where(std::uint8_t space, std::uint32_t address) {
 }  // namespace
 
 std::string hex_bytes(std::span<const std::uint8_t> bytes, std::size_t max) {
-    static const char* kDigits = "0123456789ABCDEF";
+    constexpr const char* kDigits = "0123456789ABCDEF";
     std::string out;
     for (std::size_t i = 0; i < bytes.size() && i < max; ++i) {
         if (i) out.push_back(' ');
@@ -179,7 +179,8 @@ std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::str
         if (!line.empty() && line.back() == '\r') line.pop_back();
         if (line.empty() || line[0] == '#') continue;
         auto bad = [&](const std::string& why) {
-            error = path + ":" + std::to_string(line_no) + ": " + why;
+            error = path;
+            error += ":" + std::to_string(line_no) + ": " + why;
             return std::nullopt;
         };
         if (line.rfind("node ", 0) == 0) {

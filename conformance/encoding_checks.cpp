@@ -238,6 +238,7 @@ std::vector<CheckResult> unwritten_checks(const std::vector<Unwritten>& unwritte
 std::vector<RangeRequest> ranges_to_backup(const std::vector<Probe>& probes,
                                            const EncodingOptions& options) {
     std::vector<RangeRequest> ranges;
+    ranges.reserve(probes.size() + 1);
     for (const Probe& p : probes) ranges.push_back({p.space, p.address, p.size});
     if (options.acdi_user) {
         ranges.push_back({kAcdiUserSpace, static_cast<std::uint32_t>(memory::acdi::kUserNameOffset),

@@ -94,7 +94,7 @@ std::vector<std::pair<std::string, Bytes>> test_writes(const Probe& p) {
     }
     for (const Value& v : p.values) {
         if (auto bytes = cdi::encode(*p.element, v)) {
-            writes.emplace_back(describe_value(*p.element, v), std::move(*bytes));
+            writes.emplace_back(describe_value(*p.element, v), *bytes);
         }
     }
     return writes;

@@ -181,7 +181,9 @@ bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
     }
     Missing still;
     const bool saved = backup_->capture_available(memory_, singles, still, error);
-    for (const auto& [range, why] : still) {
+    for (const auto& entry : still) {
+        const RangeRequest& range = entry.first;
+        const std::string& why = entry.second;
         auto unreadable = std::find_if(plan_.probes.begin(), plan_.probes.end(), [&](auto& p) {
             return inside(range, p.space, p.address, p.size);
         });

@@ -112,7 +112,8 @@ MemResult read_acdi_block(Session& s, const NodeInfo& node, Space space) {
             r.ok = false;
             return r;
         }
-        std::copy_n(r.data.begin(), std::min(r.data.size(), f.size), total.data.begin() + f.offset);
+        std::copy_n(r.data.begin(), std::min(r.data.size(), f.size),
+                    total.data.begin() + static_cast<std::ptrdiff_t>(f.offset));
     }
     return total;
 }
@@ -151,7 +152,10 @@ std::string first_difference(std::initializer_list<Field> fields, const std::str
         if (*f.want == *f.got) continue;
         want = quoted(*f.want);
         got = quoted(*f.got);
-        return std::string("SNIP ") + f.name + " " + got + " differs from " + source + " " + want;
+        std::string message = std::string("SNIP ") + f.name;
+        message.append(" ").append(got).append(" differs from ");
+        message.append(source).append(" ").append(want);
+        return message;
     }
     return {};
 }

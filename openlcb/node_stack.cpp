@@ -28,7 +28,7 @@ std::optional<TimePoint> earliest(std::optional<TimePoint> a, std::optional<Time
 }  // namespace
 
 NodeStack::NodeStack(NodeStackConfig config)
-    : config_(std::move(config)),
+    : config_(config),
       alias_(config_.node_id, config_.alias),
       assembler_([this] {
           MessageAssemblerConfig c = config_.assembler;

@@ -140,14 +140,13 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
     sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
 
-    return std::unique_ptr<SimNode>(
-        new SimNode(std::move(config), std::move(sc), std::move(memory), served));
+    return std::unique_ptr<SimNode>(new SimNode(std::move(config), sc, std::move(memory), served));
 }
 
 SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
                  std::unique_ptr<NodeMemory> memory, ProtocolSet served)
     : config_(std::move(config)),
-      stack_(std::move(stack_config)),
+      stack_(stack_config),
       memory_(std::move(memory)),
       server_([&] {
           memory::MemoryConfigServer::Config c;
