@@ -28,14 +28,19 @@ constexpr const char* kCdi = R"(<?xml version="1.0"?>
 </segment>
 </cdi>)";
 
+// Parses and lays out a CDI text into doc and layout (the layout points into doc).
+void load(const char* text, cdi::Document& doc, std::optional<cdi::Layout>& layout) {
+    auto parsed = cdi::parse(text);
+    ASSERT_TRUE(parsed.document);
+    doc = std::move(*parsed.document);
+    auto lr = cdi::build_layout(doc);
+    ASSERT_TRUE(lr.layout);
+    layout.emplace(std::move(*lr.layout));
+}
+
 struct Fixture : ::testing::Test {
     void SetUp() override {
-        auto parsed = cdi::parse(kCdi);
-        ASSERT_TRUE(parsed.document);
-        doc = std::move(*parsed.document);
-        auto lr = cdi::build_layout(doc);
-        ASSERT_TRUE(lr.layout);
-        layout.emplace(std::move(*lr.layout));
+        load(kCdi, doc, layout);
         mem.spaces[253] = std::vector<std::uint8_t>(200, 0);
         mem.spaces[251] = std::vector<std::uint8_t>(128, 0);
     }
@@ -346,12 +351,7 @@ constexpr const char* kProtectedCdi = R"(<?xml version="1.0"?>
 
 struct ProtectedFixture : ::testing::Test {
     void SetUp() override {
-        auto parsed = cdi::parse(kProtectedCdi);
-        ASSERT_TRUE(parsed.document);
-        doc = std::move(*parsed.document);
-        auto lr = cdi::build_layout(doc);
-        ASSERT_TRUE(lr.layout);
-        layout.emplace(std::move(*lr.layout));
+        load(kProtectedCdi, doc, layout);
         mem.spaces[253] = std::vector<std::uint8_t>(16, 0);
         mem.spaces[253][0] = 2;  // Version
     }

@@ -51,6 +51,29 @@ inline std::map<std::string, std::string> settled_images(
     return now;
 }
 
+#if defined(SIMNODE_PATH)
+/// A simnode program serving a scenario on an ephemeral loopback port, its images in a fresh
+/// directory; killed when destroyed (and stopping by itself after 5 minutes in any case).
+struct Simnode {
+    TempDir images{"lcc-conform-e2e-img"};
+    std::unique_ptr<Child> child;
+    std::uint16_t port = 0;
+
+    /// Starts `--scenario scenario` plus `extra` options (e.g. {"--fault", "reboot-on-write=5"}).
+    explicit Simnode(const fs::path& scenario, std::vector<std::string> extra = {}) {
+        std::vector<std::string> args = {
+            "--scenario",  scenario.string(), "--listen",  "127.0.0.1:0",
+            "--image-dir", images.str(),      "--run-for", "300"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        child = Child::spawn(SIMNODE_PATH, args);
+        if (!child) return;
+        if (auto p = child->wait_listening()) port = *p;
+    }
+    /// HOST:PORT for --connect.
+    std::string connect() const { return "127.0.0.1:" + std::to_string(port); }
+};
+#endif
+
 /// Runs lcc-conform with args; exit code and stdout (bounded).
 inline std::pair<int, std::string> conform(const std::vector<std::string>& args,
                                            milliseconds timeout = milliseconds(60000)) {

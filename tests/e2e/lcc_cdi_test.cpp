@@ -21,7 +21,8 @@ struct RunResult {
 
 // Runs lcc-cdi with `args` (shell-quoted by the caller); captures stdout and, when asked, stderr.
 RunResult lcc_cdi(const std::string& args, bool merge_stderr = false) {
-    std::string command = std::string(LCC_CDI_PATH) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+    std::string command =
+        std::string(LCC_CDI_PATH) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
     RunResult run;
     FILE* pipe = popen(command.c_str(), "r");
     if (pipe == nullptr) return run;
@@ -122,7 +123,8 @@ TEST(LccCdi, RenderShowsTree) {
 }
 
 TEST(LccCdi, LayoutRefusesBrokenXml) {
-    std::string bad = temp_file("broken.xml", "<?xml version=\"1.0\"?>\n<cdi><segment space=\"253\">\n");
+    std::string bad =
+        temp_file("broken.xml", "<?xml version=\"1.0\"?>\n<cdi><segment space=\"253\">\n");
     RunResult r = lcc_cdi("layout " + bad, true);
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.out.find(bad + ":"), std::string::npos) << r.out;

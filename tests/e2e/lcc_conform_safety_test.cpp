@@ -17,22 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 constexpr const char* kNode = "05.01.01.01.22.00";
 
-struct Node {
-    TempDir images{"lcc-conform-safety-img"};
-    std::unique_ptr<Child> child;
-    std::uint16_t port = 0;
-
-    explicit Node(std::vector<std::string> args) {
-        args.insert(args.end(),
-                    {"--listen", "127.0.0.1:0", "--image-dir", images.str(), "--run-for", "300"});
-        child = Child::spawn(SIMNODE_PATH, args);
-        if (!child) return;
-        if (auto p = child->wait_listening()) port = *p;
-    }
-    std::string connect() const { return "127.0.0.1:" + std::to_string(port); }
-};
-
-std::vector<std::string> run_args(const Node& n, const TempDir& out,
+std::vector<std::string> run_args(const Simnode& n, const TempDir& out,
                                   std::vector<std::string> extra = {},
                                   const std::string& node = kNode) {
     std::vector<std::string> args = {
@@ -49,7 +34,7 @@ std::string status_of(const std::string& text, const std::string& id) {
 }
 
 TEST(LccConformSafety, OpenMrnLikeNodeSurvivesAFullRebootRunUnchanged) {
-    Node n({"--scenario", source_path("scenarios/faults/openmrn-like.ini").string()});
+    Simnode n(source_path("scenarios/faults/openmrn-like.ini"));
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto before = snapshot_images(n.images.path());
@@ -63,7 +48,7 @@ TEST(LccConformSafety, OpenMrnLikeNodeSurvivesAFullRebootRunUnchanged) {
 }
 
 TEST(LccConformSafety, WriteProtectedProbesInternalDataAndTheNodeStillSurvives) {
-    Node n({"--scenario", source_path("scenarios/faults/openmrn-like.ini").string()});
+    Simnode n(source_path("scenarios/faults/openmrn-like.ini"));
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto before = snapshot_images(n.images.path());
@@ -75,8 +60,7 @@ TEST(LccConformSafety, WriteProtectedProbesInternalDataAndTheNodeStillSurvives) 
 }
 
 TEST(LccConformSafety, ARestartMidRunNamesTheVariableAndTheMemoryEndsIdentical) {
-    Node n({"--scenario", source_path("scenarios/default.ini").string(), "--fault",
-            "reboot-on-write=5"});
+    Simnode n(source_path("scenarios/default.ini"), {"--fault", "reboot-on-write=5"});
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto before = snapshot_images(n.images.path());
@@ -100,8 +84,8 @@ std::vector<std::string> printed_restore(const std::string& text) {
 }
 
 TEST(LccConformSafety, ANodeThatNeverComesBackLeavesAWorkingRestoreCommand) {
-    Node n({"--scenario", source_path("scenarios/default.ini").string(), "--fault",
-            "abort-on-value=12000", "--watch-variable", "Node identity/User Name"});
+    Simnode n(source_path("scenarios/default.ini"),
+              {"--fault", "abort-on-value=12000", "--watch-variable", "Node identity/User Name"});
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto before = snapshot_images(n.images.path());
@@ -127,7 +111,7 @@ TEST(LccConformSafety, ANodeThatNeverComesBackLeavesAWorkingRestoreCommand) {
 }
 
 TEST(LccConformSafety, OneLineCdiHasACorrectXmlDeclaration) {
-    Node n({"--scenario", source_path("scenarios/one-line.ini").string()});
+    Simnode n(source_path("scenarios/one-line.ini"));
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto [code, text] = conform(run_args(n, out));
@@ -136,7 +120,7 @@ TEST(LccConformSafety, OneLineCdiHasACorrectXmlDeclaration) {
 }
 
 TEST(LccConformSafety, IoBoardScenarioHasNoFalseFailure) {
-    Node n({"--scenario", source_path("scenarios/io-board.ini").string()});
+    Simnode n(source_path("scenarios/io-board.ini"));
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto before = snapshot_images(n.images.path());

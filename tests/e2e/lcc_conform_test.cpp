@@ -21,21 +21,6 @@ namespace {
 namespace fs = std::filesystem;
 constexpr const char* kNode = "05.01.01.01.22.00";
 
-/// A simnode program serving one scenario on an ephemeral port; killed when destroyed.
-struct Simnode {
-    TempDir images{"lcc-conform-e2e-img"};
-    std::unique_ptr<Child> child;
-    std::uint16_t port = 0;
-
-    explicit Simnode(const fs::path& scenario) {
-        child = Child::spawn(SIMNODE_PATH, {"--scenario", scenario.string(), "--listen",
-                                            "127.0.0.1:0", "--image-dir", images.str()});
-        if (!child) return;
-        if (auto p = child->wait_listening()) port = *p;
-    }
-    std::string connect() const { return "127.0.0.1:" + std::to_string(port); }
-};
-
 TEST(LccConformE2e, DefaultScenarioPassesWithValidJsonAndJunit) {
     Simnode sim(source_path("scenarios/default.ini"));
     ASSERT_NE(sim.port, 0) << "simnode did not start";

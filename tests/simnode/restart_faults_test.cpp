@@ -282,15 +282,6 @@ protected:
         c.image_dir.clear();
         return c;
     }
-    std::vector<std::uint8_t> served_cdi() {
-        std::vector<std::uint8_t> got;
-        for (std::uint32_t a = 0;; a += 64) {
-            auto part = read(0xFF, a, 64);
-            got.insert(got.end(), part.begin(), part.end());
-            if (part.size() < 64) break;
-        }
-        return got;
-    }
 };
 
 TEST_F(ShippedScenarioTest, OpenMrnLikeCrashesOnAChangedVersionThenWipesItsSettings) {

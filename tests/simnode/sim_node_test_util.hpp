@@ -179,6 +179,16 @@ protected:
         return std::vector<std::uint8_t>(a.reply->begin() + static_cast<std::ptrdiff_t>(header),
                                          a.reply->end());
     }
+    /// Space 0xFF read in 64-byte steps up to the first short reply (the CDI as served).
+    std::vector<std::uint8_t> served_cdi() {
+        std::vector<std::uint8_t> got;
+        for (std::uint32_t a = 0;; a += 64) {
+            auto part = read(0xFF, a, 64);
+            got.insert(got.end(), part.begin(), part.end());
+            if (part.size() < 64) break;
+        }
+        return got;
+    }
     /// Read command in the form the fact sheet recommends (short for FD..FF).
     static std::vector<std::uint8_t> read_cmd(std::uint8_t space, std::uint32_t address,
                                               std::uint8_t count) {
