@@ -11,6 +11,7 @@
 
 #include "cdi/document.hpp"
 #include "cdi/layout.hpp"
+#include "conformance/run_timing.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "memory/snip.hpp"
 #include "openlcb/pip.hpp"
@@ -39,6 +40,8 @@ struct CheckContext {
     std::optional<memory::ConfigOptionsReply> options;  ///< Get Configuration Options reply
     std::map<std::uint8_t, SpaceInfo> spaces;           ///< Space Info per space asked
     unsigned temporary_rejects = 0;                     ///< temporary rejects retried so far
+    /// Windows derived from the node's latency (the protocol checks never wait less).
+    std::optional<RunTiming> timing;
     /// Called with the bytes read so far while the CDI downloads (progress display).
     std::function<void(std::size_t)> cdi_progress;
 };

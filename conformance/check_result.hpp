@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "conformance/run_timing.hpp"
+
 namespace olcb::conform {
 
 /// Result of a check; kWarn is a finding that does not fail the run.
@@ -50,6 +52,8 @@ struct NodeReport {
     std::string name;     ///< SNIP manufacturer + model + user name, for humans
     std::vector<CheckResult> checks;
     std::string restore_summary;  ///< "memory byte-identical to before" or what differs
+    /// The windows the run used, from the node's measured latency.
+    RunTiming timing;
     /// The run could not finish: the node never came back (its backup file is kept) or the
     /// node was gone before anything could be checked; the exit status is then 2.
     bool incomplete = false;

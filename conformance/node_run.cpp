@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 
 #include "cdi/parser.hpp"
@@ -14,6 +15,11 @@ namespace {
 
 // A CDI larger than this is not downloaded for the encoding checks (protocol checks judge it).
 constexpr std::uint32_t kMaxCdi = 4u << 20;
+// Round trips measured at the start of a node's run, and how long each may take.
+constexpr int kLatencySamples = 5;
+constexpr Duration kLatencyTimeout = std::chrono::seconds(2);
+// A node this slow gets a note on every failure that was a timeout.
+constexpr Duration kSlowNode = std::chrono::milliseconds(100);
 // Longest wait for the Initialization Complete after a deliberate Reset/Reboot.
 constexpr std::chrono::seconds kRebootWait{10};
 
@@ -43,6 +49,7 @@ NodeRun::NodeRun(Session& session, const NodeInfo& node, const RunOptions& optio
 NodeReport NodeRun::run() {
     losses_before_ = session_.link().losses();
     report_.node_id = node_.id.to_string();
+    measure();
     identify();
     protocol();
     if (writes_allowed() && load_layout()) {
@@ -56,6 +63,21 @@ NodeReport NodeRun::run() {
     }
     findings();
     return std::move(report_);
+}
+
+void NodeRun::measure() {
+    // A few round trips, before anything else: the answer and silence windows of the whole run
+    // follow the slowest of them (a node on a busy segment, a slow node, a loaded machine).
+    std::vector<Duration> samples;
+    for (int i = 0; i < kLatencySamples; ++i) {
+        auto rtt = session_.round_trip(node_, kLatencyTimeout);
+        if (!rtt) break;  // the checks will say what does not answer
+        samples.push_back(*rtt);
+    }
+    report_.timing = derive_timing(std::move(samples), options_.timeout_scale);
+    ctx_.timing = report_.timing;
+    session_.set_answer_timeout(report_.timing.answer);
+    session_.set_reply_timeout(report_.timing.reply);
 }
 
 void NodeRun::identify() {
@@ -216,8 +238,18 @@ bool NodeRun::take_lock() {
             return false;
         }
     }
-    // Lock/Reserve is optional: a node that rejects or ignores it (memory.lock says which) is
-    // written without it.
+    // Lock/Reserve is optional: a node that rejects or ignores it is written without it, but
+    // then nothing keeps a second tool from writing at the same time.
+    std::string how = r.timed_out ? "not answered" : "rejected";
+    if (!r.timed_out && r.error != 0) {
+        char code[8];
+        std::snprintf(code, sizeof code, "0x%04X", r.error);
+        how += std::string(" with ") + code;
+    }
+    report_.checks.push_back(
+        {"encoding.lock", Category::kEncoding, Status::kWarn,
+         "Lock/Reserve " + how + ": a second tool writing at the same time cannot be excluded",
+         "MemoryConfigurationS 4.15", "", ""});
     return true;
 }
 
@@ -380,7 +412,24 @@ void NodeRun::restore_and_verify() {
     report_.checks.push_back(std::move(restored));
 }
 
+void NodeRun::note_slow_node() {
+    const RunTiming& t = report_.timing;
+    if (!t.latency || t.worst < kSlowNode) return;
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(t.worst).count();
+    for (CheckResult& c : report_.checks) {
+        if (c.status != Status::kFail) continue;
+        const std::string text = c.message + " " + c.seen;
+        if (text.find("no answer") == std::string::npos &&
+            text.find("timed out") == std::string::npos &&
+            text.find("no reply") == std::string::npos)
+            continue;
+        c.message += " (a slow node: its Verify round trip took up to " + std::to_string(ms) +
+                     " ms at the start; --timeout-scale widens every window)";
+    }
+}
+
 void NodeRun::findings() {
+    note_slow_node();
     Link& link = session_.link();
     if (!report_.incomplete && link.up() && !link_lost()) {
         for (auto& c : short_read_checks(session_, node_, ctx_)) report_.checks.push_back(c);

@@ -29,6 +29,7 @@ public:
     NodeReport run();
 
 private:
+    void measure();
     void identify();
     void protocol();
     bool writes_allowed();
@@ -43,6 +44,7 @@ private:
     void after_incident();
     void restore_and_verify();
     void findings();
+    void note_slow_node();
 
     void skip_writes(const std::string& reason, const std::string& summary);
     EncodingHooks hooks();

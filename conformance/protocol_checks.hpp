@@ -12,8 +12,10 @@ namespace olcb::conform {
 
 /// Knobs of run_protocol_checks().
 struct ProtocolOptions {
-    /// Window in which silence (or an answer) is awaited.
+    /// Window in which silence is awaited (a node that stays silent this long is silent).
     Duration window = std::chrono::milliseconds(250);
+    /// Longest wait for an answer the node owes (checks end as soon as the answers are in).
+    Duration answer_window = std::chrono::seconds(1);
     /// Shortest span over which the node must send nothing unsolicited (the run counts).
     Duration quiet_window = std::chrono::milliseconds(1200);
     /// Largest reply latency that passes.

@@ -49,7 +49,21 @@ nlohmann::json node_json(const NodeReport& report) {
         checks.push_back(std::move(j));
     }
     Summary s = summarize({report});
+    const RunTiming& t = report.timing;
+    auto ms = [](Duration d) {
+        return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
+    };
+    nlohmann::json timing = {{"silence_ms", ms(t.silence)},
+                             {"answer_ms", ms(t.answer)},
+                             {"reply_ms", ms(t.reply)},
+                             {"quiet_ms", ms(t.quiet)},
+                             {"scale", t.scale}};
+    if (t.latency) {
+        timing["latency_ms"] = ms(*t.latency);
+        timing["worst_ms"] = ms(t.worst);
+    }
     return {{"node", {{"id", report.node_id}, {"name", report.name}}},
+            {"timing", std::move(timing)},
             {"checks", std::move(checks)},
             {"summary",
              {{"pass", s.pass},
@@ -100,6 +114,7 @@ void write_text(std::ostream& out, const NodeReport& report, bool colour) {
     out << "node " << report.node_id;
     if (!report.name.empty()) out << "  " << printable(report.name);
     out << '\n';
+    out << "timing: " << report.timing.describe() << '\n';
     for (const CheckResult& c : report.checks) out << format_check(c, colour) << '\n';
     if (!report.restore_summary.empty()) out << "restore: " << report.restore_summary << '\n';
     Summary s = summarize({report});
@@ -107,8 +122,16 @@ void write_text(std::ostream& out, const NodeReport& report, bool colour) {
         << " warnings, " << s.skip << " skipped\n";
 }
 
-std::string to_json(const std::vector<NodeReport>& reports) {
-    if (reports.size() == 1) return node_json(reports.front()).dump(2) + "\n";
+std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run) {
+    auto extras = [&](nlohmann::json& root) {
+        if (!run.error.empty()) root["error"] = printable(run.error);
+        if (!run.late_nodes.empty()) root["late_nodes"] = run.late_nodes;
+    };
+    if (reports.size() == 1) {
+        nlohmann::json root = node_json(reports.front());
+        extras(root);
+        return root.dump(2) + "\n";
+    }
     nlohmann::json nodes = nlohmann::json::array();
     for (const NodeReport& r : reports) nodes.push_back(node_json(r));
     Summary s = summarize(reports);
@@ -119,10 +142,11 @@ std::string to_json(const std::vector<NodeReport>& reports) {
                              {"warn", s.warn},
                              {"skip", s.skip},
                              {"total", s.total()}}}};
+    extras(root);
     return root.dump(2) + "\n";
 }
 
-std::string to_junit(const std::vector<NodeReport>& reports) {
+std::string to_junit(const std::vector<NodeReport>& reports, const RunInfo& run) {
     pugi::xml_document doc;
     auto decl = doc.append_child(pugi::node_declaration);
     decl.append_attribute("version") = "1.0";
@@ -166,6 +190,22 @@ std::string to_junit(const std::vector<NodeReport>& reports) {
                 .text()
                 .set(("restore: " + printable(r.restore_summary)).c_str());
         }
+    }
+    if (!run.error.empty()) {
+        // CI must see a red result, not "no tests", when the run could not check anything.
+        auto suite = suites.append_child("testsuite");
+        suite.append_attribute("name") = "lcc-conform";
+        suite.append_attribute("tests") = 1;
+        suite.append_attribute("failures") = 0;
+        suite.append_attribute("errors") = 1;
+        suite.append_attribute("skipped") = 0;
+        auto tc = suite.append_child("testcase");
+        tc.append_attribute("classname") = "run";
+        tc.append_attribute("name") = "run";
+        auto e = tc.append_child("error");
+        e.append_attribute("message") = printable(run.error).c_str();
+        e.append_attribute("type") = "run";
+        suites.append_attribute("errors") = 1;
     }
     std::ostringstream out;
     doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);

@@ -22,6 +22,12 @@ struct Summary {
     std::size_t total() const { return pass + fail + warn + skip; }
 };
 
+/// What a run says beyond its nodes' checks.
+struct RunInfo {
+    std::string error;                    ///< why the run ended early ("" when it did not)
+    std::vector<std::string> late_nodes;  ///< nodes that appeared during the run, not checked
+};
+
 /// The totals of some node reports.
 Summary summarize(const std::vector<NodeReport>& reports);
 
@@ -34,12 +40,14 @@ std::string format_check(const CheckResult& check, bool colour);
 void write_text(std::ostream& out, const NodeReport& report, bool colour);
 
 /// The JSON report: {"node":{...},"checks":[...],"summary":{...}} for one node; for several nodes
-/// {"nodes":[<one node object each>],"summary":{...}}.
-std::string to_json(const std::vector<NodeReport>& reports);
+/// (or none) {"nodes":[<one node object each>],"summary":{...}}; "error" and "late_nodes" are
+/// added when the run has them.
+std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run = {});
 
 /// The JUnit XML report: one <testsuite> per node, one <testcase> per check (classname = category,
 /// name = id), FAIL as <failure>, SKIP as <skipped>, WARN as a passing case with <system-out>.
-std::string to_junit(const std::vector<NodeReport>& reports);
+/// A run error is one more testsuite "lcc-conform" whose testcase "run" has an <error>.
+std::string to_junit(const std::vector<NodeReport>& reports, const RunInfo& run = {});
 
 /// Writes text to path; false with error set when the file cannot be written.
 bool write_file(const std::string& path, const std::string& text, std::string& error);

@@ -33,6 +33,8 @@ struct RunOptions {
     std::chrono::seconds node_wait{30};
     /// Protected settings, --exclude / --only, --write-protected.
     ProtectionRules protection;
+    /// Multiplies every answer and silence window (--timeout-scale).
+    double timeout_scale = 1.0;
     /// The command that restores a kept backup FILE later, e.g. "lcc-conform --serial DEV
     /// restore" (named in the message when the restore cannot happen now).
     std::string restore_command = "lcc-conform restore";

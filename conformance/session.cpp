@@ -140,15 +140,22 @@ void Session::observe_control(const CanFrame& f, TimePoint) {
         case can::ControlFrame::kCid7:
         case can::ControlFrame::kCid6:
         case can::ControlFrame::kCid5:
-        case can::ControlFrame::kCid4:
-            aliases_[src].cid_seen = true;
-            break;
-        case can::ControlFrame::kRid: {
+        case can::ControlFrame::kCid4: {
+            const int n = 7 - static_cast<int>(can::classify_control(f.id)) +
+                          static_cast<int>(can::ControlFrame::kCid7);
             AliasState& a = aliases_[src];
-            // A node defending its active alias sends RID without CIDs: not a reservation.
-            const bool active = a.owner && track(*a.owner).alias == src;
-            if (a.cid_seen || !active) a.rid_pending = true;
-            a.cid_seen = false;
+            const std::uint64_t bits = (f.id >> 12) & 0xFFF;
+            const int shift = (n - 4) * 12;
+            a.cid_bits = (a.cid_bits & ~(std::uint64_t{0xFFF} << shift)) | bits << shift;
+            a.cid_parts |= static_cast<std::uint8_t>(1u << (n - 4));
+            break;
+        }
+        case can::ControlFrame::kRid: {
+            // Only a RID after all four CIDs of one node ID ends a reservation: a RID that
+            // defends an alias (against a probe of ours or another tool's) follows one CID.
+            AliasState& a = aliases_[src];
+            if (a.cid_parts == 0x0F) a.rid_pending = NodeId(a.cid_bits);
+            a.cid_parts = 0;
             break;
         }
         case can::ControlFrame::kAmd: {
@@ -156,9 +163,9 @@ void Session::observe_control(const CanFrame& f, TimePoint) {
             auto id = NodeId::from_bytes({f.data.data(), 6});
             if (!id) break;
             AliasState& a = aliases_[src];
-            const bool reserved = a.rid_pending;
-            a.rid_pending = false;
-            a.cid_seen = false;
+            const bool reserved = a.rid_pending && *a.rid_pending == *id;
+            a.rid_pending.reset();
+            a.cid_parts = 0;
             set_alias(*id, src);
             if (NodeTrack* t = track_for(*id); t && reserved) ++t->reservations;
             break;
@@ -255,25 +262,36 @@ bool Session::start(Duration timeout) {
     return link_.run_until([this] { return link_.stack().initialized(); }, timeout);
 }
 
-std::vector<NodeInfo> Session::discover(Duration window) {
-    Message msg;
-    msg.mti = Mti::kVerifyNodeIdGlobal;
-    const std::size_t mark = messages_.size();
-    send(msg);
-    wait(window);
+std::vector<NodeInfo> Session::nodes_seen() const {
     std::vector<NodeInfo> out;
-    for (std::size_t i = mark; i < messages_.size(); ++i) {
-        const Message& m = messages_[i].message;
-        if (m.mti != Mti::kVerifiedNodeId && m.mti != Mti::kVerifiedNodeIdSimple) continue;
-        auto id = NodeId::from_bytes(m.payload);
-        if (!id) continue;
-        const bool dup =
-            std::any_of(out.begin(), out.end(), [&](const NodeInfo& n) { return n.id == *id; });
-        if (!dup) out.push_back({*id, m.source.alias});
+    const NodeId me = link_.stack().node_id();
+    for (const auto& [id, t] : tracks_) {
+        if (id != me && t.alias != 0) out.push_back({id, t.alias});
     }
-    std::sort(out.begin(), out.end(),
-              [](const NodeInfo& a, const NodeInfo& b) { return a.id < b.id; });
-    return out;
+    return out;  // a std::map: already sorted by node ID
+}
+
+std::vector<NodeInfo> Session::discover(Duration max, Duration quiet) {
+    Message verify;
+    verify.mti = Mti::kVerifyNodeIdGlobal;
+    const TimePoint deadline = link_.now() + max;
+    send(verify);
+    // Every Verified Node ID, Initialization Complete and AMD counts (the session tracks them).
+    // Done when no new node appeared for `quiet`; with none at all, ask again until `max`: on a
+    // busy machine or a big segment the first answers can take longer than any quiet period.
+    std::size_t known = nodes_seen().size();
+    while (link_.now() < deadline) {
+        const Duration left = deadline - link_.now();
+        const bool grew =
+            link_.run_until([&] { return nodes_seen().size() != known; }, std::min(quiet, left));
+        if (grew) {
+            known = nodes_seen().size();
+            continue;
+        }
+        if (known != 0) break;
+        send(verify);
+    }
+    return nodes_seen();
 }
 
 std::optional<NodeInfo> Session::find_node(NodeId id, Duration timeout) {
@@ -281,25 +299,51 @@ std::optional<NodeInfo> Session::find_node(NodeId id, Duration timeout) {
     msg.mti = Mti::kVerifyNodeIdGlobal;
     auto bytes = id.to_bytes();
     msg.payload.assign(bytes.begin(), bytes.end());
-    auto verified = [&](const Message& m) { return is_verified(m, id); };
     const std::size_t mark = messages_.size();
+    const std::uint32_t inits_before = track(id).initializations;
     std::optional<NodeInfo> found;
     auto answered = [&] {
         for (std::size_t i = mark; i < messages_.size(); ++i) {
-            if (verified(messages_[i].message)) {
+            if (is_verified(messages_[i].message, id)) {
                 found = NodeInfo{id, messages_[i].message.source.alias};
                 return true;
             }
         }
+        // A node finishing its alias reservation announces itself instead of answering.
+        if (const NodeTrack t = track(id);
+            t.alias != 0 && t.initializations != 0 && t.initializations != inits_before) {
+            found = NodeInfo{id, t.alias};
+            return true;
+        }
         return false;
     };
-    // Asked twice: a node still reserving its alias (just powered up, or a busy machine's
-    // simnode) ignores the first Verify.
-    send(msg);
-    if (link_.run_until(answered, timeout / 2)) return found;
-    send(msg);
-    link_.run_until(answered, timeout - timeout / 2);
+    // Asked again every half second: a node still reserving its alias (just powered up, or a
+    // TCP-server node logging in when we connect) ignores a Verify sent before it is Permitted.
+    const TimePoint deadline = link_.now() + timeout;
+    while (link_.now() < deadline) {
+        send(msg);
+        const Duration left = deadline - link_.now();
+        if (link_.run_until(answered, std::min<Duration>(left, std::chrono::milliseconds(500))))
+            return found;
+    }
     return found;
+}
+
+std::optional<Duration> Session::round_trip(const NodeInfo& node, Duration timeout) {
+    const std::size_t mark = messages_.size();
+    std::size_t scanned = mark;
+    auto answered = [&] {
+        for (; scanned < messages_.size(); ++scanned)
+            if (is_verified(messages_[scanned].message, node.id)) return true;
+        return false;
+    };
+    Message addressed;
+    addressed.mti = Mti::kVerifyNodeIdAddressed;
+    addressed.destination = NodeHandle{node.id, alias_of(node)};
+    const TimePoint sent = link_.now();
+    send(addressed);
+    if (!link_.run_until(answered, timeout)) return std::nullopt;
+    return link_.now() - sent;
 }
 
 SendStatus Session::send(Message msg) {
@@ -371,7 +415,7 @@ std::optional<ProtocolSet> Session::protocol_support(const NodeInfo& node) {
             }
             return false;
         },
-        std::chrono::seconds(1));
+        answer_timeout_);
     return out;
 }
 
@@ -397,7 +441,7 @@ std::optional<std::vector<std::uint8_t>> Session::snip_payload(const NodeInfo& n
             }
             return any && memory::is_complete_snip(bytes);
         },
-        std::chrono::seconds(1));
+        answer_timeout_);
     if (!any) return std::nullopt;
     return bytes;
 }

@@ -78,10 +78,17 @@ public:
 
     /// Waits for our alias and Initialization Complete.
     bool start(Duration timeout = std::chrono::seconds(2));
-    /// Sends Verify Node ID global and lists every node answering within window.
-    std::vector<NodeInfo> discover(Duration window = std::chrono::milliseconds(500));
-    /// Sends Verify Node ID global with id and waits for that node's Verified Node ID.
+    /// Sends Verify Node ID global (again while nothing answers) until no new node appeared for
+    /// `quiet`, at most `max`; every node seen (Verified Node ID, Initialization Complete, AMD).
+    std::vector<NodeInfo> discover(Duration max = std::chrono::seconds(3),
+                                   Duration quiet = std::chrono::milliseconds(500));
+    /// Every node seen so far on the segment (ours excepted), by node ID.
+    std::vector<NodeInfo> nodes_seen() const;
+    /// Sends Verify Node ID global with id every 500 ms until that node answers or announces
+    /// itself (Initialization Complete), at most `timeout`.
     std::optional<NodeInfo> find_node(NodeId id, Duration timeout = std::chrono::seconds(1));
+    /// Time from a Verify Node ID addressed to the node's Verified Node ID; nullopt on timeout.
+    std::optional<Duration> round_trip(const NodeInfo& node, Duration timeout);
 
     /// What the session has seen of node id (a default NodeTrack when never seen).
     NodeTrack track(NodeId id) const;
@@ -146,6 +153,12 @@ public:
 
     /// How long to wait for the reply datagram after Datagram Received OK.
     void set_reply_timeout(Duration d) { reply_timeout_ = d; }
+    /// How long to wait for the reply datagram after Datagram Received OK.
+    Duration reply_timeout() const { return reply_timeout_; }
+    /// How long to wait for a Protocol Support Reply or a SNIP reply.
+    void set_answer_timeout(Duration d) { answer_timeout_ = d; }
+    /// How long to wait for a Protocol Support Reply or a SNIP reply.
+    Duration answer_timeout() const { return answer_timeout_; }
 
 private:
     struct Event {
@@ -162,8 +175,11 @@ private:
     // What the session knows of one alias seen on the segment.
     struct AliasState {
         std::optional<NodeId> owner;  // node whose AMD, Initialization Complete or Verified came
-        bool cid_seen = false;        // CID from it since its last AMD: a reservation under way
-        bool rid_pending = false;     // RID of a reservation, not yet followed by AMD
+        // The node ID bits of the CID7..CID4 frames from it since its last AMD (a reservation
+        // under way carries its whole node ID in the four of them).
+        std::uint64_t cid_bits = 0;
+        std::uint8_t cid_parts = 0;         // bit n-4 set: CIDn seen
+        std::optional<NodeId> rid_pending;  // RID of a reservation by this node ID
     };
     using ReadKey = std::tuple<std::uint64_t, std::uint8_t, std::uint32_t>;
 
@@ -188,6 +204,7 @@ private:
     std::multimap<ReadKey, std::size_t> open_short_reads_;  // keyed by where the data ended
     std::map<std::pair<std::uint64_t, std::uint8_t>, std::uint64_t> reads_;
     Duration reply_timeout_ = std::chrono::milliseconds(3000);
+    Duration answer_timeout_ = std::chrono::seconds(1);
 };
 
 }  // namespace olcb::conform

@@ -1,8 +1,12 @@
 // lcc-conform: checks an OpenLCB node's CDI, SNIP, ACDI and memory configuration against the
 // standards, leaving its memory as it found it.
+#include <unistd.h>
+
 #include <boost/program_options.hpp>
+#include <chrono>
 #include <iostream>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,11 +25,23 @@ using namespace olcb::conform;
 namespace {
 
 constexpr int kUsage = 2;
-// The tool's own node ID: a self-assigned ID of the experimental range.
-constexpr std::uint64_t kToolId = 0x0501'0101'3F00ull;
+// The tool's own node IDs: self-assigned IDs of the experimental range 05.01.01.01.3F.01 to
+// 05.01.01.01.3F.FE; each run takes one of its own so concurrent runs on one bus don't collide.
+constexpr std::uint64_t kToolIdBase = 0x0501'0101'3F00ull;
 
-std::unique_ptr<Link> open_link(const po::variables_map& vm, std::string& error) {
-    NodeId tool(kToolId);
+NodeId pick_tool_id(const po::variables_map& vm, std::string& error) {
+    if (vm.count("tool-id")) {
+        auto id = NodeId::parse(vm["tool-id"].as<std::string>(), &error);
+        return id ? *id : NodeId{};
+    }
+    std::seed_seq seed{
+        static_cast<unsigned>(::getpid()),
+        static_cast<unsigned>(std::chrono::steady_clock::now().time_since_epoch().count())};
+    std::mt19937 rng(seed);
+    return NodeId(kToolIdBase + 1 + rng() % 0xFE);
+}
+
+std::unique_ptr<Link> open_link(const po::variables_map& vm, NodeId tool, std::string& error) {
     if (vm.count("connect")) {
         std::string spec = vm["connect"].as<std::string>();
         auto colon = spec.rfind(':');
@@ -78,23 +94,9 @@ std::string transport_arguments(const po::variables_map& vm) {
     return out;
 }
 
-void print_help(const po::options_description& opts) {
-    std::cout
-        << "usage: lcc-conform (--connect HOST:PORT | --serial DEVICE | --socketcan IF) "
-           "[options]\n"
-           "       lcc-conform backup --node ID FILE   save every CDI variable (JMRI format)\n"
-           "       lcc-conform restore FILE            put a safety or JMRI backup back\n\n"
-           "Checks every node found (or --node ID) and prints one line per check.\n"
-           "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
-           "error,\nthe link went down during the run, or a node did not come back (its backup "
-           "is kept\nand the restore command printed).\n\n"
-        << opts;
-}
-
-int main_checked(int argc, char** argv) {
-    po::options_description opts("options");
-    opts.add_options()("help,h", "this text")("connect", po::value<std::string>(),
-                                              "GridConnect TCP hub, host:port")(
+po::options_description transport_options() {
+    po::options_description o("where the node is");
+    o.add_options()("connect", po::value<std::string>(), "GridConnect TCP hub, host:port")(
         "serial", po::value<std::string>(), "USB/serial GridConnect adapter, e.g. /dev/ttyACM0")(
         "baud", po::value<unsigned>()->default_value(115200), "serial bit rate")(
         "flow-control", po::value<std::string>()->default_value("none"),
@@ -103,7 +105,17 @@ int main_checked(int argc, char** argv) {
         "link-wait", po::value<unsigned>()->default_value(60),
         "seconds to wait for a lost link to return before leaving the restore to you")(
         "node", po::value<std::string>(), "node ID to check (default: every node found)")(
-        "list", "list every node with its SNIP names, check nothing")(
+        "discover", po::value<double>()->default_value(3.0),
+        "seconds to look for nodes (or for --node, one still starting up)")(
+        "tool-id", po::value<std::string>(),
+        "lcc-conform's own node ID (default: one of 05.01.01.01.3F.01-FE, new each run)");
+    return o;
+}
+
+po::options_description check_options() {
+    po::options_description o("what to check");
+    o.add_options()("help,h", "this text")("list",
+                                           "list every node with its SNIP names, check nothing")(
         "read-only", "never write (encoding checks are skipped)")(
         "sample", po::value<std::size_t>()->default_value(3),
         "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
@@ -116,11 +128,189 @@ int main_checked(int argc, char** argv) {
         "also probe protected settings (read-only hints, 'do not change'), one at a time")(
         "node-wait", po::value<unsigned>()->default_value(30),
         "seconds to wait for a node that stopped answering or restarted")(
+        "timeout-scale", po::value<double>()->default_value(1.0),
+        "multiply every answer and silence window by F (slow links, loaded machines)")(
         "backup", po::value<std::string>(),
         "safety backup file (default ./lcc-conform-backup-<node>.txt)")(
-        "json", po::value<std::string>(), "write the JSON report to FILE")(
-        "junit", po::value<std::string>(), "write the JUnit XML report to FILE")(
+        "json", po::value<std::string>(), "write the JSON report to FILE (on every exit)")(
+        "junit", po::value<std::string>(), "write the JUnit XML report to FILE (on every exit)")(
         "no-color", "no colour even on a terminal");
+    return o;
+}
+
+void print_help(const po::options_description& opts) {
+    std::cout
+        << "usage: lcc-conform (--connect HOST:PORT | --serial DEVICE | --socketcan IF) "
+           "[options]\n"
+           "       lcc-conform backup --node ID FILE   save every CDI variable (JMRI format)\n"
+           "       lcc-conform restore [--node ID] FILE  put a safety or JMRI backup back\n\n"
+           "Checks every node found (or --node ID) and prints one line per check.\n"
+           "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
+           "error,\nthe link went down during the run, or a node did not come back (its backup "
+           "is kept\nand the restore command printed).\n\n"
+        << opts;
+}
+
+Duration seconds(double s) {
+    return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(s > 0 ? s : 0));
+}
+
+// The reports asked for, written on every way out of a check run (exit 2 included).
+class Reports {
+public:
+    explicit Reports(const po::variables_map& vm) {
+        if (vm.count("json")) json_ = vm["json"].as<std::string>();
+        if (vm.count("junit")) junit_ = vm["junit"].as<std::string>();
+    }
+    // Before anything is written to a node: a report path that cannot be written is a usage
+    // error now, not a lost report later.
+    bool writable(std::string& error) const {
+        for (const std::string& p : {json_, junit_}) {
+            if (!p.empty() && !write_file(p, "", error)) return false;
+        }
+        return true;
+    }
+    int finish(const std::vector<NodeReport>& reports, const RunInfo& run, int code) const {
+        std::string error;
+        if (!json_.empty() && !write_file(json_, to_json(reports, run), error)) {
+            std::cerr << "lcc-conform: " << error << "\n";
+            return kUsage;
+        }
+        if (!junit_.empty() && !write_file(junit_, to_junit(reports, run), error)) {
+            std::cerr << "lcc-conform: " << error << "\n";
+            return kUsage;
+        }
+        return code;
+    }
+    int fail(const std::string& why) const {
+        std::cerr << "lcc-conform: " << why << "\n";
+        RunInfo run;
+        run.error = why;
+        return finish({}, run, kUsage);
+    }
+
+private:
+    std::string json_, junit_;
+};
+
+std::vector<NodeInfo> find_nodes(Session& session, const po::variables_map& vm,
+                                 std::string& error) {
+    const Duration discover = seconds(vm["discover"].as<double>());
+    if (!vm.count("node")) {
+        auto nodes = session.discover(discover);
+        if (nodes.empty()) error = "no node answered Verify Node ID";
+        return nodes;
+    }
+    auto id = NodeId::parse(vm["node"].as<std::string>(), &error);
+    if (!id) {
+        error = "--node: " + error;
+        return {};
+    }
+    auto found = session.find_node(*id, discover);
+    if (!found) {
+        error = "node " + id->to_string() + " does not answer";
+        return {};
+    }
+    return {*found};
+}
+
+void print_node_line(Session& session, const NodeInfo& n) {
+    std::cout << n.id.to_string();
+    if (auto p = session.snip_payload(n)) {
+        memory::Snip s = memory::decode_snip(*p);
+        std::cout << "  " << s.manufacturer << " | " << s.model << " | " << s.hardware_version
+                  << " | " << s.software_version << " | " << s.user_name << " | "
+                  << s.user_description;
+    }
+    std::cout << "\n";
+}
+
+int list_nodes(Session& session, std::vector<NodeInfo> nodes) {
+    // Nodes that appear while the others are asked for their names are listed too.
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+        print_node_line(session, nodes[i]);
+        for (const NodeInfo& seen : session.nodes_seen()) {
+            const bool known = std::any_of(nodes.begin(), nodes.end(),
+                                           [&](const NodeInfo& n) { return n.id == seen.id; });
+            if (!known) nodes.push_back(seen);
+        }
+    }
+    return 0;
+}
+
+RunOptions run_options(const po::variables_map& vm) {
+    RunOptions ro;
+    ro.read_only = vm.count("read-only") > 0;
+    ro.sample = vm["sample"].as<std::size_t>();
+    ro.blob = vm.count("blob") > 0;
+    ro.reboot = vm.count("reboot") > 0;
+    if (vm.count("backup")) ro.backup_path = vm["backup"].as<std::string>();
+    ro.link_wait = std::chrono::seconds(vm["link-wait"].as<unsigned>());
+    ro.node_wait = std::chrono::seconds(vm["node-wait"].as<unsigned>());
+    ro.timeout_scale = vm["timeout-scale"].as<double>();
+    if (vm.count("exclude")) ro.protection.exclude = vm["exclude"].as<std::vector<std::string>>();
+    if (vm.count("only")) ro.protection.only = vm["only"].as<std::vector<std::string>>();
+    ro.protection.write_protected = vm.count("write-protected") > 0;
+    ro.restore_command = "lcc-conform" + transport_arguments(vm) + " restore";
+    ro.progress = is_terminal(2);
+    return ro;
+}
+
+// Nodes seen during the run that were not checked (they appeared later); other lcc-conform
+// runs on the segment (the tool's own ID range) are not devices and are left out.
+std::vector<std::string> late_nodes(Session& session, const std::vector<NodeInfo>& checked) {
+    std::vector<std::string> out;
+    for (const NodeInfo& seen : session.nodes_seen()) {
+        if ((seen.id.value() & ~std::uint64_t{0xFF}) == kToolIdBase) continue;
+        const bool known = std::any_of(checked.begin(), checked.end(),
+                                       [&](const NodeInfo& n) { return n.id == seen.id; });
+        if (!known) out.push_back(seen.id.to_string());
+    }
+    return out;
+}
+
+int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes,
+                const po::variables_map& vm, const Reports& out) {
+    const RunOptions ro = run_options(vm);
+    const bool colour = is_terminal(1) && !vm.count("no-color");
+    ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
+        ProtocolOptions po_opts;
+        po_opts.read_only = ro.read_only;
+        return run_protocol_checks(s, n, po_opts, ctx);
+    };
+    install_stop_handlers();
+    std::vector<NodeReport> reports;
+    for (const NodeInfo& n : nodes) {
+        RunOptions one = ro;
+        if (nodes.size() > 1 && !ro.backup_path.empty()) {
+            one.backup_path = ro.backup_path + "." + n.id.to_string();
+        }
+        reports.push_back(run_node(session, n, one, protocol, std::cerr));
+        write_text(std::cout, reports.back(), colour);
+        if (stop_requested() || !link.up()) break;  // the next node cannot be reached either
+    }
+    RunInfo run;
+    run.late_nodes = late_nodes(session, nodes);
+    for (const std::string& id : run.late_nodes) {
+        std::cout << "node " << id << " appeared during the run (not checked)\n";
+    }
+    if (stop_requested()) {
+        std::cerr << "lcc-conform: interrupted; node memory restored (see the restore line)\n";
+        run.error = "interrupted";
+        return out.finish(reports, run, kUsage);
+    }
+    if (link.losses() != 0) {
+        run.error = "the link went down during the run (" + link.loss_reason() + ")";
+        std::cerr << "lcc-conform: " << run.error
+                  << "; the results are incomplete (see link.lost)\n";
+        return out.finish(reports, run, kUsage);
+    }
+    return out.finish(reports, run, exit_code(reports));
+}
+
+int main_checked(int argc, char** argv) {
+    po::options_description opts("options");
+    opts.add(transport_options()).add(check_options());
     po::options_description hidden;
     hidden.add_options()("args", po::value<std::vector<std::string>>(), "subcommand and file");
     po::options_description all;
@@ -141,7 +331,7 @@ int main_checked(int argc, char** argv) {
     }
     std::vector<std::string> args;
     if (vm.count("args")) args = vm["args"].as<std::vector<std::string>>();
-    std::string command = args.empty() ? "check" : args[0];
+    const std::string command = args.empty() ? "check" : args[0];
     if (command != "check" && command != "restore" && command != "backup") {
         std::cerr << "lcc-conform: unknown command '" << command << "' (see --help)\n";
         return kUsage;
@@ -154,18 +344,15 @@ int main_checked(int argc, char** argv) {
         std::cerr << "lcc-conform: backup wants --node ID\n";
         return kUsage;
     }
-
+    const Reports reports(vm);
     std::string error;
-    auto link = open_link(vm, error);
-    if (!link) {
-        std::cerr << "lcc-conform: " << error << "\n";
-        return kUsage;
-    }
+    if (command == "check" && !reports.writable(error)) return reports.fail(error);
+    const NodeId tool = pick_tool_id(vm, error);
+    if (tool.is_zero()) return reports.fail("--tool-id: " + error);
+    auto link = open_link(vm, tool, error);
+    if (!link) return reports.fail(error);
     Session session(*link);
-    if (!session.start()) {
-        std::cerr << "lcc-conform: could not join the network (no alias)\n";
-        return kUsage;
-    }
+    if (!session.start()) return reports.fail("could not join the network (no alias)");
 
     if (command == "backup") {
         return run_config_backup(session, vm["node"].as<std::string>(), args[1], std::cout,
@@ -175,92 +362,10 @@ int main_checked(int argc, char** argv) {
         const std::string node = vm.count("node") ? vm["node"].as<std::string>() : "";
         return run_restore(session, args[1], node, std::cout, std::cerr);
     }
-
-    std::vector<NodeInfo> nodes;
-    if (vm.count("node")) {
-        auto id = NodeId::parse(vm["node"].as<std::string>(), &error);
-        if (!id) {
-            std::cerr << "lcc-conform: --node: " << error << "\n";
-            return kUsage;
-        }
-        auto found = session.find_node(*id);
-        if (!found) {
-            std::cerr << "lcc-conform: node " << id->to_string() << " does not answer\n";
-            return kUsage;
-        }
-        nodes.push_back(*found);
-    } else {
-        nodes = session.discover();
-        if (nodes.empty()) {
-            std::cerr << "lcc-conform: no node answered Verify Node ID\n";
-            return kUsage;
-        }
-    }
-
-    if (vm.count("list")) {
-        for (const NodeInfo& n : nodes) {
-            std::cout << n.id.to_string();
-            if (auto p = session.snip_payload(n)) {
-                memory::Snip s = memory::decode_snip(*p);
-                std::cout << "  " << s.manufacturer << " | " << s.model << " | "
-                          << s.hardware_version << " | " << s.software_version << " | "
-                          << s.user_name << " | " << s.user_description;
-            }
-            std::cout << "\n";
-        }
-        return 0;
-    }
-
-    RunOptions ro;
-    ro.read_only = vm.count("read-only") > 0;
-    ro.sample = vm["sample"].as<std::size_t>();
-    ro.blob = vm.count("blob") > 0;
-    ro.reboot = vm.count("reboot") > 0;
-    if (vm.count("backup")) ro.backup_path = vm["backup"].as<std::string>();
-    ro.link_wait = std::chrono::seconds(vm["link-wait"].as<unsigned>());
-    ro.node_wait = std::chrono::seconds(vm["node-wait"].as<unsigned>());
-    if (vm.count("exclude")) ro.protection.exclude = vm["exclude"].as<std::vector<std::string>>();
-    if (vm.count("only")) ro.protection.only = vm["only"].as<std::vector<std::string>>();
-    ro.protection.write_protected = vm.count("write-protected") > 0;
-    ro.restore_command = "lcc-conform" + transport_arguments(vm) + " restore";
-    ro.progress = is_terminal(2);
-    bool colour = is_terminal(1) && !vm.count("no-color");
-
-    ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
-        ProtocolOptions po_opts;
-        po_opts.read_only = ro.read_only;
-        return run_protocol_checks(s, n, po_opts, ctx);
-    };
-    install_stop_handlers();
-    std::vector<NodeReport> reports;
-    for (const NodeInfo& n : nodes) {
-        RunOptions one = ro;
-        if (nodes.size() > 1 && !ro.backup_path.empty()) {
-            one.backup_path = ro.backup_path + "." + n.id.to_string();
-        }
-        reports.push_back(run_node(session, n, one, protocol, std::cerr));
-        write_text(std::cout, reports.back(), colour);
-        if (stop_requested()) break;
-        if (!link->up()) break;  // the next node cannot be reached either
-    }
-    if (vm.count("json") && !write_file(vm["json"].as<std::string>(), to_json(reports), error)) {
-        std::cerr << "lcc-conform: " << error << "\n";
-        return kUsage;
-    }
-    if (vm.count("junit") && !write_file(vm["junit"].as<std::string>(), to_junit(reports), error)) {
-        std::cerr << "lcc-conform: " << error << "\n";
-        return kUsage;
-    }
-    if (stop_requested()) {
-        std::cerr << "lcc-conform: interrupted; node memory restored (see the restore line)\n";
-        return kUsage;
-    }
-    if (link->losses() != 0) {
-        std::cerr << "lcc-conform: the link went down during the run (" << link->loss_reason()
-                  << "); the results are incomplete (see link.lost)\n";
-        return kUsage;
-    }
-    return exit_code(reports);
+    auto nodes = find_nodes(session, vm, error);
+    if (nodes.empty()) return reports.fail(error);
+    if (vm.count("list")) return list_nodes(session, nodes);
+    return check_nodes(session, *link, nodes, vm, reports);
 }
 
 }  // namespace

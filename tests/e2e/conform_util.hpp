@@ -59,15 +59,30 @@ struct Simnode {
     std::unique_ptr<Child> child;
     std::uint16_t port = 0;
 
-    /// Starts `--scenario scenario` plus `extra` options (e.g. {"--fault", "reboot-on-write=5"}).
-    explicit Simnode(const fs::path& scenario, std::vector<std::string> extra = {}) {
+    /// Starts `--scenario scenario` plus `extra` options (e.g. {"--fault", "reboot-on-write=5"});
+    /// a big scenario's fresh images may take `startup` to create.
+    explicit Simnode(const fs::path& scenario, std::vector<std::string> extra = {},
+                     milliseconds startup = milliseconds(10000)) {
         std::vector<std::string> args = {
             "--scenario",  scenario.string(), "--listen",  "127.0.0.1:0",
             "--image-dir", images.str(),      "--run-for", "300"};
         args.insert(args.end(), extra.begin(), extra.end());
         child = Child::spawn(SIMNODE_PATH, args);
         if (!child) return;
-        if (auto p = child->wait_listening()) port = *p;
+        if (auto p = child->wait_listening(startup)) port = *p;
+    }
+    /// Waits for the "N node(s) initialized" line: every node has its alias and answers.
+    bool wait_initialized(milliseconds timeout) {
+        const auto deadline = std::chrono::steady_clock::now() + timeout;
+        while (child) {
+            const auto left = std::chrono::duration_cast<milliseconds>(
+                deadline - std::chrono::steady_clock::now());
+            if (left.count() <= 0) return false;
+            auto line = child->wait_line("simnode: ", left);
+            if (!line) return false;
+            if (line->find(" initialized") != std::string::npos) return true;
+        }
+        return false;
     }
     /// HOST:PORT for --connect.
     std::string connect() const { return "127.0.0.1:" + std::to_string(port); }
