@@ -232,7 +232,9 @@ TEST(RejectCodeTest, OtherCodesFailQuotingTheCodeGot) {
               "write to read-only space 252 refused with 0x1041; the standard gives "
               "0x1083");
     for (const auto& r : results) {
-        if (r.id == "memory.readonly-refused") EXPECT_EQ(r.status, Status::kFail);
+        if (r.id == "memory.readonly-refused") {
+            EXPECT_EQ(r.status, Status::kFail);
+        }
     }
 }
 
