@@ -1,7 +1,10 @@
 #include "openlcb/tcp_hub_server.hpp"
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <deque>
+#include <optional>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -12,7 +15,10 @@ namespace olcb {
 
 namespace {
 using boost::asio::ip::tcp;
+using SteadyClock = std::chrono::steady_clock;
 constexpr std::size_t kReadChunk = 4096;
+// How often idle clients, slow readers and paused reads are looked at.
+constexpr auto kHousekeeping = std::chrono::milliseconds(100);
 }  // namespace
 
 struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
@@ -23,8 +29,16 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         std::array<char, kReadChunk> read_buf{};
         std::string pending;  // waiting for the next write
         std::string writing;  // owned by the write in flight
+        std::string remote;   // "HOST:PORT", for log lines
+        std::string address;  // HOST only: the per-address limit counts these
+        SteadyClock::time_point last_rx = SteadyClock::now();
+        std::optional<SteadyClock::time_point> congested_since;  // queue above the pause level
+        double tokens = 0;  // frames it may still send now (max_client_frames_per_second)
+        SteadyClock::time_point refilled_at = SteadyClock::now();
         bool write_active = false;
+        bool paused = false;  // no read outstanding: backpressure
         bool closed = false;
+        std::size_t held() const { return pending.size() + writing.size(); }
     };
 
     class LocalPort final : public Transport {
@@ -48,7 +62,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     };
 
     Impl(boost::asio::io_context& io_context, Options opts)
-        : io(io_context), acceptor(io_context), options(opts) {}
+        : io(io_context), acceptor(io_context), timer(io_context), options(opts) {}
 
     void accept() {
         acceptor.async_accept(
@@ -60,18 +74,51 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     }
 
     void add_client(tcp::socket socket) {
-        if (clients.size() >= options.max_clients) {
-            ++stats.clients_rejected;
-            boost::system::error_code ignored;
+        boost::system::error_code ignored;
+        const std::string remote = remote_of(socket);
+        const std::string address = remote.substr(0, remote.rfind(':'));
+        const auto same = static_cast<std::size_t>(
+            std::count_if(clients.begin(), clients.end(),
+                          [&](const auto& c) { return !c->closed && c->address == address; }));
+        if (clients.size() >= options.max_clients || same >= options.max_clients_per_address) {
+            const bool full = clients.size() >= options.max_clients;
+            ++(full ? stats.clients_rejected : stats.clients_rejected_per_address);
+            log("refused client " + remote + ": " +
+                (full ? std::to_string(clients.size()) + " clients connected (max-clients " +
+                            std::to_string(options.max_clients) + ")"
+                      : std::to_string(same) + " connections from " + address +
+                            " already (max-clients-per-address " +
+                            std::to_string(options.max_clients_per_address) + ")"));
             socket.close(ignored);
             return;
         }
-        boost::system::error_code ignored;
         socket.set_option(tcp::no_delay(true), ignored);
+        if (options.socket_send_buffer_bytes > 0) {
+            socket.set_option(boost::asio::socket_base::send_buffer_size(
+                                  static_cast<int>(options.socket_send_buffer_bytes)),
+                              ignored);
+        }
         auto client = std::make_shared<Client>(std::move(socket));
+        client->remote = remote;
+        client->address = address;
+        client->tokens = options.max_client_frames_per_second;  // a full second's burst
         clients.push_back(client);
         ++stats.clients_accepted;
         read(client);
+        if (on_connect) on_connect(remote);
+    }
+
+    void log(const std::string& line) {
+        if (on_log) on_log(line);
+    }
+
+    static std::string remote_of(const tcp::socket& socket) {
+        boost::system::error_code ec;
+        const auto endpoint = socket.remote_endpoint(ec);
+        if (ec) return "?";
+        const auto address = endpoint.address();
+        const std::string host = address.to_string();
+        return (address.is_v6() ? "[" + host + "]" : host) + ":" + std::to_string(endpoint.port());
     }
 
     void read(const std::shared_ptr<Client>& client) {
@@ -86,13 +133,23 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
                     return;
                 }
                 const auto errors_before = client->parser.errors();
+                const auto frames_before = client->parser.frames();
                 client->parser.feed(std::string_view(client->read_buf.data(), n),
                                     [&](const CanFrame& frame) {
                                         ++self->stats.frames_received;
                                         self->relay(Source{client.get(), nullptr}, frame);
                                     });
                 self->stats.parse_errors += client->parser.errors() - errors_before;
-                if (!client->closed) self->read(client);
+                client->last_rx = SteadyClock::now();
+                if (client->closed) return;
+                self->charge(*client, client->parser.frames() - frames_before);
+                if (client->tokens < 0 || self->congested(client->last_rx, self->pause_level())) {
+                    // Its bytes wait in the kernel; TCP slows the sender until the queues drain.
+                    client->paused = true;
+                    ++self->stats.read_pauses;
+                    return;
+                }
+                self->read(client);
             });
     }
 
@@ -119,13 +176,17 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
             if (client.get() == source.client || client->closed) continue;
             if (client->pending.size() + line.size() > options.max_client_queue_bytes) {
                 ++stats.clients_dropped_slow;
+                log("dropped client " + client->remote + ": it reads too slowly (" +
+                    std::to_string(client->held()) + " bytes waiting for it)");
                 close(*client);
                 continue;
             }
             client->pending += line;
             stats.queued_bytes += line.size();
-            const std::size_t held = client->pending.size() + client->writing.size();
+            const std::size_t held = client->held();
             if (held > stats.peak_client_queue_bytes) stats.peak_client_queue_bytes = held;
+            if (held > pause_level() && !client->congested_since)
+                client->congested_since = SteadyClock::now();
             write(client);
         }
         // Index loop: a local handler may add local endpoints.
@@ -151,8 +212,87 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
                     self->sweep();
                     return;
                 }
+                if (client->held() <= self->pause_level() / 2) client->congested_since.reset();
                 self->write(client);
+                self->resume_if_clear(SteadyClock::now());
             });
+    }
+
+    // The token bucket of max_client_frames_per_second: refilled by elapsed time, then charged.
+    void charge(Client& c, std::uint64_t frames) {
+        const double rate = options.max_client_frames_per_second;
+        if (rate <= 0) return;
+        refill(c, SteadyClock::now());
+        c.tokens -= static_cast<double>(frames);
+    }
+
+    void refill(Client& c, SteadyClock::time_point now) const {
+        const double rate = options.max_client_frames_per_second;
+        if (rate <= 0) return;
+        const double elapsed = std::chrono::duration<double>(now - c.refilled_at).count();
+        c.tokens = std::min(rate, c.tokens + elapsed * rate);
+        c.refilled_at = now;
+    }
+
+    std::size_t pause_level() const {
+        return std::min(options.pause_above_bytes, options.max_client_queue_bytes / 2);
+    }
+
+    bool slow_reader(const Client& c, SteadyClock::time_point now) const {
+        return c.congested_since && now - *c.congested_since >= options.slow_reader_grace;
+    }
+
+    // True while a client that still keeps up has more than `level` bytes queued.
+    bool congested(SteadyClock::time_point now, std::size_t level) const {
+        return std::any_of(clients.begin(), clients.end(), [&](const auto& c) {
+            return !c->closed && c->held() > level && !slow_reader(*c, now);
+        });
+    }
+
+    // Reads resume once every queue is down to half the pause level: without the gap a flood
+    // would keep the slowest reader's queue at the pause level, and it would look stalled.
+    void resume_if_clear(SteadyClock::time_point now) {
+        if (stopped || congested(now, pause_level() / 2)) return;
+        for (std::size_t i = 0; i < clients.size(); ++i) {
+            const auto client = clients[i];  // read() may not change clients, but be safe
+            if (!client->paused || client->closed) continue;
+            if (options.max_client_frames_per_second > 0) {
+                refill(*client, now);
+                if (client->tokens < 0) continue;  // over its rate: the next tick looks again
+            }
+            client->paused = false;
+            read(client);
+        }
+    }
+
+    void housekeeping() {
+        timer.expires_after(kHousekeeping);
+        timer.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+            if (ec || self->stopped) return;
+            self->check_clients(SteadyClock::now());
+            self->housekeeping();
+        });
+    }
+
+    void check_clients(SteadyClock::time_point now) {
+        for (const auto& client : clients) {
+            if (client->closed) continue;
+            if (client->congested_since &&
+                now - *client->congested_since >= options.slow_reader_timeout) {
+                ++stats.clients_dropped_slow;
+                log("dropped client " + client->remote + ": it has not read its traffic for " +
+                    std::to_string(options.slow_reader_timeout.count()) + " ms");
+                close(*client);
+            } else if (options.idle_timeout.count() > 0 && !client->paused &&
+                       now - client->last_rx >= options.idle_timeout) {
+                ++stats.clients_dropped_idle;
+                log("closed client " + client->remote + ": idle for " +
+                    std::to_string(options.idle_timeout.count()) + " ms (idle-timeout)");
+                close(*client);
+            }
+        }
+        sweep();
+        resume_if_clear(now);
     }
 
     void close(Client& client) {
@@ -176,18 +316,22 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         stopped = true;
         boost::system::error_code ignored;
         acceptor.close(ignored);
+        timer.cancel();
         for (const auto& client : clients) close(*client);
         clients.clear();
     }
 
     boost::asio::io_context& io;
     tcp::acceptor acceptor;
+    boost::asio::steady_timer timer;
     Options options;
     Stats stats;
     std::vector<std::shared_ptr<Client>> clients;
     std::vector<std::unique_ptr<LocalPort>> locals;
     std::deque<std::pair<Source, CanFrame>> relay_queue;
     std::string line;
+    ConnectionHandler on_connect;
+    LogHandler on_log;
     bool relaying = false;
     bool stopped = false;
 };
@@ -216,6 +360,7 @@ boost::system::error_code TcpHubServer::listen(const std::string& address, std::
     }
     impl_->stopped = false;
     impl_->accept();
+    impl_->housekeeping();
     return {};
 }
 
@@ -229,6 +374,14 @@ std::uint16_t TcpHubServer::port() const {
 Transport& TcpHubServer::add_local_endpoint(FrameHandler handler) {
     impl_->locals.push_back(std::make_unique<Impl::LocalPort>(*impl_, std::move(handler)));
     return *impl_->locals.back();
+}
+
+void TcpHubServer::set_connection_handler(ConnectionHandler handler) {
+    impl_->on_connect = std::move(handler);
+}
+
+void TcpHubServer::set_log_handler(LogHandler handler) {
+    impl_->on_log = std::move(handler);
 }
 
 void TcpHubServer::stop() {

@@ -1,8 +1,10 @@
 // GridConnect-over-TCP hub: every TCP client and every local endpoint form one CAN segment.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -15,6 +17,24 @@ namespace olcb {
 struct TcpHubOptions {
     std::size_t max_client_queue_bytes = 256 * 1024;  ///< output bytes waiting per client
     std::size_t max_clients = 64;                     ///< connections beyond are closed
+    std::size_t max_clients_per_address = 48;         ///< per remote address; beyond are closed
+    /// A client's output queue above this pauses reading from every client until it drains
+    /// (capped at half of max_client_queue_bytes).
+    std::size_t pause_above_bytes = 64 * 1024;
+    /// A queue above the pause level this long marks its client a slow reader: it no longer
+    /// pauses the others, and is dropped when its queue overflows.
+    std::chrono::milliseconds slow_reader_grace{500};
+    /// A slow reader whose queue stays above the pause level this long is dropped.
+    std::chrono::milliseconds slow_reader_timeout{5000};
+    /// SO_SNDBUF of each client socket (0 = the system's): a small one keeps a flood in the
+    /// hub's queues, where backpressure sees it, instead of the kernel's.
+    std::size_t socket_send_buffer_bytes = 0;
+    /// Frames per second one client may send, with a burst of one second's worth (0 = no
+    /// limit); beyond, its reads pause (simnode uses 20,000: far above what a CAN segment
+    /// carries, ~8,000/s at 1 Mbit/s, low enough that every reader keeps up with a flooder).
+    std::uint32_t max_client_frames_per_second = 0;
+    /// A client that sent nothing this long is closed (0 = never).
+    std::chrono::milliseconds idle_timeout{0};
 };
 
 /// A TCP server joining its clients (and local endpoints) into one virtual CAN segment.
@@ -22,9 +42,13 @@ struct TcpHubOptions {
 /// Frames read from a client are parsed and re-formatted (uppercase, 8 ID digits, '\n' after
 /// ';') before they go to every other client and local endpoint, never back to the sender.
 /// Garbage and over-long frame text are skipped by the GridConnect parser (bounded, counted).
-/// Slow clients: each client has a bounded output queue; a client whose queue would exceed
-/// Options::max_client_queue_bytes is disconnected at once (dropping single frames would
-/// silently corrupt multi-frame messages; a dropped client notices and can reconnect).
+/// Backpressure: while a client's output queue is above Options::pause_above_bytes the hub stops
+/// reading from every client (TCP then slows the senders, a flooding one first), so a fast
+/// sender is slowed instead of its readers being dropped. A client that stays congested past
+/// slow_reader_grace is a slow reader: it stops pausing the others, and is disconnected when its
+/// queue would exceed max_client_queue_bytes or it stays congested past slow_reader_timeout
+/// (dropping single frames would silently corrupt multi-frame messages; a dropped client
+/// notices and can reconnect). Every refusal and drop is reported to the log handler.
 class TcpHubServer {
 public:
     /// Limits of one hub.
@@ -35,11 +59,19 @@ public:
         std::uint64_t clients_accepted = 0;
         std::uint64_t clients_rejected = 0;      ///< refused because max_clients were connected
         std::uint64_t clients_dropped_slow = 0;  ///< disconnected for an overflowing queue
-        std::uint64_t frames_received = 0;       ///< valid frames from clients and local endpoints
-        std::uint64_t parse_errors = 0;          ///< invalid or over-long frame texts from clients
-        std::size_t queued_bytes = 0;            ///< output bytes currently held for all clients
+        std::uint64_t clients_rejected_per_address = 0;  ///< refused: too many from one address
+        std::uint64_t clients_dropped_idle = 0;          ///< closed after idle_timeout
+        std::uint64_t read_pauses = 0;      ///< times a client's reading was paused (backpressure)
+        std::uint64_t frames_received = 0;  ///< valid frames from clients and local endpoints
+        std::uint64_t parse_errors = 0;     ///< invalid or over-long frame texts from clients
+        std::size_t queued_bytes = 0;       ///< output bytes currently held for all clients
         std::size_t peak_client_queue_bytes = 0;
     };
+
+    /// Called after a client was accepted, with its remote address as "HOST:PORT".
+    using ConnectionHandler = std::function<void(const std::string& remote)>;
+    /// Receives one line per refused or dropped client (without a trailing newline).
+    using LogHandler = std::function<void(const std::string& line)>;
 
     /// A hub that runs its I/O on `io`.
     explicit TcpHubServer(boost::asio::io_context& io, Options options = {});
@@ -54,6 +86,10 @@ public:
     std::uint16_t port() const;
     /// Adds an in-process port on the segment; it lives as long as the hub.
     Transport& add_local_endpoint(FrameHandler handler = {});
+    /// Sets the handler called for every accepted client (replaces any previous one).
+    void set_connection_handler(ConnectionHandler handler);
+    /// Sets the handler of the hub's log lines (replaces any previous one).
+    void set_log_handler(LogHandler handler);
     /// Closes the listener and every client; local endpoints stop receiving.
     void stop();
     /// Number of connected clients.

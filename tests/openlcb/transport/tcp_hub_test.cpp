@@ -150,6 +150,7 @@ TEST_F(TcpHubTest, LowercaseAndShortIdFramesAreRelayedReformatted) {
 TEST_F(TcpHubTest, StalledClientIsDroppedWhileOthersKeepReceiving) {
     hub.reset();
     options.max_client_queue_bytes = 64 * 1024;
+    options.max_client_frames_per_second = 0;  // 10 MB from one client: no rate limit here
     SetUp();
     RawClient stalled(io, hub->port());  // connects, never reads
     stalled.socket.set_option(boost::asio::socket_base::receive_buffer_size(4096));

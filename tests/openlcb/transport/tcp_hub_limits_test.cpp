@@ -1,0 +1,189 @@
+// The hub under attack, on loopback with bounded loops: a flooding client is slowed (its reads
+// paused) instead of its readers being dropped; limits per address and in total; idle clients
+// and slow readers are closed, each with a log line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "openlcb/gridconnect.hpp"
+#include "openlcb/tcp_client.hpp"
+#include "openlcb/tcp_hub_server.hpp"
+#include "openlcb/transport/tcp_test_util.hpp"
+
+namespace olcb {
+namespace {
+
+using boost::asio::ip::tcp;
+using std::chrono::milliseconds;
+using test::frame_seq;
+using test::numbered_frame;
+using test::run_until;
+
+struct Raw {
+    Raw(boost::asio::io_context& io, std::uint16_t port) : socket(io) {
+        socket.connect(tcp::endpoint(boost::asio::ip::address_v4::loopback(), port));
+    }
+    void start_reading() {
+        socket.async_read_some(boost::asio::buffer(buf),
+                               [this](const boost::system::error_code& ec, std::size_t n) {
+                                   if (ec) {
+                                       closed = true;
+                                       return;
+                                   }
+                                   received += n;
+                                   start_reading();
+                               });
+    }
+    tcp::socket socket;
+    std::array<char, 4096> buf{};
+    std::size_t received = 0;
+    bool closed = false;
+};
+
+class TcpHubLimitsTest : public ::testing::Test {
+protected:
+    void start() {
+        hub = std::make_unique<TcpHubServer>(io, options);
+        hub->set_log_handler([this](const std::string& line) { log.push_back(line); });
+        ASSERT_FALSE(hub->listen("127.0.0.1", 0));
+    }
+    bool logged(std::string_view part) const {
+        for (const auto& l : log) {
+            if (l.find(part) != std::string::npos) return true;
+        }
+        return false;
+    }
+    boost::asio::io_context io;
+    TcpHubServer::Options options;
+    std::unique_ptr<TcpHubServer> hub;
+    std::vector<std::string> log;
+};
+
+// A reader that takes at most 4 KiB per millisecond: slower than a flood, but it keeps up.
+struct PacedReader {
+    PacedReader(boost::asio::io_context& io, std::uint16_t port) : raw(io, port), timer(io) {}
+    void start() {
+        raw.socket.async_read_some(boost::asio::buffer(buf),
+                                   [this](const boost::system::error_code& ec, std::size_t n) {
+                                       if (ec) {
+                                           raw.closed = true;
+                                           return;
+                                       }
+                                       received += n;
+                                       timer.expires_after(milliseconds(1));
+                                       timer.async_wait([this](auto) { start(); });
+                                   });
+    }
+    Raw raw;
+    boost::asio::steady_timer timer;
+    std::array<char, 4096> buf{};
+    std::size_t received = 0;
+};
+
+TEST_F(TcpHubLimitsTest, AFloodIsSlowedAndNoReaderIsDropped) {
+    options.socket_send_buffer_bytes = 16 * 1024;
+    options.max_client_frames_per_second = 0;  // the queues alone must slow it
+    start();
+    constexpr int kReaders = 4;
+    std::vector<std::unique_ptr<PacedReader>> readers;
+    for (int i = 0; i < kReaders; ++i) {
+        readers.push_back(std::make_unique<PacedReader>(io, hub->port()));
+        readers.back()->start();
+    }
+    Raw flooder(io, hub->port());
+    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == kReaders + 1; }));
+
+    // ~3 MB of valid frames, written as fast as the hub takes them.
+    std::string text;
+    for (std::uint32_t i = 0; i < 100'000; ++i) {
+        text += gridconnect::format(numbered_frame(0x100, i));
+        text += '\n';
+    }
+    bool written = false;
+    boost::asio::async_write(flooder.socket, boost::asio::buffer(text),
+                             [&](const boost::system::error_code& ec, std::size_t) {
+                                 EXPECT_FALSE(ec);
+                                 written = true;
+                             });
+    ASSERT_TRUE(run_until(
+        io,
+        [&] {
+            return written && std::all_of(readers.begin(), readers.end(), [&](const auto& r) {
+                       return r->received == text.size() || r->raw.closed;
+                   });
+        },
+        std::chrono::seconds(60)));
+    const auto stats = hub->stats();
+    EXPECT_EQ(stats.clients_dropped_slow, 0u) << (log.empty() ? "" : log.front());
+    EXPECT_GT(stats.read_pauses, 0u) << "the flood was never slowed";
+    EXPECT_LE(stats.peak_client_queue_bytes, 2 * options.pause_above_bytes);
+    for (const auto& r : readers) {
+        EXPECT_FALSE(r->raw.closed);
+        EXPECT_EQ(r->received, text.size());
+    }
+}
+
+TEST_F(TcpHubLimitsTest, ConnectionsPerAddressAndInTotalAreLimited) {
+    options.max_clients_per_address = 2;
+    options.max_clients = 3;
+    start();
+    Raw a(io, hub->port()), b(io, hub->port()), c(io, hub->port());
+    c.start_reading();
+    b.start_reading();
+    a.start_reading();
+    ASSERT_TRUE(run_until(io, [&] { return a.closed || b.closed || c.closed; }));
+    EXPECT_EQ(hub->stats().clients_rejected_per_address, 1u);
+    EXPECT_EQ(hub->client_count(), 2u);
+    EXPECT_TRUE(logged("(max-clients-per-address 2)")) << (log.empty() ? "" : log.front());
+    EXPECT_TRUE(logged("refused client 127.0.0.1:"));
+}
+
+TEST_F(TcpHubLimitsTest, IdleClientsAreClosedTalkersStay) {
+    options.idle_timeout = milliseconds(300);
+    start();
+    Raw idle(io, hub->port());
+    Raw talker(io, hub->port());
+    idle.start_reading();
+    talker.start_reading();
+    const std::string frame = gridconnect::format(numbered_frame(0x101, 1)) + "\n";
+    const auto t0 = std::chrono::steady_clock::now();
+    ASSERT_TRUE(run_until(io, [&] {
+        boost::asio::write(talker.socket, boost::asio::buffer(frame));
+        io.run_for(milliseconds(50));
+        return idle.closed;
+    }));
+    EXPECT_GE(std::chrono::steady_clock::now() - t0, milliseconds(300));
+    EXPECT_FALSE(talker.closed);
+    EXPECT_EQ(hub->stats().clients_dropped_idle, 1u);
+    EXPECT_TRUE(logged("idle for 300 ms (idle-timeout)"));
+}
+
+TEST_F(TcpHubLimitsTest, ASlowReaderIsDroppedNotItsPeers) {
+    options.max_client_queue_bytes = 64 << 20;  // never overflows: the timeout must act
+    options.slow_reader_timeout = milliseconds(600);
+    start();
+    Raw stalled(io, hub->port());  // never reads
+    stalled.socket.set_option(boost::asio::socket_base::receive_buffer_size(4096));
+    Raw reader(io, hub->port());
+    reader.start_reading();
+    TcpClient sender(io, "127.0.0.1", hub->port());
+    sender.start();
+    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 3 && sender.connected(); }));
+    std::uint32_t seq = 0;
+    ASSERT_TRUE(run_until(io, [&] {
+        for (int i = 0; i < 2000; ++i) sender.send(numbered_frame(0x100, seq++));
+        io.run_for(milliseconds(5));
+        return hub->stats().clients_dropped_slow == 1;
+    }));
+    EXPECT_TRUE(logged("has not read its traffic for 600 ms"));
+    EXPECT_FALSE(reader.closed);
+    EXPECT_EQ(sender.stats().disconnects, 0u);
+    EXPECT_EQ(hub->client_count(), 2u);
+}
+
+}  // namespace
+}  // namespace olcb
