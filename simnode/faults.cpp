@@ -11,6 +11,7 @@ constexpr std::uint32_t kDefaultRejectTemporary = 3;
 constexpr std::chrono::milliseconds kDefaultUnsolicitedPeriod{1000};
 constexpr std::chrono::milliseconds kDefaultAbortSilence{3000};
 constexpr std::uint32_t kDefaultRebootOnWrite = 1;
+constexpr std::chrono::milliseconds kDefaultLatency{200};
 // Bounds keep a typo from stalling a node for days or rejecting forever.
 constexpr std::uint32_t kMaxDelayMs = 600'000;
 constexpr std::uint32_t kMaxCount = 1'000'000;
@@ -97,6 +98,26 @@ constexpr NumberFault kNumberFaults[] = {
      [](FaultSet& f, std::uint32_t v) { f.reboot_on_write = v; }},
 };
 
+// latency=MS[:JITTER]: both whole milliseconds; MS >= 1 unless a jitter is given.
+bool apply_latency(std::optional<std::string_view> value, FaultSet& faults, std::string& error) {
+    std::optional<std::uint32_t> ms = kDefaultLatency.count(), jitter = 0;
+    if (value) {
+        const auto colon = value->find(':');
+        ms = parse_uint(value->substr(0, colon), kMaxDelayMs);
+        if (colon != std::string_view::npos)
+            jitter = parse_uint(value->substr(colon + 1), kMaxDelayMs);
+    }
+    if (!ms || !jitter || *ms + *jitter == 0) {
+        error = "fault 'latency': value '" + std::string(value.value_or("")) +
+                "' is not MS or MS:JITTER (whole milliseconds 0.." + std::to_string(kMaxDelayMs) +
+                ", not both 0)";
+        return false;
+    }
+    faults.latency = Ms(*ms);
+    faults.latency_jitter = Ms(*jitter);
+    return true;
+}
+
 bool apply_pip_missing(std::optional<std::string_view> value, FaultSet& faults,
                        std::string& error) {
     if (!value) {
@@ -145,6 +166,7 @@ bool apply(std::string_view item, FaultSet& faults, std::string& error) {
         return true;
     }
     if (name == "pip-missing-bit") return apply_pip_missing(value, faults, error);
+    if (name == "latency") return apply_latency(value, faults, error);
     error = "unknown fault '" + std::string(name) + "' (known: ";
     bool first = true;
     for (const auto& f : fault_catalog()) {
@@ -167,6 +189,11 @@ std::optional<std::string> name_if_set(const FaultSet& f, std::string_view name)
         if (name != n.name) continue;
         if (n.get(f) == 0) return std::nullopt;
         return std::string(name) + "=" + std::to_string(n.get(f));
+    }
+    if (name == "latency" && (f.latency.count() > 0 || f.latency_jitter.count() > 0)) {
+        std::string text = "latency=" + std::to_string(f.latency.count());
+        if (f.latency_jitter.count() > 0) text += ":" + std::to_string(f.latency_jitter.count());
+        return text;
     }
     if (name == "pip-missing-bit" && f.pip_missing) {
         for (const auto& [text, bit] : kPipBits) {
@@ -222,6 +249,8 @@ const std::vector<FaultInfo>& fault_catalog() {
          "spaces 251/252 return one ACDI field per read, 1 byte off a field start"},
         {"unknown-space-0x1041", "", "read/write of an unknown space rejected 0x1041, not 0x1081"},
         {"readonly-0x1041", "", "write to a read-only space rejected 0x1041, not 0x1083"},
+        {"latency", "MS[:JITTER] (default 200)",
+         "every answer sent MS ms (plus 0..JITTER ms, random) after its request, in order"},
     };
     return catalog;
 }

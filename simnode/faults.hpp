@@ -55,6 +55,10 @@ struct FaultSet {
     bool field_reads_only = false;      ///< 251/252 reads return one ACDI field (or 1 byte)
     bool unknown_space_0x1041 = false;  ///< read/write of an unknown space rejected 0x1041
     bool readonly_0x1041 = false;       ///< write to a read-only space rejected 0x1041
+    /// Every answer is sent this long after its request arrived (latency=MS[:JITTER]; 0 = off).
+    std::chrono::milliseconds latency{0};
+    /// Up to this much more, uniformly random per answer, seeded by the node ID.
+    std::chrono::milliseconds latency_jitter{0};
 
     /// True when no fault is set.
     bool none() const;

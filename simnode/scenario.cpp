@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "cdi/parser.hpp"
+#include "cdi/schema_validator.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -34,9 +35,20 @@ constexpr std::string_view kNodeKeys[] = {
     "watch-variable",
 };
 // Keys of the whole process (top level only).
-constexpr std::string_view kProcessKeys[] = {"listen", "connect", "socketcan",
-                                             "serial", "baud",    "flow-control",
-                                             "trace",  "candump", "run-for"};
+constexpr std::string_view kProcessKeys[] = {"listen",
+                                             "connect",
+                                             "socketcan",
+                                             "serial",
+                                             "baud",
+                                             "flow-control",
+                                             "trace",
+                                             "candump",
+                                             "run-for",
+                                             "latency",
+                                             "start-on-connect",
+                                             "max-clients",
+                                             "max-clients-per-address",
+                                             "idle-timeout"};
 // A network of this many nodes is already far beyond any real CAN segment.
 constexpr std::uint64_t kMaxCount = 100000;
 // Faster than any UART a USB-CAN adapter uses; above it a typo is more likely than a rate.
@@ -142,9 +154,22 @@ po::options_description cli_options() {
         "serial flow control (default none)")("trace", po::value<std::string>()->value_name("FILE"),
                                               "write decoded traffic to FILE")(
         "candump", po::value<std::string>()->value_name("FILE"),
-        "write traffic to FILE as candump -L lines");
+        "write traffic to FILE as candump -L lines")(
+        "max-clients", po::value<std::string>()->value_name("N"),
+        "hub: refuse connections beyond N (default 64)")(
+        "max-clients-per-address", po::value<std::string>()->value_name("N"),
+        "hub: refuse connections from one address beyond N (default 48)")(
+        "idle-timeout", po::value<std::string>()->value_name("SECONDS"),
+        "hub: close a client that sent nothing for SECONDS (default 0 = never)");
+    po::options_description testing("Test hooks (top level)");
+    testing.add_options()("latency", po::value<std::string>()->value_name("MS[:JITTER]"),
+                          "every node answers MS ms (plus 0..JITTER ms) late, as the fault "
+                          "latency=MS[:JITTER]; a node's own latency fault wins")(
+        "start-on-connect", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
+        "with listen: every node logs in again (CID..RID, AMD, Initialization Complete) "
+        "whenever a TCP client connects");
     po::options_description all;
-    all.add(general).add(node).add(transport);
+    all.add(general).add(node).add(transport).add(testing);
     return all;
 }
 
@@ -261,6 +286,26 @@ std::optional<std::uint64_t> parse_count(const std::string& text) {
     return v;
 }
 
+std::optional<double> parse_seconds(const std::string& text) {
+    double seconds = -1;
+    try {
+        std::size_t used = 0;
+        seconds = std::stod(text, &used);
+        if (used != text.size()) return std::nullopt;
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+    if (!(seconds >= 0) || !std::isfinite(seconds)) return std::nullopt;
+    return seconds;
+}
+
+std::optional<bool> parse_bool(const std::string& text) {
+    if (text.empty()) return true;  // a bare --start-on-connect
+    if (text == "true" || text == "yes" || text == "on" || text == "1") return true;
+    if (text == "false" || text == "no" || text == "off" || text == "0") return false;
+    return std::nullopt;
+}
+
 class Builder {
 public:
     Builder(Scenario& scenario, std::string& error) : scenario_(scenario), error_(error) {}
@@ -289,6 +334,14 @@ public:
         }
         const fs::path cdi_path = path_of(keys, "cdi");
         if (cdi_path.empty()) return fail(where + ": cdi is missing");
+        std::error_code size_error;
+        const auto size = fs::file_size(cdi_path, size_error);
+        if (!size_error && size > cdi::kMaxCdiBytes) {
+            // Checked before reading: a 100 MB file would otherwise cost gigabytes to refuse.
+            return fail(where + ": CDI file " + cdi_path.string() + " is " + std::to_string(size) +
+                        " bytes, over the limit of " + std::to_string(cdi::kMaxCdiBytes) +
+                        " (16 MiB)");
+        }
         const std::string* cdi = read_cdi(cdi_path);
         if (!cdi) return fail(where + ": cannot read CDI file " + cdi_path.string());
         fs::path root = path_of(keys, "image-dir");
@@ -306,8 +359,12 @@ public:
             }
         }
         std::string fault_error;
-        const auto faults = parse_faults(fault_list, fault_error);
+        auto faults = parse_faults(fault_list, fault_error);
         if (!faults) return fail(where + ": " + fault_error);
+        if (faults->latency.count() == 0 && faults->latency_jitter.count() == 0) {
+            faults->latency = latency_.latency;
+            faults->latency_jitter = latency_.latency_jitter;
+        }
 
         const std::string* user_name = single(keys, "user-name");
         const std::string* user_description = single(keys, "user-description");
@@ -320,6 +377,7 @@ public:
                             " is used by another node");
             }
             config.cdi = *cdi;
+            config.cdi_file = cdi_path;
             config.image_dir = root / config.node_id.to_string();
             config.identity = identity;
             if (user_name) config.user_name = expand(*user_name, k + 1, config.node_id);
@@ -360,21 +418,36 @@ public:
             }
             scenario_.rtscts = *v == "rtscts";
         }
+        for (const auto& [key, field] :
+             {std::pair{"max-clients", &scenario_.max_clients},
+              std::pair{"max-clients-per-address", &scenario_.max_clients_per_address}}) {
+            if (const auto* v = single(keys, key)) {
+                const auto n = parse_count(*v);
+                if (!n) return fail(std::string(key) + " '" + *v + "' must be a whole number >= 1");
+                *field = static_cast<std::size_t>(*n);
+            }
+        }
+        if (const auto* v = single(keys, "idle-timeout")) {
+            const auto seconds = parse_seconds(*v);
+            if (!seconds) return fail("idle-timeout '" + *v + "' must be a number of seconds >= 0");
+            scenario_.idle_timeout = *seconds;
+        }
+        if (const auto* v = single(keys, "latency")) {
+            const auto parsed = parse_faults({"latency=" + *v}, why);
+            if (!parsed) return fail("latency '" + *v + "' must be MS or MS:JITTER (milliseconds)");
+            latency_ = *parsed;
+        }
+        if (const auto* v = single(keys, "start-on-connect")) {
+            const auto on = parse_bool(*v);
+            if (!on) return fail("start-on-connect '" + *v + "' must be true or false");
+            scenario_.start_on_connect = *on;
+        }
         scenario_.trace = path_of(keys, "trace");
         scenario_.candump = path_of(keys, "candump");
         if (const auto* v = single(keys, "run-for")) {
-            double seconds = -1;
-            try {
-                std::size_t used = 0;
-                seconds = std::stod(*v, &used);
-                if (used != v->size()) seconds = -1;
-            } catch (const std::exception&) {
-                seconds = -1;
-            }
-            if (!(seconds >= 0) || !std::isfinite(seconds)) {
-                return fail("run-for '" + *v + "' must be a number of seconds >= 0");
-            }
-            scenario_.run_for = seconds;
+            const auto seconds = parse_seconds(*v);
+            if (!seconds) return fail("run-for '" + *v + "' must be a number of seconds >= 0");
+            scenario_.run_for = *seconds;
         }
         return true;
     }
@@ -416,6 +489,7 @@ private:
 
     Scenario& scenario_;
     std::string& error_;
+    FaultSet latency_;  // the process-wide latency key; only its latency fields are set
     std::map<std::string, std::string> cdis_;
     std::unordered_set<NodeId> ids_;
 };
@@ -423,6 +497,8 @@ private:
 std::optional<Scenario> build(const Raw& file, const Raw& cli, const fs::path& scenario_file,
                               std::string& error) {
     Raw merged = file;
+    // A tool developer pointing a hub scenario at another hub wants a client, not a second hub.
+    if (cli.top.contains("connect") && !cli.top.contains("listen")) merged.top.erase("listen");
     merge_keys(merged.top, cli.top);
     for (const auto& [name, keys] : cli.sections) merge_keys(merged.section(name), keys);
 
@@ -450,6 +526,18 @@ std::optional<Scenario> build(const Raw& file, const Raw& cli, const fs::path& s
         }
     }
     return scenario;
+}
+
+// A relative scenario path missing in the working directory is looked up where default.ini
+// lives, so `simnode faults/int-byte-order.ini` works from anywhere (the fault files' Run: lines).
+fs::path find_scenario(const fs::path& given, std::span<const fs::path> default_scenarios) {
+    std::error_code ec;
+    if (given.is_absolute() || fs::exists(given, ec)) return given;
+    for (const auto& candidate : default_scenarios) {
+        const fs::path there = candidate.parent_path() / given;
+        if (fs::is_regular_file(there, ec)) return there.lexically_normal();
+    }
+    return given;
 }
 
 }  // namespace
@@ -509,7 +597,7 @@ std::optional<Arguments> parse_arguments(std::span<const std::string> args,
 
     fs::path file;
     if (cl->scenario) {
-        file = *cl->scenario;
+        file = find_scenario(*cl->scenario, default_scenarios);
     } else if (!cl->raw.top.contains("node-id") && cl->raw.sections.empty()) {
         for (const auto& candidate : default_scenarios) {
             std::error_code ec;

@@ -30,16 +30,21 @@ std::optional<HostPort> parse_host_port(std::string_view text, std::string& erro
 
 /// Everything one simnode process runs.
 struct Scenario {
-    std::vector<NodeConfig> nodes;        ///< every node, in scenario order; IDs are distinct
-    std::optional<HostPort> listen;       ///< run a GridConnect TCP hub here
-    std::optional<HostPort> connect;      ///< join this GridConnect TCP hub
-    std::string socketcan;                ///< join this SocketCAN interface (empty: none)
-    std::string serial;                   ///< join this serial GridConnect adapter (empty: none)
-    unsigned baud = 115200;               ///< the serial adapter's bit rate
-    bool rtscts = false;                  ///< hardware flow control on the serial adapter
-    std::filesystem::path trace;          ///< decoded traffic log (empty: none)
-    std::filesystem::path candump;        ///< candump -L traffic log (empty: none)
-    std::optional<double> run_for;        ///< stop after this many seconds
+    std::vector<NodeConfig> nodes;    ///< every node, in scenario order; IDs are distinct
+    std::optional<HostPort> listen;   ///< run a GridConnect TCP hub here
+    std::optional<HostPort> connect;  ///< join this GridConnect TCP hub
+    std::string socketcan;            ///< join this SocketCAN interface (empty: none)
+    std::string serial;               ///< join this serial GridConnect adapter (empty: none)
+    unsigned baud = 115200;           ///< the serial adapter's bit rate
+    bool rtscts = false;              ///< hardware flow control on the serial adapter
+    std::filesystem::path trace;      ///< decoded traffic log (empty: none)
+    std::filesystem::path candump;    ///< candump -L traffic log (empty: none)
+    std::optional<double> run_for;    ///< stop after this many seconds
+    std::size_t max_clients = 64;     ///< hub connections beyond are refused
+    std::size_t max_clients_per_address = 48;  ///< hub connections from one address
+    double idle_timeout = 0;                   ///< seconds; a silent client is closed (0 = never)
+    /// Every TCP client connecting to the hub makes every node log in again (needs listen).
+    bool start_on_connect = false;
     std::filesystem::path scenario_file;  ///< the .ini read (empty: everything inline)
 };
 

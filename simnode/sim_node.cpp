@@ -7,6 +7,7 @@
 #include <utility>
 #include <variant>
 
+#include "cdi/schema_validator.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/error_codes.hpp"
@@ -83,6 +84,11 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
         error = "node ID must not be zero";
         return nullptr;
     }
+    if (config.cdi.size() > cdi::kMaxCdiBytes) {
+        error = "CDI: " + std::to_string(config.cdi.size()) + " bytes, over the limit of " +
+                std::to_string(cdi::kMaxCdiBytes) + " (16 MiB)";
+        return nullptr;
+    }
     auto model = load_cdi_model(config.cdi, error);
     if (!model) {
         error = "CDI: " + error;
@@ -139,6 +145,12 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
         sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
     sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
     sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
+    if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
+        // The stack would answer these at once; the node answers them itself, late.
+        sc.builtins.verify_node_id = false;
+        sc.builtins.protocol_support = false;
+        sc.builtins.reject_unknown_addressed = false;
+    }
 
     return std::unique_ptr<SimNode>(new SimNode(std::move(config), sc, std::move(memory), served));
 }
@@ -154,7 +166,9 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
           c.unique_id_counter = memory_->unique_id_counter();
           return c;
       }()),
-      served_protocols_(served) {
+      served_protocols_(served),
+      answer_delay_(config_.faults.latency, config_.faults.latency_jitter,
+                    config_.node_id.value()) {
     memory_->serve(server_);
     if (config_.faults.abort_on_value.count() > 0 || config_.faults.factory_reset_on_version_change)
         find_watched();
@@ -206,9 +220,85 @@ std::vector<std::uint8_t> SimNode::snip_payload() const {
     return memory::encode_snip(snip());
 }
 
+void SimNode::relogin(TimePoint now) {
+    ++boot_generation_;
+    answer_delay_.reset();
+    stack_.restart(now);
+}
+
 // ---------------- messages ----------------
 
+namespace {
+
+// Whether msg asks this node for an answer (the ones the latency fault holds back).
+bool asks_answer(const Message& msg) {
+    switch (msg.mti) {
+        case Mti::kVerifyNodeIdGlobal:
+        case Mti::kIdentifyEventsGlobal:
+        case Mti::kIdentifyProducer:
+        case Mti::kIdentifyConsumer:
+            return true;
+        default:
+            return msg.destination.has_value() &&
+                   !NodeStack::never_rejected(static_cast<std::uint16_t>(msg.mti));
+    }
+}
+
+}  // namespace
+
 bool SimNode::on_message(const Message& msg) {
+    if (!answer_delay_.active() || !asks_answer(msg)) return answer_message(msg);
+    const std::uint32_t generation = boot_generation_;
+    stack_.schedule(answer_delay_.answer_at(stack_.now()), [this, generation, msg](TimePoint) {
+        if (generation == boot_generation_) answer_late(msg);
+    });
+    return true;
+}
+
+// A held-back request, answered now: the stack's built-in answers included, since the latency
+// fault switched them off.
+void SimNode::answer_late(const Message& msg) {
+    if (!stack_.initialized()) return;
+    if (answer_builtin(msg) || answer_message(msg) || !msg.destination) return;
+    Message oir;
+    oir.mti = Mti::kOptionalInteractionRejected;
+    oir.destination = NodeHandle{msg.source.id, msg.source.alias};
+    const auto code = error_code::kUnknownMtiOrTransport;
+    const auto mti = static_cast<std::uint16_t>(msg.mti);
+    oir.payload = {static_cast<std::uint8_t>(code >> 8), static_cast<std::uint8_t>(code & 0xFF),
+                   static_cast<std::uint8_t>(mti >> 8), static_cast<std::uint8_t>(mti & 0xFF)};
+    stack_.send_message(std::move(oir));
+}
+
+bool SimNode::answer_builtin(const Message& msg) {
+    Message reply;
+    reply.mti = stack_.protocols().has(Protocol::kSimpleProtocol) ? Mti::kVerifiedNodeIdSimple
+                                                                  : Mti::kVerifiedNodeId;
+    const auto id = node_id().to_bytes();
+    reply.payload.assign(id.begin(), id.end());
+    switch (msg.mti) {
+        case Mti::kVerifyNodeIdGlobal: {
+            const auto asked = NodeId::from_bytes(msg.payload);
+            if (!msg.payload.empty() && !(asked && *asked == node_id())) return true;
+            break;
+        }
+        case Mti::kVerifyNodeIdAddressed:
+            break;
+        case Mti::kProtocolSupportInquiry: {
+            reply.mti = Mti::kProtocolSupportReply;
+            reply.destination = NodeHandle{msg.source.id, msg.source.alias};
+            const auto flags = stack_.protocols().encode();
+            reply.payload.assign(flags.begin(), flags.end());
+            break;
+        }
+        default:
+            return false;
+    }
+    stack_.send_message(std::move(reply));
+    return true;
+}
+
+bool SimNode::answer_message(const Message& msg) {
     switch (msg.mti) {
         case Mti::kIdentifyEventsGlobal:
         case Mti::kIdentifyEventsAddressed:
@@ -283,6 +373,7 @@ void SimNode::on_initialized() {
 void SimNode::abort_node() {
     ++counters_.aborts;
     ++boot_generation_;
+    answer_delay_.reset();
     const std::uint32_t generation = boot_generation_;
     stack_.go_silent(stack_.now());
     stack_.schedule(stack_.now() + config_.faults.abort_on_value,
@@ -303,6 +394,7 @@ void SimNode::power_up(TimePoint now) {
     if (config_.faults.factory_reset_on_version_change && watched_changed()) factory_reset();
     server_.reset();
     ++boot_generation_;
+    answer_delay_.reset();
     // The transport is untouched: TCP clients stay connected and see a fresh start-up.
     stack_.restart(now);
 }
@@ -318,6 +410,19 @@ void SimNode::schedule_unsolicited(TimePoint at) {
 // ---------------- datagrams ----------------
 
 void SimNode::on_datagram(const ReceivedDatagram& d) {
+    if (!answer_delay_.active()) {
+        answer_datagram(d);
+        return;
+    }
+    // The stack keeps the datagram's buffer (and rejects another from the same source) until
+    // the late answer, as a slow node would.
+    const std::uint32_t generation = boot_generation_;
+    stack_.schedule(answer_delay_.answer_at(stack_.now()), [this, generation, d](TimePoint) {
+        if (generation == boot_generation_) answer_datagram(d);
+    });
+}
+
+void SimNode::answer_datagram(const ReceivedDatagram& d) {
     ++counters_.datagrams;
     const std::uint16_t src = d.source_alias;
     if (counters_.temporary_rejects < config_.faults.reject_temporary) {

@@ -16,6 +16,7 @@
 #include "openlcb/node_id.hpp"
 #include "openlcb/node_stack.hpp"
 #include "openlcb/pip.hpp"
+#include "simnode/answer_delay.hpp"
 #include "simnode/event_roles.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/node_memory.hpp"
@@ -31,6 +32,7 @@ struct Identity {
 struct NodeConfig {
     NodeId node_id;                    ///< must not be zero
     std::string cdi;                   ///< the CDI text as read from the file
+    std::filesystem::path cdi_file;    ///< where it was read from (for messages; may be empty)
     std::filesystem::path image_dir;   ///< empty: RAM-only images (nothing persisted)
     std::optional<Identity> identity;  ///< default: from the CDI <identification>
     std::string user_name;             ///< initial 251 name, for a FRESH image only
@@ -102,12 +104,19 @@ public:
     /// (the first <int> of 253 in document order); nullopt when neither fault is set or the CDI
     /// has no such int.
     std::optional<std::uint32_t> watched_address() const;
+    /// Runs the CAN login again (CID..RID, AMD, Initialization Complete) as a node does when a
+    /// TCP client connects to it; memory, lock and images stay, answers still held are dropped.
+    void relogin(TimePoint now);
 
 private:
     SimNode(NodeConfig config, NodeStackConfig stack_config, std::unique_ptr<NodeMemory> memory,
             ProtocolSet served);
     bool on_message(const Message& msg);
+    bool answer_message(const Message& msg);
+    bool answer_builtin(const Message& msg);
+    void answer_late(const Message& msg);
     void on_datagram(const ReceivedDatagram& datagram);
+    void answer_datagram(const ReceivedDatagram& datagram);
     memory::Decision decide(std::uint16_t src, std::span<const std::uint8_t> payload);
     std::optional<memory::Decision> command_faults(std::span<const std::uint8_t> payload) const;
     void send_answer(std::uint16_t src, memory::Decision& decision);
@@ -132,6 +141,7 @@ private:
     memory::MemoryConfigServer server_;
     ProtocolSet served_protocols_;
     NodeCounters counters_;
+    AnswerDelay answer_delay_;           // the latency fault
     std::uint64_t replies_ = 0;          // numbers replies for slow-reply
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;

@@ -39,6 +39,10 @@ constexpr int kExitUsage = 2;
 constexpr auto kStartupPoll = std::chrono::milliseconds(10);
 // Output a hub may fall behind by before simnode reconnects (see the --connect client).
 constexpr std::size_t kClientQueueBytes = 64u << 20;
+// Hub policy: one client's flood is slowed to what every reader takes (docs/scenarios.md).
+constexpr std::uint32_t kClientFramesPerSecond = 20000;
+// Keeps a flood in the hub's queues, where its backpressure sees it, not in the kernel's.
+constexpr std::size_t kHubSendBufferBytes = 64 * 1024;
 
 // Where `simnode` without arguments finds scenarios/default.ini: the source tree this binary was
 // built from, next to the binary (build tree or install prefix), then the working directory.
@@ -101,6 +105,21 @@ private:
     TimePoint start_ = Clock::now();
 };
 
+// One line per node: what it runs, so a developer sees at once which faults are active.
+void describe_nodes(const std::vector<std::unique_ptr<SimNode>>& nodes) {
+    for (const auto& node : nodes) {
+        const NodeConfig& c = node->config();
+        std::string faults;
+        for (const auto& name : to_names(c.faults)) faults += (faults.empty() ? "" : ",") + name;
+        std::cout << "simnode: node " << c.node_id.to_string() << " cdi "
+                  << (c.cdi_file.empty() ? std::string("(inline)") : c.cdi_file.string())
+                  << " faults " << (faults.empty() ? "none" : faults) << " images "
+                  << (c.image_dir.empty() ? std::string("(RAM only)") : c.image_dir.string())
+                  << "\n";
+    }
+    std::cout.flush();
+}
+
 int run(const Scenario& scenario) {
     boost::asio::io_context io;
 
@@ -135,7 +154,15 @@ int run(const Scenario& scenario) {
                    : bus->add_endpoint(std::move(handler));
     };
     if (scenario.listen) {
-        hub = std::make_unique<TcpHubServer>(io);
+        TcpHubOptions options;
+        options.max_clients = scenario.max_clients;
+        options.max_clients_per_address = scenario.max_clients_per_address;
+        options.max_client_frames_per_second = kClientFramesPerSecond;
+        options.socket_send_buffer_bytes = kHubSendBufferBytes;
+        options.idle_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(
+            std::chrono::duration<double>(scenario.idle_timeout));
+        hub = std::make_unique<TcpHubServer>(io, options);
+        hub->set_log_handler([](const std::string& line) { say("hub: " + line); });
         if (const auto ec = hub->listen(scenario.listen->host, scenario.listen->port)) {
             std::cerr << "simnode: cannot listen on " << scenario.listen->to_string() << ": "
                       << ec.message() << "\n";
@@ -224,9 +251,21 @@ int run(const Scenario& scenario) {
         });
     }
 
+    describe_nodes(nodes);
     if (hub) say("listening on " + HostPort{scenario.listen->host, hub->port()}.to_string());
     auto started = Clock::now();
     bool nodes_started = false;
+    if (scenario.start_on_connect && hub) {
+        // As a node that is itself a TCP server: a new client sees every node's login.
+        hub->set_connection_handler([&](const std::string& remote) {
+            if (!nodes_started) return;
+            say("client " + remote + " connected: every node logs in again (start-on-connect)");
+            const TimePoint now = Clock::now();
+            for (auto& node : nodes) node->relogin(now);
+        });
+    } else if (scenario.start_on_connect) {
+        std::cerr << "simnode: warning: start-on-connect does nothing without listen" << std::endl;
+    }
     if (client) {
         // The nodes start once the hub is reached, so the hub's nodes see their alias
         // reservation and can object to a collision.
@@ -245,6 +284,7 @@ int run(const Scenario& scenario) {
         say("connecting to hub " + where);
         client->start();
     } else {
+        nodes_started = true;
         driver.start_all();
     }
 
@@ -291,7 +331,14 @@ static int main_checked(int argc, char** argv) {
         return 0;
     }
     if (parsed->list_faults) {
-        for (const auto& name : fault_names()) std::cout << name << "\n";
+        // The name first: scripts take the first word of each line.
+        for (const auto& f : fault_catalog()) {
+            std::string name(f.name);
+            name.resize(std::max<std::size_t>(name.size() + 1, 32), ' ');
+            std::cout << name << f.summary;
+            if (!f.parameter.empty()) std::cout << " (parameter " << f.parameter << ")";
+            std::cout << "\n";
+        }
         return 0;
     }
     // A peer closing its socket must not kill the process.

@@ -68,9 +68,11 @@ TEST(ScenarioTest, ConnectTakesAHostName) {
 
 TEST(ScenarioTest, EveryTransportAtOnce) {
     std::string error;
-    const auto s = parse(
-        std::string(kOneNode) + "listen = 127.0.0.1:0\n",
-        {"--connect", "10.0.0.2:12021", "--socketcan", "can0", "--serial", "/dev/ttyACM0"}, error);
+    // Both listen and connect on the command line: a --connect alone replaces a file's listen.
+    const auto s = parse(kOneNode,
+                         {"--listen", "127.0.0.1:0", "--connect", "10.0.0.2:12021", "--socketcan",
+                          "can0", "--serial", "/dev/ttyACM0"},
+                         error);
     ASSERT_TRUE(s) << error;
     EXPECT_TRUE(s->listen);
     EXPECT_TRUE(s->connect);

@@ -1,0 +1,159 @@
+// The latency fault: every answer of the node goes out MS (+ 0..JITTER) ms after its request, in
+// request order; the CAN login and alias defence are never held back. Simulated clock only.
+#include <gtest/gtest.h>
+
+#include "openlcb/can_defs.hpp"
+#include "sim_node_test_util.hpp"
+#include "simnode/answer_delay.hpp"
+
+namespace olcb::simnode::test {
+namespace {
+
+using std::chrono::milliseconds;
+
+TEST(LatencyFault, ParsesAndPrintsBack) {
+    std::string error;
+    auto f = parse_faults({"latency=120"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->latency, milliseconds(120));
+    EXPECT_EQ(f->latency_jitter, milliseconds(0));
+    EXPECT_EQ(to_names(*f), std::vector<std::string>{"latency=120"});
+    f = parse_faults({"latency=120:30"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->latency_jitter, milliseconds(30));
+    EXPECT_EQ(to_names(*f), std::vector<std::string>{"latency=120:30"});
+    EXPECT_EQ(parse_faults(to_names(*f), error), f);
+    EXPECT_TRUE(parse_faults({"latency=0:5"}, error));
+    f = parse_faults({"latency"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->latency, milliseconds(200));
+    for (const char* bad : {"latency=0", "latency=x", "latency=5:", "latency=:5", "latency=700000",
+                            "latency=1:2:3"}) {
+        EXPECT_FALSE(parse_faults({bad}, error)) << bad;
+        EXPECT_NE(error.find("latency"), std::string::npos) << error;
+    }
+}
+
+TEST(AnswerDelay, DeterministicBoundedAndInOrder) {
+    const TimePoint t0 = TimePoint{} + std::chrono::hours(1);
+    AnswerDelay a(milliseconds(50), milliseconds(30), 42);
+    AnswerDelay b(milliseconds(50), milliseconds(30), 42);
+    TimePoint previous{};
+    bool varied = false;
+    for (int i = 0; i < 200; ++i) {
+        const TimePoint arrived = t0 + milliseconds(i);
+        const TimePoint at = a.answer_at(arrived);
+        EXPECT_EQ(at, b.answer_at(arrived));
+        EXPECT_GE(at, previous);
+        EXPECT_GE(at, arrived + milliseconds(50));
+        EXPECT_LE(at, std::max(previous, arrived + milliseconds(80)));
+        varied = varied || (previous != TimePoint{} && at - previous != milliseconds(1));
+        previous = at;
+    }
+    EXPECT_TRUE(varied) << "no jitter seen";
+    AnswerDelay other(milliseconds(50), milliseconds(30), 43);
+    bool differs = false;
+    AnswerDelay again(milliseconds(50), milliseconds(30), 42);
+    for (int i = 0; i < 20; ++i) {
+        differs = differs || other.answer_at(t0 + std::chrono::seconds(i)) !=
+                                 again.answer_at(t0 + std::chrono::seconds(i));
+    }
+    EXPECT_TRUE(differs) << "the seed does not matter";
+}
+
+class LatencyTest : public SimNodeTest {
+protected:
+    // Every frame the node sends from now on, with its time.
+    void watch() {
+        net_.add_endpoint([this](const CanFrame& f, TimePoint t) {
+            if (node_ && can::source_alias(f.id) == alias()) seen_.push_back({t, f});
+        });
+    }
+    // The time of the first frame seen whose CAN-MTI is cmti, from index first on.
+    std::optional<TimePoint> first(std::uint16_t cmti, std::size_t from = 0) const {
+        for (std::size_t i = from; i < seen_.size(); ++i) {
+            if (can::is_message(seen_[i].frame.id) &&
+                !can::is_datagram_format(can::frame_format(seen_[i].frame.id)) &&
+                can::can_mti(seen_[i].frame.id) == cmti)
+                return seen_[i].at;
+        }
+        return std::nullopt;
+    }
+    std::vector<LoggedFrame> seen_;
+};
+
+TEST_F(LatencyTest, VerifyPipSnipAndOirAreLate) {
+    start_with({"latency=100"});
+    watch();
+    const TimePoint sent = net_.now();
+    send_global(0x490);     // Verify Node ID Global
+    send_addressed(0x828);  // Protocol Support Inquiry
+    send_addressed(0xDE8);  // SNIP request
+    send_addressed(0x5EB);  // Traction Control Command: not served, so OIR
+    net_.run_for(milliseconds(99));
+    EXPECT_TRUE(seen_.empty()) << gridconnect::format(seen_.front().frame);
+    net_.run_for(milliseconds(5));
+    const auto verified = first(0x170), psr = first(0x668), snip = first(0xA08), oir = first(0x068);
+    ASSERT_TRUE(verified && psr && snip && oir);
+    EXPECT_EQ(*verified - sent, milliseconds(100));
+    EXPECT_EQ(*psr - sent, milliseconds(100));
+    EXPECT_EQ(*oir - sent, milliseconds(100));
+    // Same frames as the stack's own answers, in request order.
+    std::vector<std::string> texts;
+    for (const auto& f : seen_) texts.push_back(gridconnect::format(f.frame));
+    EXPECT_EQ(texts.front(), ":X19170343N050101012200;");
+    EXPECT_EQ(texts[1], ":X19668343N012C545800000000;");
+    EXPECT_EQ(texts.back(), ":X19068343N012C104305EB;");
+}
+
+TEST_F(LatencyTest, DatagramOkAndReplyAreLate) {
+    start_with({"latency=250"});
+    const TimePoint sent = net_.now();
+    const Answer a = exchange(read_cmd(0xFF, 0, 16));
+    ASSERT_TRUE(a.ok);
+    ASSERT_TRUE(a.reply);
+    EXPECT_GE(a.ok_at - sent, milliseconds(250));
+    EXPECT_LT(a.ok_at - sent, milliseconds(260));
+    EXPECT_LT(a.ok_index, a.reply_index);
+    EXPECT_EQ(std::string(a.reply->begin() + 6, a.reply->begin() + 11), "<?xml");
+}
+
+TEST_F(LatencyTest, JitterIsSeededByTheNodeAndKeepsOrder) {
+    start_with({"latency=40:30"});
+    watch();
+    AnswerDelay expected(milliseconds(40), milliseconds(30), kNodeId.value());
+    std::vector<TimePoint> want;
+    for (int i = 0; i < 12; ++i) {
+        want.push_back(expected.answer_at(net_.now()));
+        send_addressed(0x488);  // Verify Node ID Addressed
+        net_.run_for(milliseconds(2));
+    }
+    net_.run_for(milliseconds(200));
+    std::vector<TimePoint> got;
+    for (const auto& f : seen_) got.push_back(f.at);
+    EXPECT_EQ(got, want);
+}
+
+TEST_F(LatencyTest, LoginAndAliasDefenceAreNotDelayed) {
+    start_with({"latency=2000"});  // start() needs the node initialized within 1 s
+    watch();
+    send_text(":X1070212CN;");  // AME: the AMD answer is link level, at once
+    net_.run_for(milliseconds(1));
+    ASSERT_EQ(seen_.size(), 1u);
+    EXPECT_EQ(gridconnect::format(seen_[0].frame), ":X10701343N050101012200;");
+}
+
+TEST_F(LatencyTest, ARestartDropsHeldAnswers) {
+    start_with({"latency=300"});
+    watch();
+    send_global(0x490);
+    net_.run_for(milliseconds(100));
+    node_->relogin(net_.now());
+    ASSERT_TRUE(net_.run_until([this] { return node_->stack().initialized(); }, 1s));
+    net_.run_for(milliseconds(400));
+    EXPECT_FALSE(first(0x170)) << "a Verified Node ID of the old boot went out";
+    EXPECT_TRUE(first(0x100)) << "no Initialization Complete after relogin";
+}
+
+}  // namespace
+}  // namespace olcb::simnode::test
