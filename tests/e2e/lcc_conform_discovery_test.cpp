@@ -1,0 +1,181 @@
+// lcc-conform on busy, slow and shared segments, as a user runs it: every node is found (also one
+// that logs in when the tool connects, and 1,000 of them on a loaded machine), a slow node and a
+// node among 1,000 get no false failure, concurrent runs leave each other alone, and every exit,
+// 2 included, writes valid JSON and JUnit reports.
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <pugixml.hpp>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "e2e/conform_util.hpp"
+
+#if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
+
+namespace olcb::e2e {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr const char* kNode = "05.01.01.01.22.00";
+
+std::size_t lines_with(const std::string& text, const std::string& prefix) {
+    std::size_t n = 0;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) n += line.starts_with(prefix) ? 1 : 0;
+    return n;
+}
+
+std::string failures(const std::string& text) {
+    std::string out;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        if (line.starts_with("FAIL")) out += "\n  " + line;
+    }
+    return out;
+}
+
+TEST(LccConformDiscovery, ANodeThatLogsInWhenTheToolConnectsIsFoundEveryTime) {
+    Simnode sim(source_path("scenarios/default.ini"), {"--start-on-connect"});
+    ASSERT_NE(sim.port, 0);
+    int found = 0;
+    for (int i = 0; i < 20; ++i) {
+        const auto [code, text] = conform({"--connect", sim.connect(), "--list"});
+        if (code == 0 && text.find(kNode) != std::string::npos) ++found;
+    }
+    EXPECT_EQ(found, 20);
+}
+
+// One simnode of 1,000 nodes for both (their fresh images take a while: an fsync each).
+TEST(LccConformDiscovery, AThousandNodesAreListedOnALoadedMachineAndOneHasNoFalseFailure) {
+    Simnode sim(source_path("scenarios/network-1000.ini"), {}, milliseconds(120000));
+    ASSERT_NE(sim.port, 0);
+    ASSERT_TRUE(sim.wait_initialized(milliseconds(120000)));
+    // Two busy loops, one per core, bounded in time whatever happens to the test.
+    std::vector<std::unique_ptr<Child>> load;
+    for (int i = 0; i < 2; ++i) {
+        // The shell itself loops (a SIGKILL ends it) and stops by itself after a bounded count.
+        load.push_back(Child::spawn(
+            "/bin/sh", {"-c", "i=0; while [ $i -lt 100000000 ]; do i=$((i + 1)); done"}));
+    }
+    const auto [code, text] = conform({"--connect", sim.connect(), "--list"}, milliseconds(60000));
+    for (auto& l : load) l->signal(SIGKILL);
+    EXPECT_EQ(code, 0) << text.substr(0, 400);
+    EXPECT_EQ(lines_with(text, "05.01.01.01."), 1000u);
+
+    const auto [one, report] =
+        conform({"--connect", sim.connect(), "--node", "05.01.01.01.30.00", "--read-only"},
+                milliseconds(60000));
+    EXPECT_EQ(one, 0) << failures(report);
+}
+
+TEST(LccConformDiscovery, ASlowNodeHasNoFalseFailure) {
+    Simnode sim(source_path("scenarios/one-line.ini"), {"--latency", "300"});
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    const auto before = snapshot_images(sim.images.path());
+    const auto [code, text] = conform(
+        {"--connect", sim.connect(), "--node", kNode, "--backup", (out.path() / "b.txt").string()},
+        milliseconds(240000));
+    EXPECT_EQ(code, 0) << failures(text);
+    EXPECT_NE(text.find("timing: latency 3"), std::string::npos) << text.substr(0, 300);
+    EXPECT_EQ(settled_images(sim.images.path(), before), before);
+}
+
+TEST(LccConformDiscovery, FourConcurrentReadOnlyRunsAllPass) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0);
+    std::vector<std::unique_ptr<Child>> runs;
+    for (int i = 0; i < 4; ++i) {
+        runs.push_back(Child::spawn(LCC_CONFORM_PATH,
+                                    {"--connect", sim.connect(), "--node", kNode, "--read-only"}));
+        ASSERT_TRUE(runs.back());
+    }
+    for (auto& r : runs) {
+        r->wait_line("\x01never", milliseconds(60000));
+        ASSERT_TRUE(r->wait_for(milliseconds(60000)));
+        EXPECT_EQ(r->wait(), 0) << failures(r->output());
+    }
+}
+
+TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTheLock) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    const auto before = snapshot_images(sim.images.path());
+    std::vector<std::unique_ptr<Child>> runs;
+    for (int i = 0; i < 2; ++i) {
+        runs.push_back(Child::spawn(LCC_CONFORM_PATH,
+                                    {"--connect", sim.connect(), "--node", kNode, "--backup",
+                                     (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
+        ASSERT_TRUE(runs.back());
+    }
+    std::string all;
+    for (auto& r : runs) {
+        r->wait_line("\x01never", milliseconds(60000));
+        ASSERT_TRUE(r->wait_for(milliseconds(60000)));
+        r->wait();
+        all += r->output();
+    }
+    EXPECT_NE(all.find("locked by 05.01.01.01.3F."), std::string::npos) << all;
+    EXPECT_EQ(settled_images(sim.images.path(), before), before);
+}
+
+// Valid JSON with an "error", and JUnit whose <error> names it.
+void expect_reports_name(const fs::path& json, const fs::path& junit, const std::string& why) {
+    const auto j = nlohmann::json::parse(read_text(json), nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << read_text(json);
+    ASSERT_TRUE(j.contains("error")) << j.dump();
+    EXPECT_NE(j["error"].get<std::string>().find(why), std::string::npos) << j.dump();
+    pugi::xml_document doc;
+    ASSERT_TRUE(doc.load_file(junit.c_str()));
+    auto error = doc.select_node("//testcase/error");
+    ASSERT_TRUE(error);
+    EXPECT_NE(std::string(error.node().attribute("message").value()).find(why), std::string::npos);
+}
+
+std::pair<int, std::string> conform_with_reports(const TempDir& out,
+                                                 std::vector<std::string> args) {
+    args.insert(args.end(), {"--json", (out.path() / "r.json").string(), "--junit",
+                             (out.path() / "r.xml").string(), "--discover", "1"});
+    return conform(args);
+}
+
+TEST(LccConformDiscovery, ExitTwoStillWritesBothReports) {
+    TempDir out("lcc-conform-discovery");
+    // Connection refused: a port that was free a moment ago.
+    int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    socklen_t len = sizeof addr;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len);
+    const std::string refused = "127.0.0.1:" + std::to_string(ntohs(addr.sin_port));
+    auto [code, text] = conform_with_reports(out, {"--connect", refused});
+    EXPECT_EQ(code, 2);
+    expect_reports_name(out.path() / "r.json", out.path() / "r.xml", "127.0.0.1");
+
+    // An empty hub: it accepts the connection and nothing ever answers.
+    ASSERT_EQ(::listen(fd, 4), 0);
+    std::tie(code, text) = conform_with_reports(out, {"--connect", refused});
+    EXPECT_EQ(code, 2);
+    expect_reports_name(out.path() / "r.json", out.path() / "r.xml", "no node answered");
+    ::close(fd);
+
+    // A node ID nobody has.
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0);
+    std::tie(code, text) =
+        conform_with_reports(out, {"--connect", sim.connect(), "--node", "05.01.01.01.99.99"});
+    EXPECT_EQ(code, 2);
+    expect_reports_name(out.path() / "r.json", out.path() / "r.xml", "does not answer");
+}
+
+}  // namespace
+}  // namespace olcb::e2e
+
+#endif  // SIMNODE_PATH && LCC_CONFORM_PATH
