@@ -86,6 +86,10 @@ struct SourcePos {
 struct Element {
     ElementKind kind = ElementKind::kUnknown;
     SourcePos pos;
+    /// Index among all content nodes of the parent element in the text as parsed (whitespace
+    /// runs, comments, CDATA, PIs and elements count; cdi/content_index.hpp): OpenLCB_Java names
+    /// an unnamed element "child<N>" by it.
+    std::uint32_t content_index = 0;
     std::string tag;  ///< the element name as written (matters for kUnknown)
 
     std::int64_t offset = 0;  ///< the offset attribute (0 when absent)
@@ -130,6 +134,9 @@ struct Element {
 /// A <segment>: one memory space's worth of data elements.
 struct Segment {
     SourcePos pos;
+    /// Index among all content nodes of <cdi> (as Element::content_index): OpenLCB_Java names an
+    /// unnamed segment "seg<N>" by it.
+    std::uint32_t content_index = 0;
     std::uint32_t space = 0;  ///< 0..255 once validated
     std::int64_t origin = 0;
     std::string name;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cdi/content_index.hpp"
 #include "cdi/pugixml_tree.hpp"
 #include "cdi/simple_xml_reader.hpp"
 #include "cdi/xml_tree.hpp"
@@ -169,6 +170,40 @@ bool is_own_child(std::string_view tag, bool in_group) {
 struct PendingChild {
     XmlElement node;
     std::optional<ElementKind> kind;  // nullopt: an unknown element without size (warned)
+    std::uint32_t content_index = 0;
+};
+
+// Numbers the element children of one parent, visited in order, by their index among all the
+// parent's content nodes (content_index.hpp): only the tags and end tags between one child's
+// last descendant and the next child are read, not the children's insides.
+class ContentCounter {
+public:
+    ContentCounter(std::string_view text, XmlElement parent) : text_(text), parent_(parent) {}
+
+    // The index of child, the parent's next element child.
+    std::uint32_t index_of(XmlElement child) {
+        const auto [from, depth] = last_ ? last_descendant(last_) : std::pair{parent_, -1};
+        next_ += non_element_nodes_between(text_, from.offset(), depth, child.offset());
+        last_ = child;
+        return next_++;
+    }
+
+private:
+    // The last element of e's subtree in document order, and how deep below e it is.
+    static std::pair<XmlElement, int> last_descendant(XmlElement e) {
+        int depth = 0;
+        for (XmlElement c = e.first_child(); c; c = e.first_child()) {
+            for (XmlElement n = c.next_sibling(); n; n = n.next_sibling()) c = n;
+            e = c;
+            ++depth;
+        }
+        return {e, depth};
+    }
+
+    std::string_view text_;
+    XmlElement parent_;
+    XmlElement last_;
+    std::uint32_t next_ = 0;
 };
 
 class Parser {
@@ -208,7 +243,7 @@ private:
     void read_declaration(std::string_view text, Document& doc);
     void parse_identification(XmlElement node, Document& doc);
     void parse_acdi(XmlElement node, Document& doc);
-    void parse_segment(XmlElement node, Document& doc);
+    void parse_segment(XmlElement node, std::uint32_t content_index, Document& doc);
     Link parse_link(XmlElement node);
     void parse_map(XmlElement node, Map& map);
     void parse_hints(XmlElement node, Element& element);
@@ -220,6 +255,7 @@ private:
 
     Diagnostics& diagnostics_;
     LineCounter* lines_ = nullptr;
+    std::string_view text_;              // the source, for the nodes between elements
     std::vector<PendingChild> pending_;  // parse_data_children's work list, one slice per depth
     bool truncated_ = false;
 };
@@ -453,9 +489,10 @@ void Parser::parse_acdi(XmlElement node, Document& doc) {
     doc.acdi = acdi;
 }
 
-void Parser::parse_segment(XmlElement node, Document& doc) {
+void Parser::parse_segment(XmlElement node, std::uint32_t content_index, Document& doc) {
     Segment segment;
     segment.pos.line = line(node);
+    segment.content_index = content_index;
     bool bad = false;
     if (node.attribute("space") == nullptr) {
         error(node, "<segment> without the required space attribute");
@@ -492,13 +529,15 @@ void Parser::parse_data_children(XmlElement parent, std::vector<Element>& out, s
     const bool in_group = name_is(parent, "group");
     const std::size_t first = pending_.size();
     std::size_t count = 0;
+    ContentCounter counter(text_, parent);
     for (XmlElement child = parent.first_child(); child; child = child.next_sibling()) {
+        const std::uint32_t content_index = counter.index_of(child);
         const std::string_view tag = child.name();
         if (is_own_child(tag, in_group)) continue;  // the caller's
         std::optional<ElementKind> kind = known_kind(tag);
         if (!kind && child.attribute("size") != nullptr) kind = ElementKind::kUnknown;
         if (kind) ++count;
-        pending_.push_back({child, kind});
+        pending_.push_back({child, kind, content_index});
     }
     const std::size_t end = pending_.size();
     out.reserve(out.size() + count);
@@ -510,6 +549,7 @@ void Parser::parse_data_children(XmlElement parent, std::vector<Element>& out, s
             continue;
         }
         Element& element = out.emplace_back();
+        element.content_index = child.content_index;
         if (!parse_data_element(child.node, *child.kind, depth, element)) {
             out.pop_back();
         }
@@ -691,6 +731,7 @@ std::optional<Document> Parser::run(std::string_view bytes) {
         tree.clear();
         if (!read_with_pugixml(bytes, xml, tree)) return std::nullopt;
     }
+    text_ = bytes;
     const XmlElement root = tree.root();
     if (!name_is(root, "cdi")) {
         error(root, "root element is <" + str(root.name()) + ">, expected <cdi>");
@@ -705,13 +746,15 @@ std::optional<Document> Parser::run(std::string_view bytes) {
             colon == std::string_view::npos ? attr.name : attr.name.substr(colon + 1);
         if (local == "noNamespaceSchemaLocation") doc.schema_location = attr.value;
     }
+    ContentCounter counter(text_, root);
     for (XmlElement child = root.first_child(); child; child = child.next_sibling()) {
+        const std::uint32_t content_index = counter.index_of(child);
         if (name_is(child, "identification")) {
             parse_identification(child, doc);
         } else if (name_is(child, "acdi")) {
             parse_acdi(child, doc);
         } else if (name_is(child, "segment")) {
-            parse_segment(child, doc);
+            parse_segment(child, content_index, doc);
         } else {
             warning(child, "unknown element <" + str(child.name()) + "> in <cdi> ignored");
         }
