@@ -1,309 +1,120 @@
 #include "conformance/config_backup.hpp"
 
-#include <algorithm>
-#include <charconv>
 #include <fstream>
-#include <map>
 #include <ostream>
 #include <sstream>
 
 #include "cdi/parser.hpp"
-#include "cdi/value_codec.hpp"
+#include "conformance/backup_csv.hpp"
 #include "conformance/report.hpp"
 #include "conformance/runner.hpp"
 #include "conformance/session.hpp"
+#include "conformance/session_memory.hpp"
 
 namespace olcb::conform {
 
 namespace {
 
-// A space extent larger than this is read variable by variable: a bad CDI must not make the
-// tool allocate without bound.
-constexpr std::uint64_t kMaxExtentRead = 1u << 20;
 constexpr std::uint32_t kMaxCdiBytes = 1u << 24;
 
-template <class Container>
-std::size_t index_in(const Container& siblings, const cdi::Element& e) {
-    return static_cast<std::size_t>(&e - siblings.data());
-}
-
-std::string part_name(const std::string& name, std::size_t index) {
-    return name.empty() ? "child" + std::to_string(index) : escape_backup_text(name);
-}
-
-bool backed_up(const cdi::Element& e) {
-    return e.kind != cdi::ElementKind::kAction && cdi::value_kind_of(e).has_value();
-}
-
-}  // namespace
-
-std::string backup_key(const cdi::Layout& layout, const cdi::Cursor& c) {
-    const cdi::Segment& seg = layout.document().segments[c.segment_index()];
-    std::string key =
-        seg.name.empty() ? "seg" + std::to_string(c.segment_index()) : escape_backup_text(seg.name);
-    const std::vector<cdi::Element>* siblings = &seg.children;
-    for (std::size_t level = 0; level < c.group_depth(); ++level) {
-        const cdi::Element& g = c.group(level);
-        key += "." + part_name(g.name, index_in(*siblings, g));
-        if (g.replication > 1) key += "(" + std::to_string(c.replica(level)) + ")";
-        siblings = &g.children;
+std::optional<NodeInfo> find(Session& session, const std::string& id_text, std::ostream& err) {
+    std::string error;
+    auto id = NodeId::parse(id_text, &error);
+    if (!id) {
+        err << "lcc-conform: node ID '" << id_text << "': " << error << "\n";
+        return std::nullopt;
     }
-    const cdi::Element& v = c.element();
-    key += "." + part_name(v.name, index_in(*siblings, v));
-    return key;
+    auto node = session.find_node(*id);
+    if (!node) err << "lcc-conform: node " << id->to_string() << " does not answer\n";
+    return node;
 }
 
-namespace {
-
-void append_utf8(std::string& out, std::uint32_t cp) {
-    if (cp < 0x80) {
-        out += static_cast<char>(cp);
-    } else if (cp < 0x800) {
-        out += static_cast<char>(0xC0 | (cp >> 6));
-        out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else {
-        out += static_cast<char>(0xE0 | (cp >> 12));
-        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (cp & 0x3F));
+// The node and its laid-out CDI; false after saying why on err.
+bool open_node(Session& session, const std::string& node_id,
+               const std::optional<std::string>& file_node, NodeInfo& node, NodeConfig& config,
+               std::ostream& out, std::ostream& err) {
+    auto chosen = choose_node(session, node_id, file_node, out, err);
+    if (!chosen) return false;
+    node = *chosen;
+    std::string error;
+    if (!load_node_config(session, node, config, error)) {
+        err << "lcc-conform: node " << node.id.to_string() << ": " << error << "\n";
+        return false;
     }
+    return true;
 }
 
-// Decodes the UTF-8 sequence at text[i]; its code point and length, or length 0 when invalid.
-std::pair<std::uint32_t, std::size_t> decode_utf8(std::string_view text, std::size_t i) {
-    const auto b0 = static_cast<unsigned char>(text[i]);
-    std::size_t len = b0 < 0x80         ? 1
-                      : (b0 >> 5) == 6  ? 2
-                      : (b0 >> 4) == 14 ? 3
-                      : (b0 >> 3) == 30 ? 4
-                                        : 0;
-    if (len == 0 || i + len > text.size()) return {0, 0};
-    std::uint32_t cp = len == 1 ? b0 : b0 & (0x7F >> len);
-    for (std::size_t k = 1; k < len; ++k) {
-        const auto b = static_cast<unsigned char>(text[i + k]);
-        if ((b & 0xC0) != 0x80) return {0, 0};
-        cp = (cp << 6) | (b & 0x3F);
+bool read_text_file(const std::string& path, std::string& text, std::ostream& err) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        err << "lcc-conform: cannot read " << path << "\n";
+        return false;
     }
-    return {cp, len};
+    std::ostringstream buf;
+    buf << in.rdbuf();
+    text = buf.str();
+    return true;
 }
 
-bool needs_escape(std::uint32_t cp) {
-    return cp == '=' || cp == '\\' || cp < 0x20 || (cp >= 0x7F && cp <= 0x9F) ||
-           (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE || cp == 0xFFFF;
-}
-
-std::string hex4(std::uint32_t v) {
-    static constexpr char kHex[] = "0123456789ABCDEF";
-    std::string s = "\\x";
-    for (int shift = 12; shift >= 0; shift -= 4) s += kHex[(v >> shift) & 0xF];
-    return s;
-}
-
-std::string_view trim_line(std::string_view line) {
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return line;
-}
-
-// An integer written unsigned (OpenLCB_Java's reading) of a signed variable: its raw bytes.
-std::optional<std::vector<std::uint8_t>> unsigned_int_bytes(const cdi::Element& e,
-                                                            std::string_view text) {
-    while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
-    while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
-    std::uint64_t v = 0;
-    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-    if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-    if (e.size == 0 || e.size > 8) return std::nullopt;
-    if (e.size < 8 && v >> (8 * e.size) != 0) return std::nullopt;
-    std::vector<std::uint8_t> bytes(e.size);
-    for (std::size_t k = 0; k < e.size; ++k) bytes[e.size - 1 - k] = (v >> (8 * k)) & 0xFF;
-    return bytes;
-}
-
-// The bytes of one entry's value text, or an error message.
-std::optional<std::vector<std::uint8_t>> value_bytes(const cdi::Element& e, std::string_view text,
-                                                     std::string& error) {
-    const bool is_string = e.kind == cdi::ElementKind::kString;
-    const std::string raw = is_string ? unescape_backup_text(text) : std::string(text);
-    auto value = cdi::parse_value_text(e, raw);
-    if (value) {
-        auto bytes = cdi::encode(e, *value);
-        if (bytes) return std::move(bytes).value();
-        error = bytes.error().message;
-    } else {
-        error = value.error().message;
+int restore_safety_backup(Session& session, const RestoreOptions& o, std::ostream& out,
+                          std::ostream& err) {
+    if (o.dry_run) {
+        err << "lcc-conform: " << o.path << " is a safety backup; --dry-run applies to "
+            << "configuration backups only\n";
+        return 2;
     }
-    if (cdi::value_kind_of(e) == cdi::ValueKind::kInt) {
-        if (auto bytes = unsigned_int_bytes(e, raw)) return bytes;
+    std::string error;
+    auto outcome = restore_file(session, o.path, error);
+    if (!outcome) {
+        err << "lcc-conform: " << error << "\n";
+        return 2;
     }
-    return std::nullopt;
+    out << "restore: " << outcome->summary() << "\n";
+    return outcome->identical ? 0 : 1;
 }
 
-}  // namespace
-
-std::vector<ConfigEntry> config_entries(const cdi::Layout& layout) {
-    std::vector<ConfigEntry> out;
-    layout.visit([&](const cdi::Cursor& c) {
-        if (!backed_up(c.element())) return;
-        out.push_back({backup_key(layout, c), &c.element(), c.space(), c.address()});
-    });
-    return out;
-}
-
-std::string escape_backup_text(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (std::size_t i = 0; i < text.size();) {
-        auto [cp, len] = decode_utf8(text, i);
-        if (len == 0) {  // not UTF-8: keep the byte visible and reversible
-            out += hex4(static_cast<unsigned char>(text[i]));
-            ++i;
-            continue;
-        }
-        if (needs_escape(cp)) {
-            out += hex4(cp);
-        } else {
-            out.append(text.substr(i, len));
-        }
-        i += len;
-    }
-    return out;
-}
-
-std::string unescape_backup_text(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '\\' && i + 5 < text.size() && text[i + 1] == 'x') {
-            std::uint32_t cp = 0;
-            auto [end, ec] = std::from_chars(text.data() + i + 2, text.data() + i + 6, cp, 16);
-            if (ec == std::errc() && end == text.data() + i + 6) {
-                append_utf8(out, cp);
-                i += 5;
-                continue;
-            }
-        }
-        out += text[i];
-    }
-    return out;
-}
-
-std::string make_config_backup(const cdi::Layout& layout, MemoryAccess& memory,
-                               const std::string& node_id, std::vector<std::string>& errors) {
-    // One read per space extent when it is small enough; otherwise per variable.
-    std::map<std::uint32_t, std::pair<std::uint64_t, std::vector<std::uint8_t>>> images;
-    for (const cdi::SpaceExtent& x : layout.extents()) {
-        if (x.space > 0xFF || x.end <= x.begin || x.end - x.begin > kMaxExtentRead ||
-            x.end > 0x1'0000'0000ull)
-            continue;
-        AccessResult r = memory.read(static_cast<std::uint8_t>(x.space),
-                                     static_cast<std::uint32_t>(x.begin), x.end - x.begin);
-        if (r.ok) images[x.space] = {x.begin, std::move(r.data)};
-    }
-    std::ostringstream text;
-    text << "# OpenLCB configuration backup of node " << node_id << " (lcc-conform)\n";
-    text << "# node " << node_id << "\n";
-    for (const ConfigEntry& e : config_entries(layout)) {
-        const std::uint64_t size =
-            e.element->kind == cdi::ElementKind::kEventId ? 8 : e.element->size;
-        std::vector<std::uint8_t> bytes;
-        auto img = images.find(e.space);
-        if (img != images.end() && e.address >= img->second.first &&
-            e.address + size <= img->second.first + img->second.second.size()) {
-            auto from = img->second.second.begin() +
-                        static_cast<std::ptrdiff_t>(e.address - img->second.first);
-            bytes.assign(from, from + static_cast<std::ptrdiff_t>(size));
-        } else if (e.space <= 0xFF && e.address + size <= 0x1'0000'0000ull && size <= 0xFFFF) {
-            AccessResult r = memory.read(static_cast<std::uint8_t>(e.space),
-                                         static_cast<std::uint32_t>(e.address), size);
-            if (!r.ok || r.data.size() != size) {
-                std::ostringstream m;
-                m << e.key << ": read failed (error 0x" << std::hex << r.error << ")";
-                errors.push_back(m.str());
-                continue;
-            }
-            bytes = std::move(r.data);
-        } else {
-            errors.push_back(e.key + ": outside any readable address");
-            continue;
-        }
-        auto value = cdi::decode(*e.element, bytes, cdi::CodecMode::kLenient);
-        if (!value) {
-            errors.push_back(e.key + ": " + value.error().message);
-            continue;
-        }
-        std::string shown = cdi::format_value(*e.element, *value);
-        if (e.element->kind == cdi::ElementKind::kString) shown = escape_backup_text(shown);
-        text << e.key << "=" << shown << "\n";
-    }
-    return text.str();
-}
-
-std::string ConfigRestoreOutcome::summary() const {
+// The problems of a plan that --allow-unknown accepts, as one sentence (empty when none).
+std::string problems(const RestorePlan& plan) {
+    if (plan.clean()) return {};
     std::ostringstream s;
-    s << written << " variable(s) written";
-    if (!unknown_keys.empty()) s << ", " << unknown_keys.size() << " unknown key(s) skipped";
-    if (!errors.empty()) s << ", " << errors.size() << " error(s)";
-    for (const auto& k : unknown_keys) s << "\n  unknown key: " << k;
-    for (const auto& e : errors) s << "\n  error: " << e;
+    s << plan.unknown_keys.size() << " unknown key(s), " << plan.bad_values.size()
+      << " bad value(s) and " << plan.file_errors.size() << " malformed line(s) skipped";
     return s.str();
 }
 
-ConfigRestoreOutcome restore_config(const cdi::Layout& layout, MemoryAccess& memory,
-                                    std::string_view text) {
-    ConfigRestoreOutcome out;
-    // Keys may repeat (siblings with one name): the n-th line of a key is its n-th variable.
-    std::map<std::string, std::vector<const ConfigEntry*>, std::less<>> by_key;
-    const std::vector<ConfigEntry> entries = config_entries(layout);
-    for (const ConfigEntry& e : entries) by_key[e.key].push_back(&e);
-    std::map<std::string, std::size_t, std::less<>> seen;
-    std::size_t line_no = 0;
-    while (!text.empty()) {
-        const auto nl = text.find('\n');
-        std::string_view line = trim_line(text.substr(0, nl));
-        text.remove_prefix(nl == std::string_view::npos ? text.size() : nl + 1);
-        ++line_no;
-        if (line.empty() || line.front() == '#') continue;
-        const auto eq = line.find('=');
-        if (eq == std::string_view::npos) {
-            out.errors.push_back("line " + std::to_string(line_no) + ": no '='");
-            continue;
-        }
-        const std::string_view key = line.substr(0, eq);
-        const auto it = by_key.find(key);
-        const std::size_t nth = it == by_key.end() ? 0 : seen[it->first]++;
-        if (it == by_key.end() || nth >= it->second.size()) {
-            out.unknown_keys.emplace_back(key);
-            continue;
-        }
-        const ConfigEntry& e = *it->second[nth];
-        std::string error;
-        auto bytes = value_bytes(*e.element, line.substr(eq + 1), error);
-        if (!bytes) {
-            out.errors.push_back(e.key + ": " + error);
-            continue;
-        }
-        AccessResult w = memory.write(static_cast<std::uint8_t>(e.space),
-                                      static_cast<std::uint32_t>(e.address), *bytes);
-        if (!w.ok) {
-            std::ostringstream m;
-            m << e.key << ": write failed (error 0x" << std::hex << w.error << ")";
-            out.errors.push_back(m.str());
-            continue;
-        }
-        ++out.written;
+int report_restore(const RestorePlan& plan, const ConfigRestoreOutcome* done,
+                   const RestoreOptions& o, const NodeInfo& node, std::ostream& out) {
+    const std::string id = node.id.to_string();
+    if (done == nullptr) {
+        out << "restore --dry-run: " << plan.changes.size() << " change(s) to node " << id << ", "
+            << plan.unchanged << " value(s) already equal; nothing written\n";
+    } else {
+        out << "restore: " << done->written << " variable(s) written to node " << id << ", "
+            << plan.unchanged << " already equal\n";
     }
-    return out;
+    print_plan(plan, false, out);
+    if (done != nullptr) {
+        for (const std::string& e : done->errors) out << "  error      " << e << "\n";
+    }
+    const std::string skipped = problems(plan);
+    if (!skipped.empty()) {
+        out << "restore: " << skipped
+            << (o.allow_unknown ? " (--allow-unknown)\n" : "; --allow-unknown accepts them\n");
+    }
+    const bool failed = done != nullptr && !done->ok();
+    return failed || (!skipped.empty() && !o.allow_unknown) ? 1 : 0;
 }
 
-std::optional<std::string> config_backup_node(std::string_view text) {
-    constexpr std::string_view kPrefix = "# node ";
-    while (!text.empty() && text.front() == '#') {
-        const auto nl = text.find('\n');
-        std::string_view line = trim_line(text.substr(0, nl));
-        if (line.starts_with(kPrefix)) return std::string(line.substr(kPrefix.size()));
-        if (nl == std::string_view::npos) break;
-        text.remove_prefix(nl + 1);
+}  // namespace
+
+std::string make_config_backup(const cdi::Layout& layout, MemoryAccess& memory,
+                               const std::string& node_id, std::vector<std::string>& errors) {
+    const std::vector<ConfigEntry> entries = config_entries(layout);
+    const std::vector<ConfigValue> values = read_config_values(entries, memory);
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        if (!values[i].text) errors.push_back(entries[i].key + ": " + values[i].error);
     }
-    return std::nullopt;
+    return backup_text(entries, values, node_id);
 }
 
 bool load_node_config(Session& session, const NodeInfo& node, NodeConfig& config,
@@ -332,84 +143,134 @@ bool load_node_config(Session& session, const NodeInfo& node, NodeConfig& config
     return true;
 }
 
-namespace {
-
-std::optional<NodeInfo> find(Session& session, const std::string& id_text, std::ostream& err) {
-    std::string error;
-    auto id = NodeId::parse(id_text, &error);
-    if (!id) {
-        err << "lcc-conform: node ID '" << id_text << "': " << error << "\n";
-        return std::nullopt;
+std::optional<NodeInfo> choose_node(Session& session, const std::string& node_id,
+                                    const std::optional<std::string>& file_node, std::ostream& out,
+                                    std::ostream& err) {
+    if (!node_id.empty()) return find(session, node_id, err);
+    if (file_node) return find(session, *file_node, err);
+    const std::vector<NodeInfo> nodes = session.discover();
+    if (nodes.size() == 1) {
+        out << "lcc-conform: using node " << nodes[0].id.to_string()
+            << ", the only node on the bus\n";
+        return nodes[0];
     }
-    auto node = session.find_node(*id);
-    if (!node) err << "lcc-conform: node " << id->to_string() << " does not answer\n";
-    return node;
+    if (nodes.empty()) {
+        err << "lcc-conform: no node answered Verify Node ID\n";
+    } else {
+        err << "lcc-conform: " << nodes.size() << " nodes answer; say which with --node ID:\n";
+        for (const NodeInfo& n : nodes) err << "  " << n.id.to_string() << "\n";
+    }
+    return std::nullopt;
 }
 
-}  // namespace
+int run_config_backup(Session& session, const BackupOptions& o, std::ostream& out,
+                      std::ostream& err) {
+    NodeInfo node;
+    NodeConfig config;
+    if (!open_node(session, o.node_id, std::nullopt, node, config, out, err)) return 2;
+    SessionMemory memory(session, node);
+    const std::vector<ConfigEntry> entries = config_entries(*config.layout);
+    const std::vector<ConfigValue> values = read_config_values(entries, memory);
+    const std::string id = node.id.to_string();
+    const std::string text = o.csv ? backup_csv(entries, values) : backup_text(entries, values, id);
+    std::string error;
+    if (!write_file(o.path, text, error)) {
+        err << "lcc-conform: " << error << "\n";
+        return 2;
+    }
+    std::size_t saved = 0;
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        if (values[i].text) {
+            ++saved;
+        } else {
+            err << "backup: " << entries[i].key << ": " << values[i].error << "\n";
+        }
+    }
+    out << "backup: " << saved << " variable(s) of node " << id << " written to " << o.path
+        << (o.csv ? " (CSV)" : "") << "\n";
+    return saved == entries.size() ? 0 : 1;
+}
 
 int run_config_backup(Session& session, const std::string& node_id, const std::string& path,
                       std::ostream& out, std::ostream& err) {
-    auto node = find(session, node_id, err);
-    if (!node) return 2;
+    return run_config_backup(session, BackupOptions{node_id, path, false}, out, err);
+}
+
+int run_restore(Session& session, const RestoreOptions& o, std::ostream& out, std::ostream& err) {
+    std::string text;
+    if (!read_text_file(o.path, text, err)) return 2;
+    if (SafetyBackup::is_safety_backup(text)) return restore_safety_backup(session, o, out, err);
+    const BackupFile file = parse_backup_file(text);
+    if (file.records.empty()) {
+        err << "lcc-conform: " << o.path << " holds no key=value line\n";
+        return 2;
+    }
+    NodeInfo node;
     NodeConfig config;
-    std::string error;
-    if (!load_node_config(session, *node, config, error)) {
-        err << "lcc-conform: " << error << "\n";
-        return 2;
+    if (!open_node(session, o.node_id, file.node, node, config, out, err)) return 2;
+    SessionMemory memory(session, node);
+    const std::vector<ConfigEntry> entries = config_entries(*config.layout);
+    const RestorePlan plan = plan_restore(entries, file, read_config_values(entries, memory));
+    if (plan.for_another_node()) {
+        print_problems(plan, out);
+        err << "lcc-conform: " << o.path << " is for another node type: it matches " << plan.matched
+            << " of the " << plan.node_keys << " keys of node " << node.id.to_string()
+            << "; nothing written\n";
+        return 1;
     }
-    SessionMemory memory(session, *node);
-    std::vector<std::string> errors;
-    const std::string text =
-        make_config_backup(*config.layout, memory, node->id.to_string(), errors);
-    if (!write_file(path, text, error)) {
-        err << "lcc-conform: " << error << "\n";
-        return 2;
-    }
-    const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-    out << "backup: " << (lines - 2) << " variable(s) of node " << node->id.to_string()
-        << " written to " << path << "\n";
-    for (const auto& e : errors) err << "backup: " << e << "\n";
-    return errors.empty() ? 0 : 1;
+    if (o.dry_run) return report_restore(plan, nullptr, o, node, out);
+    const ConfigRestoreOutcome done = apply_restore(plan, memory);
+    return report_restore(plan, &done, o, node, out);
 }
 
 int run_restore(Session& session, const std::string& path, const std::string& node_id,
                 std::ostream& out, std::ostream& err) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        err << "lcc-conform: cannot read " << path << "\n";
-        return 2;
-    }
-    std::ostringstream buf;
-    buf << in.rdbuf();
-    const std::string text = buf.str();
+    return run_restore(session, RestoreOptions{path, node_id, false, false}, out, err);
+}
+
+int run_diff_files(const std::string& a, const std::string& b, std::ostream& out,
+                   std::ostream& err) {
+    BackupFile fa;
+    BackupFile fb;
     std::string error;
-    if (SafetyBackup::is_safety_backup(text)) {
-        auto outcome = restore_file(session, path, error);
-        if (!outcome) {
-            err << "lcc-conform: " << error << "\n";
-            return 2;
-        }
-        out << "restore: " << outcome->summary() << "\n";
-        return outcome->identical ? 0 : 1;
-    }
-    std::string id = node_id;
-    if (id.empty()) id = config_backup_node(text).value_or("");
-    if (id.empty()) {
-        err << "lcc-conform: " << path << " names no node: pass --node ID\n";
-        return 2;
-    }
-    auto node = find(session, id, err);
-    if (!node) return 2;
-    NodeConfig config;
-    if (!load_node_config(session, *node, config, error)) {
+    if (!load_backup_file(a, fa, error) || !load_backup_file(b, fb, error)) {
         err << "lcc-conform: " << error << "\n";
         return 2;
     }
-    SessionMemory memory(session, *node);
-    ConfigRestoreOutcome outcome = restore_config(*config.layout, memory, text);
-    out << "restore: " << outcome.summary() << "\n";
-    return outcome.ok() ? 0 : 1;
+    for (const auto* f : {&fa, &fb}) {
+        for (const std::string& e : f->errors)
+            err << "diff: " << (f == &fa ? a : b) << ": " << e << "\n";
+    }
+    const std::vector<BackupDifference> diffs = diff_backups(fa, fb);
+    std::size_t only_b = 0;
+    for (const BackupDifference& d : diffs) only_b += !d.a;
+    out << "diff: A = " << a << ", B = " << b << "\n";
+    print_differences(diffs, fa.records.size() + only_b, out);
+    return diffs.empty() ? 0 : 1;
+}
+
+int run_diff_node(Session& session, const DiffOptions& o, std::ostream& out, std::ostream& err) {
+    BackupFile file;
+    std::string error;
+    if (!load_backup_file(o.path, file, error)) {
+        err << "lcc-conform: " << error << "\n";
+        return 2;
+    }
+    NodeInfo node;
+    NodeConfig config;
+    if (!open_node(session, o.node_id, file.node, node, config, out, err)) return 2;
+    SessionMemory memory(session, node);
+    const std::vector<ConfigEntry> entries = config_entries(*config.layout);
+    const RestorePlan plan = plan_restore(entries, file, read_config_values(entries, memory));
+    out << "diff: node " << node.id.to_string() << " -> " << o.path << ": " << plan.changes.size()
+        << " change(s) a restore would write, " << plan.unchanged << " equal, "
+        << plan.missing.size() << " key(s) of the node not in the file\n";
+    print_plan(plan, true, out);
+    if (plan.for_another_node()) {
+        out << "diff: the file is for another node type: it matches " << plan.matched << " of the "
+            << plan.node_keys << " keys; a restore writes nothing\n";
+    }
+    return plan.changes.empty() && plan.clean() && !plan.for_another_node() ? 0 : 1;
 }
 
 }  // namespace olcb::conform

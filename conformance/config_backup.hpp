@@ -1,68 +1,36 @@
-// The whole-configuration backup of `lcc-conform backup` / `restore`: every CDI variable as one
-// `key=value` line in OpenLCB_Java/JMRI's backup format (docs: jmri-backup-format.md), so JMRI
-// users can load the file; floats are written too, and files without them restore fine.
+// The whole-configuration backup of `lcc-conform backup` / `restore` / `diff`: every CDI
+// variable as one `key=value` line in OpenLCB_Java/JMRI's backup format (docs/backup.md,
+// jmri-backup-format.md) with JMRI's own keys and value forms, so files pass between JMRI and
+// lcc-conform both ways; floats are written too, and files without them restore fine. The
+// pieces: backup_keys (keys), backup_values (value text), config_reader (merged reads),
+// backup_file/backup_csv (the two file forms), config_restore (plan and apply), backup_diff.
 #pragma once
 
-#include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "cdi/document.hpp"
 #include "cdi/layout.hpp"
 #include "conformance/backup.hpp"
+#include "conformance/backup_diff.hpp"
+#include "conformance/backup_file.hpp"
+#include "conformance/backup_keys.hpp"
+#include "conformance/backup_values.hpp"
+#include "conformance/config_reader.hpp"
+#include "conformance/config_restore.hpp"
 
 namespace olcb::conform {
 
 class Session;
 struct NodeInfo;
 
-/// One backed-up variable: its key and where its bytes lie.
-struct ConfigEntry {
-    std::string key;                        ///< dotted path, e.g. "Port I/O.Line(3).Event On"
-    const cdi::Element* element = nullptr;  ///< the variable (int, float, string or eventid)
-    std::uint32_t space = 0;
-    std::uint64_t address = 0;
-};
-
-/// The JMRI backup key of the variable at the cursor (also what --exclude/--only match).
-std::string backup_key(const cdi::Layout& layout, const cdi::Cursor& cursor);
-
-/// Every value variable of the layout in document order, with its JMRI key (actions, blobs and
-/// unknown elements are left out).
-std::vector<ConfigEntry> config_entries(const cdi::Layout& layout);
-
-/// A string value escaped for a backup line: `=`, `\` and control characters as \x + 4 hex.
-std::string escape_backup_text(std::string_view text);
-/// The inverse of escape_backup_text; malformed escapes are kept as written.
-std::string unescape_backup_text(std::string_view text);
-
-/// The backup file text of a node's configuration read through `memory`; variables that
-/// cannot be read are left out and described in `errors`.
+/// The key=value backup text of a node's configuration read through `memory`; variables that
+/// cannot be read are left out and described in `errors` ("KEY: why").
 std::string make_config_backup(const cdi::Layout& layout, MemoryAccess& memory,
                                const std::string& node_id, std::vector<std::string>& errors);
-
-/// What a configuration restore did.
-struct ConfigRestoreOutcome {
-    std::size_t written = 0;                ///< variables written
-    std::vector<std::string> unknown_keys;  ///< keys of the file the CDI does not have
-    std::vector<std::string> errors;        ///< unparsable values and failed writes
-    /// True when every known value was written.
-    bool ok() const { return errors.empty(); }
-    /// One line: counts, then the unknown keys and errors.
-    std::string summary() const;
-};
-
-/// Writes every value of a backup file text that the layout knows; unknown keys are reported,
-/// not fatal. Integers are accepted signed or unsigned (OpenLCB_Java writes them unsigned).
-ConfigRestoreOutcome restore_config(const cdi::Layout& layout, MemoryAccess& memory,
-                                    std::string_view text);
-
-/// The node ID (dotted hex) of the "# node ..." header line of a backup file, if present.
-std::optional<std::string> config_backup_node(std::string_view text);
 
 /// A node's CDI, downloaded and laid out (the Document outlives the Layout that points into it).
 struct NodeConfig {
@@ -74,15 +42,62 @@ struct NodeConfig {
 bool load_node_config(Session& session, const NodeInfo& node, NodeConfig& config,
                       std::string& error);
 
-/// `lcc-conform backup --node ID FILE`: 0 on success, 1 when some variable could not be read,
-/// 2 when the node, CDI or file is unusable.
+/// The node a command works on: `node_id` when given, else `file_node` (a backup's header),
+/// else the only node answering Verify Node ID (said on `out`); nullopt after saying why on
+/// `err` (bad ID, no answer, no node, or several: they are listed).
+std::optional<NodeInfo> choose_node(Session& session, const std::string& node_id,
+                                    const std::optional<std::string>& file_node, std::ostream& out,
+                                    std::ostream& err);
+
+/// Options of `lcc-conform backup [--node ID] [--csv] FILE`.
+struct BackupOptions {
+    std::string node_id;  ///< --node; empty: the only node on the bus
+    std::string path;     ///< FILE
+    bool csv = false;     ///< --csv: key,value,type,space,address,size rows
+};
+
+/// `lcc-conform backup`: 0 on success, 1 when some variable could not be read, 2 when the node,
+/// CDI or file is unusable.
+int run_config_backup(Session& session, const BackupOptions& options, std::ostream& out,
+                      std::ostream& err);
+/// The key=value backup of node_id to path (BackupOptions without --csv).
 int run_config_backup(Session& session, const std::string& node_id, const std::string& path,
                       std::ostream& out, std::ostream& err);
 
-/// `lcc-conform restore FILE`: a safety backup goes back byte for byte, a JMRI configuration
-/// backup variable by variable (node from `node_id`, else from the file's header). 0 on success,
-/// 1 when something differs or failed, 2 when the file or node is unusable.
+/// Options of `lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] FILE`.
+struct RestoreOptions {
+    std::string path;            ///< FILE: a safety backup, a key=value or a CSV backup
+    std::string node_id;         ///< --node; empty: the file's "# node" line, else the only node
+    bool dry_run = false;        ///< --dry-run: print what would change, write nothing
+    bool allow_unknown = false;  ///< --allow-unknown: unknown keys and bad values exit 0
+};
+
+/// `lcc-conform restore`: a safety backup goes back byte for byte; a configuration backup
+/// writes the values that differ from the node's (nothing when the file matches less than half
+/// of the node's keys). 0 on success; 1 when a write failed, a value was not kept, the file is
+/// for another node type, or (without allow_unknown) a key is unknown or a value bad; 2 when
+/// the file or node is unusable.
+int run_restore(Session& session, const RestoreOptions& options, std::ostream& out,
+                std::ostream& err);
+/// run_restore of path onto node_id (RestoreOptions without --dry-run or --allow-unknown).
 int run_restore(Session& session, const std::string& path, const std::string& node_id,
                 std::ostream& out, std::ostream& err);
+
+/// `lcc-conform diff A B`: the differences of two backup files (either form); needs no link.
+/// 0 when they hold the same values, 1 when they differ, 2 when one cannot be read.
+int run_diff_files(const std::string& a, const std::string& b, std::ostream& out,
+                   std::ostream& err);
+
+/// Options of `lcc-conform diff [--node ID] FILE`.
+struct DiffOptions {
+    std::string node_id;  ///< --node; empty: the file's "# node" line, else the only node
+    std::string path;     ///< FILE
+};
+
+/// `lcc-conform diff --node ID FILE`: what a restore of FILE would change on the node (and what
+/// it cannot restore). 0 when nothing would change and every line is known, 1 otherwise, 2
+/// when the file or node is unusable.
+int run_diff_node(Session& session, const DiffOptions& options, std::ostream& out,
+                  std::ostream& err);
 
 }  // namespace olcb::conform

@@ -183,7 +183,7 @@ EncodingPlan plan_encoding(const cdi::Layout& layout, const EncodingOptions& opt
         if (!cursor_sampled(c, options.sample)) continue;
         const cdi::Element& e = c.element();
         if (c.address() + c.size() > 0x1'0000'0000ull || c.space() > 255) continue;
-        std::string key = backup_key(layout, c);
+        std::string key = jmri_backup_key(layout, c);
         std::string protection = protection_reason(layout, c);
         // An <action> is a command, not a setting: never written, even with --write-protected.
         if (e.kind == ElementKind::kAction) {

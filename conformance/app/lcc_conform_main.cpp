@@ -121,9 +121,9 @@ po::options_description check_options() {
         "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
         "reboot", "reset the node and check written values persist")(
         "exclude", po::value<std::vector<std::string>>()->composing(),
-        "never write variables whose backup key matches GLOB (repeatable), e.g. 'Internal data.*'")(
-        "only", po::value<std::vector<std::string>>()->composing(),
-        "write only variables whose backup key matches GLOB (repeatable)")(
+        "never write variables whose backup key matches GLOB (repeatable), e.g. '*.Internal "
+        "data.*'")("only", po::value<std::vector<std::string>>()->composing(),
+                   "write only variables whose backup key matches GLOB (repeatable)")(
         "write-protected",
         "also probe protected settings (read-only hints, 'do not change'), one at a time")(
         "node-wait", po::value<unsigned>()->default_value(30),
@@ -134,7 +134,11 @@ po::options_description check_options() {
         "safety backup file (default ./lcc-conform-backup-<node>.txt)")(
         "json", po::value<std::string>(), "write the JSON report to FILE (on every exit)")(
         "junit", po::value<std::string>(), "write the JUnit XML report to FILE (on every exit)")(
-        "no-color", "no colour even on a terminal");
+        "no-color", "no colour even on a terminal")(
+        "csv", "backup: write CSV rows (key,value,type,space,address,size)")(
+        "dry-run", "restore: print what would change (key, node value, file value), write nothing")(
+        "allow-unknown",
+        "restore: unknown keys and bad values are listed but do not make the exit status 1");
     return o;
 }
 
@@ -142,8 +146,14 @@ void print_help(const po::options_description& opts) {
     std::cout
         << "usage: lcc-conform (--connect HOST:PORT | --serial DEVICE | --socketcan IF) "
            "[options]\n"
-           "       lcc-conform backup --node ID FILE   save every CDI variable (JMRI format)\n"
-           "       lcc-conform restore [--node ID] FILE  put a safety or JMRI backup back\n\n"
+           "       lcc-conform backup [--node ID] [--csv] FILE\n"
+           "                     save every CDI variable (JMRI's key=value format, or CSV)\n"
+           "       lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] FILE\n"
+           "                     put a safety, JMRI or CSV backup back (only what differs)\n"
+           "       lcc-conform diff A B                  compare two backup files\n"
+           "       lcc-conform diff [--node ID] FILE     what restoring FILE would change\n"
+           "Without --node, backup, restore and diff use the node a backup's '# node' line\n"
+           "names, else the only node on the bus (several: they are listed). docs/backup.md\n\n"
            "Checks every node found (or --node ID) and prints one line per check.\n"
            "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
            "error,\nthe link went down during the run, or a node did not come back (its backup "
@@ -308,6 +318,31 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
     return out.finish(reports, run, exit_code(reports));
 }
 
+// `backup`, `restore` and `diff --node`: the configuration-backup commands (docs/backup.md).
+int backup_command(Session& session, const std::string& command,
+                   const std::vector<std::string>& args, const po::variables_map& vm) {
+    const std::string node_arg = vm.count("node") ? vm["node"].as<std::string>() : "";
+    if (command == "backup") {
+        BackupOptions o;
+        o.node_id = node_arg;
+        o.path = args[1];
+        o.csv = vm.count("csv") > 0;
+        return run_config_backup(session, o, std::cout, std::cerr);
+    }
+    if (command == "restore") {
+        RestoreOptions o;
+        o.path = args[1];
+        o.node_id = node_arg;
+        o.dry_run = vm.count("dry-run") > 0;
+        o.allow_unknown = vm.count("allow-unknown") > 0;
+        return run_restore(session, o, std::cout, std::cerr);
+    }
+    DiffOptions o;  // diff --node ID FILE
+    o.node_id = node_arg;
+    o.path = args[1];
+    return run_diff_node(session, o, std::cout, std::cerr);
+}
+
 int main_checked(int argc, char** argv) {
     po::options_description opts("options");
     opts.add(transport_options()).add(check_options());
@@ -332,7 +367,7 @@ int main_checked(int argc, char** argv) {
     std::vector<std::string> args;
     if (vm.count("args")) args = vm["args"].as<std::vector<std::string>>();
     const std::string command = args.empty() ? "check" : args[0];
-    if (command != "check" && command != "restore" && command != "backup") {
+    if (command != "check" && command != "restore" && command != "backup" && command != "diff") {
         std::cerr << "lcc-conform: unknown command '" << command << "' (see --help)\n";
         return kUsage;
     }
@@ -340,9 +375,13 @@ int main_checked(int argc, char** argv) {
         std::cerr << "lcc-conform: " << command << " wants exactly one FILE\n";
         return kUsage;
     }
-    if (command == "backup" && !vm.count("node")) {
-        std::cerr << "lcc-conform: backup wants --node ID\n";
+    if (command == "diff" &&
+        (args.size() < 2 || args.size() > 3 || (args.size() == 3 && vm.count("node")))) {
+        std::cerr << "lcc-conform: diff wants two FILEs, or --node ID and one FILE\n";
         return kUsage;
+    }
+    if (command == "diff" && args.size() == 3) {
+        return run_diff_files(args[1], args[2], std::cout, std::cerr);  // needs no link
     }
     const Reports reports(vm);
     std::string error;
@@ -354,14 +393,7 @@ int main_checked(int argc, char** argv) {
     Session session(*link);
     if (!session.start()) return reports.fail("could not join the network (no alias)");
 
-    if (command == "backup") {
-        return run_config_backup(session, vm["node"].as<std::string>(), args[1], std::cout,
-                                 std::cerr);
-    }
-    if (command == "restore") {
-        const std::string node = vm.count("node") ? vm["node"].as<std::string>() : "";
-        return run_restore(session, args[1], node, std::cout, std::cerr);
-    }
+    if (command != "check") return backup_command(session, command, args, vm);
     auto nodes = find_nodes(session, vm, error);
     if (nodes.empty()) return reports.fail(error);
     if (vm.count("list")) return list_nodes(session, nodes);

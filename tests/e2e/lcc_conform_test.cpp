@@ -101,13 +101,23 @@ TEST(LccConformE2e, JmriBackupRestoreRoundTripOverTcp) {
     auto [code, text] = conform({"--connect", sim.connect(), "backup", "--node", kNode, file});
     ASSERT_EQ(code, 0) << text;
     const std::string saved = read_text(file);
-    ASSERT_NE(saved.find("\nSettings.Trim=-5\n"), std::string::npos) << saved;
+    // OpenLCB_Java writes ints of 1, 2 and 4 bytes unsigned: -5 in 2 bytes is 65531.
+    ASSERT_NE(saved.find("\nSettings.Trim=65531\n"), std::string::npos) << saved;
     ASSERT_NE(saved.find("\nNode identity.User Name=simnode default\n"), std::string::npos);
 
-    // Change two values with a JMRI-format file, then check the backup shows them.
+    // Change two values with a JMRI-format file (the whole backup with two lines edited: a
+    // file matching under half of the node's keys is refused), then check the backup shows them.
     const std::string change = (out.path() / "change.txt").string();
-    std::ofstream(change) << "# node " << kNode
-                          << "\nSettings.Trim=7\nNode identity.User Name=changed\\x003D\n";
+    std::string edited = saved;
+    for (const auto& [from, to] :
+         {std::pair<std::string, std::string>{"\nSettings.Trim=65531\n", "\nSettings.Trim=7\n"},
+          {"\nNode identity.User Name=simnode default\n",
+           "\nNode identity.User Name=changed\\x003D\n"}}) {
+        const auto at = edited.find(from);
+        ASSERT_NE(at, std::string::npos) << from;
+        edited.replace(at, from.size(), to);
+    }
+    std::ofstream(change) << edited;
     std::tie(code, text) = conform({"--connect", sim.connect(), "restore", change});
     ASSERT_EQ(code, 0) << text;
     const std::string changed_file = (out.path() / "changed.txt").string();
@@ -116,7 +126,8 @@ TEST(LccConformE2e, JmriBackupRestoreRoundTripOverTcp) {
     ASSERT_EQ(code, 0) << text;
     const std::string changed = read_text(changed_file);
     EXPECT_NE(changed.find("\nSettings.Trim=7\n"), std::string::npos) << changed;
-    EXPECT_NE(changed.find("\nNode identity.User Name=changed\\x003D\n"), std::string::npos);
+    // Escapes are written as OpenLCB_Java writes them: lower-case hex (both cases are read).
+    EXPECT_NE(changed.find("\nNode identity.User Name=changed\\x003d\n"), std::string::npos);
 
     // Restore the first backup: every value is back.
     std::tie(code, text) = conform({"--connect", sim.connect(), "restore", file});
