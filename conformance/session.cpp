@@ -207,6 +207,7 @@ std::uint16_t Session::alias_of(const NodeInfo& node) const {
 }
 
 bool Session::ping(const NodeInfo& node, Duration timeout) {
+    if (round_trip(node, timeout / 2)) return true;
     const std::size_t mark = messages_.size();
     std::size_t scanned = mark;
     auto answered = [&] {
@@ -214,11 +215,6 @@ bool Session::ping(const NodeInfo& node, Duration timeout) {
             if (is_verified(messages_[scanned].message, node.id)) return true;
         return false;
     };
-    Message addressed;
-    addressed.mti = Mti::kVerifyNodeIdAddressed;
-    addressed.destination = NodeHandle{node.id, alias_of(node)};
-    send(addressed);
-    if (link_.run_until(answered, timeout / 2)) return true;
     // The alias may have changed unseen: the global form reaches the node on any alias.
     Message global;
     global.mti = Mti::kVerifyNodeIdGlobal;
