@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -76,7 +77,7 @@ nlohmann::json node_json(const NodeReport& report) {
 
 std::string format_duration(double seconds) {
     if (seconds < 0) seconds = 0;
-    auto total = static_cast<long long>(seconds + 0.5);
+    const long long total = std::llround(seconds);
     char buf[32];
     std::snprintf(buf, sizeof buf, "%lld:%02lld", total / 60, total % 60);
     return buf;
@@ -244,7 +245,8 @@ std::string ProgressBar::render(std::size_t done, std::chrono::steady_clock::tim
     std::string line = label_ + " ";
     if (total_ > 0) {
         std::size_t shown = done > total_ ? total_ : done;
-        int filled = static_cast<int>(static_cast<double>(shown) * kWidth / total_);
+        int filled =
+            static_cast<int>(static_cast<double>(shown) * kWidth / static_cast<double>(total_));
         line += "[" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] ";
         line += std::to_string(shown) + "/" + std::to_string(total_) + " B";
         if (shown > 0 && elapsed > 0) {
@@ -257,7 +259,7 @@ std::string ProgressBar::render(std::size_t done, std::chrono::steady_clock::tim
         line += std::to_string(done) + " B";
     }
     if (elapsed > 0 && done > 0) {
-        line += " (" + std::to_string(static_cast<long long>(done / elapsed)) + " B/s)";
+        line += " (" + std::to_string(std::llround(static_cast<double>(done) / elapsed)) + " B/s)";
     }
     return line;
 }

@@ -340,7 +340,11 @@ TcpHubServer::TcpHubServer(boost::asio::io_context& io, Options options)
     : impl_(std::make_shared<Impl>(io, options)) {}
 
 TcpHubServer::~TcpHubServer() {
-    impl_->stop();
+    try {
+        impl_->stop();
+    } catch (...) {
+        // Closing sockets cannot fail in a way a destructor could act on.
+    }
 }
 
 boost::system::error_code TcpHubServer::listen(const std::string& address, std::uint16_t port) {

@@ -42,7 +42,7 @@ constexpr std::size_t kClientQueueBytes = 64u << 20;
 // Hub policy: one client's flood is slowed to what every reader takes (docs/scenarios.md).
 constexpr std::uint32_t kClientFramesPerSecond = 20000;
 // Keeps a flood in the hub's queues, where its backpressure sees it, not in the kernel's.
-constexpr std::size_t kHubSendBufferBytes = 64 * 1024;
+constexpr std::size_t kHubSendBufferBytes = std::size_t{64} * 1024;
 
 // Where `simnode` without arguments finds scenarios/default.ini: the source tree this binary was
 // built from, next to the binary (build tree or install prefix), then the working directory.
