@@ -107,7 +107,9 @@ std::string escape_backup_text(std::string_view text) {
     out.reserve(text.size());
     for (std::size_t i = 0; i < text.size();) {
         auto [cp, len] = decode_utf8(text, i);
-        if (len == 0) {  // not UTF-8: keep the byte visible and reversible
+        // Not UTF-8: the byte is kept visible as its code point; the format has no way to say
+        // "raw byte", so it comes back as that character (a restore then finds it too long).
+        if (len == 0) {
             out += hex4(static_cast<unsigned char>(text[i]));
             ++i;
             continue;
