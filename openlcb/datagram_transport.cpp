@@ -158,6 +158,23 @@ void DatagramSender::abort_all() {
     entries_.clear();
 }
 
+std::size_t DatagramSender::abort_to(std::uint16_t dest_alias) {
+    // Every entry to dest goes, so no later one needs starting (unlike finish()); outcomes keep
+    // the send order.
+    std::size_t dropped = 0;
+    for (auto it = entries_.begin(); it != entries_.end();) {
+        if (it->dest != dest_alias) {
+            ++it;
+            continue;
+        }
+        outcomes_.push_back(DatagramOutcome{it->id, it->dest, DatagramOutcome::Status::kAborted, 0,
+                                            0, it->attempts});
+        it = entries_.erase(it);
+        ++dropped;
+    }
+    return dropped;
+}
+
 std::optional<CanFrame> DatagramSender::pop_frame() {
     return pop(outbox_);
 }

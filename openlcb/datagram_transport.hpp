@@ -36,7 +36,7 @@ struct DatagramOutcome {
         kAccepted,  ///< Datagram Received OK; flags hold its flags byte
         kRejected,  ///< Datagram Rejected (or OIR) with a permanent code, or resends exhausted
         kTimedOut,  ///< no answer within ack_timeout (error_code = 0x2010)
-        kAborted,   ///< abort_all() was called
+        kAborted,   ///< abort_all() or abort_to() dropped it
     };
     std::uint32_t id = 0;  ///< what send() returned
     std::uint16_t dest_alias = 0;
@@ -69,6 +69,9 @@ public:
     std::optional<TimePoint> next_deadline() const;
     /// Drops every queued and outstanding datagram, reporting each as kAborted.
     void abort_all();
+    /// Drops every queued and outstanding datagram to dest_alias (that node re-initialized, so
+    /// no ack will come), reporting each as kAborted; returns how many were dropped.
+    std::size_t abort_to(std::uint16_t dest_alias);
 
     /// Next frame to transmit.
     std::optional<CanFrame> pop_frame();

@@ -16,6 +16,10 @@ constexpr std::uint16_t cmti_of(Mti mti) {
     return to_u16(mti) & 0xFFF;
 }
 
+// AMDs this soon after an AME are taken as its answers, not as a node re-initializing: a
+// re-initializing node sends Initialization Complete right after its AMD anyway.
+constexpr Duration kAmeAnswerWindow = std::chrono::seconds(1);
+
 // Bounds the skipping of generator states that fold to the alias the node had before.
 constexpr int kMaxSameAliasSkips = 16;
 
@@ -180,6 +184,13 @@ void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
         (control && can::classify_control(frame.id) == can::ControlFrame::kAmd)) {
         collect();
     }
+    if (control && can::classify_control(frame.id) == can::ControlFrame::kAme) last_ame_ = now;
+    if (sender_.queued() != 0 && announces_reinitialization(frame, control, now)) {
+        // Its new run will never ack what the old one was sent: waiting out the ack timeout
+        // would only delay the next datagram to it (memconfig_utils re-runs on the same alias).
+        sender_.abort_to(can::source_alias(frame.id));
+        collect();
+    }
     if (control || !initialized()) return;
     const std::uint16_t me = alias();
     switch (can::frame_format(frame.id)) {
@@ -205,6 +216,18 @@ void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
         default:
             break;
     }
+}
+
+bool NodeStack::announces_reinitialization(const CanFrame& frame, bool control,
+                                           TimePoint now) const {
+    if (control) {
+        return can::classify_control(frame.id) == can::ControlFrame::kAmd &&
+               !(last_ame_ && now - *last_ame_ < kAmeAnswerWindow);
+    }
+    if (can::frame_format(frame.id) != can::FrameFormat::kGlobalAddressed) return false;
+    const std::uint16_t cmti = can::can_mti(frame.id);
+    return cmti == cmti_of(Mti::kInitializationComplete) ||
+           cmti == cmti_of(Mti::kInitializationCompleteSimple);
 }
 
 void NodeStack::on_global_frame(const CanFrame& frame, TimePoint now) {

@@ -80,6 +80,9 @@ enum class SendStatus : std::uint8_t {
 /// Lifecycle: start() reserves an alias (CID7..4, >= 200 ms, RID, AMD), then sends Initialization
 /// Complete as the first message and calls on_initialized. Messages given to send_message()
 /// earlier are held and sent right after it. Only an Initialized node dispatches messages.
+///
+/// When another node re-initializes (Initialization Complete, or an AMD not answering an AME),
+/// every datagram queued or awaiting an ack for its alias ends as kAborted at once.
 class NodeStack {
 public:
     /// Receives every global message and every message addressed to us (datagrams excepted);
@@ -220,6 +223,7 @@ private:
     void on_datagram_frame(const CanFrame& frame, TimePoint now);
     void on_addressed_frame(const CanFrame& frame, TimePoint now);
     void on_global_frame(const CanFrame& frame, TimePoint now);
+    bool announces_reinitialization(const CanFrame& frame, bool control, TimePoint now) const;
     void send_oir(std::uint16_t dest, std::uint16_t code, std::uint16_t mti);
     void send_initialization_complete();
     void handle_alias_event(const AliasEvent& event);
@@ -263,6 +267,7 @@ private:
     std::uint32_t initializations_ = 0;
     std::multimap<TimePoint, TimerHandler> timers_;
     TimePoint now_{};
+    std::optional<TimePoint> last_ame_;  // AMDs right after an AME answer it (no re-init)
 };
 
 }  // namespace olcb

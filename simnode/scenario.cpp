@@ -48,7 +48,8 @@ constexpr std::string_view kProcessKeys[] = {"listen",
                                              "start-on-connect",
                                              "max-clients",
                                              "max-clients-per-address",
-                                             "idle-timeout"};
+                                             "idle-timeout",
+                                             "log-max-bytes"};
 // A network of this many nodes is already far beyond any real CAN segment.
 constexpr std::uint64_t kMaxCount = 100000;
 // Faster than any UART a USB-CAN adapter uses; above it a typo is more likely than a rate.
@@ -160,7 +161,10 @@ po::options_description cli_options() {
         "max-clients-per-address", po::value<std::string>()->value_name("N"),
         "hub: refuse connections from one address beyond N (default 48)")(
         "idle-timeout", po::value<std::string>()->value_name("SECONDS"),
-        "hub: close a client that sent nothing for SECONDS (default 0 = never)");
+        "hub: close a client that sent nothing for SECONDS (default 0 = never)")(
+        "log-max-bytes", po::value<std::string>()->value_name("N"),
+        "rotate the trace and candump files to FILE.1 before they grow past N bytes "
+        "(default 0 = never)");
     po::options_description testing("Test hooks (top level)");
     testing.add_options()("latency", po::value<std::string>()->value_name("MS[:JITTER]"),
                           "every node answers MS ms (plus 0..JITTER ms) late, as the fault "
@@ -283,6 +287,14 @@ std::optional<std::uint64_t> parse_count(const std::string& text) {
     if (ec != std::errc() || ptr != text.data() + text.size() || v == 0 || v > kMaxCount) {
         return std::nullopt;
     }
+    return v;
+}
+
+// A byte count, 0 allowed (no upper bound beyond 64 bits: any file size is plausible).
+std::optional<std::uint64_t> parse_bytes(const std::string& text) {
+    std::uint64_t v = 0;
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || ptr != text.data() + text.size()) return std::nullopt;
     return v;
 }
 
@@ -444,6 +456,11 @@ public:
         }
         scenario_.trace = path_of(keys, "trace");
         scenario_.candump = path_of(keys, "candump");
+        if (const auto* v = single(keys, "log-max-bytes")) {
+            const auto n = parse_bytes(*v);
+            if (!n) return fail("log-max-bytes '" + *v + "' must be a whole number of bytes >= 0");
+            scenario_.log_max_bytes = *n;
+        }
         if (const auto* v = single(keys, "run-for")) {
             const auto seconds = parse_seconds(*v);
             if (!seconds) return fail("run-for '" + *v + "' must be a number of seconds >= 0");

@@ -39,6 +39,7 @@ struct Scenario {
     bool rtscts = false;              ///< hardware flow control on the serial adapter
     std::filesystem::path trace;      ///< decoded traffic log (empty: none)
     std::filesystem::path candump;    ///< candump -L traffic log (empty: none)
+    std::uint64_t log_max_bytes = 0;  ///< trace/candump rotate to FILE.1 past this (0 = never)
     std::optional<double> run_for;    ///< stop after this many seconds
     std::size_t max_clients = 64;     ///< hub connections beyond are refused
     std::size_t max_clients_per_address = 48;  ///< hub connections from one address

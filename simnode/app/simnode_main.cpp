@@ -69,8 +69,7 @@ class TrafficTap {
 public:
     bool open(const Scenario& s, std::string& error) {
         if (!s.trace.empty()) {
-            trace_.open(s.trace, std::ios::app);
-            if (!trace_) {
+            if (!trace_.open(s.trace.string(), s.log_max_bytes)) {
                 error = "cannot open trace file " + s.trace.string();
                 return false;
             }
@@ -79,8 +78,8 @@ public:
                 [](std::span<const std::uint8_t> bytes) { return memory::describe(bytes); });
         }
         if (!s.candump.empty() &&
-            !log_.add_candump_file(s.candump.string(),
-                                   s.socketcan.empty() ? "vcan0" : s.socketcan)) {
+            !log_.add_candump_file(s.candump.string(), s.socketcan.empty() ? "vcan0" : s.socketcan,
+                                   s.log_max_bytes)) {
             error = "cannot open candump file " + s.candump.string();
             return false;
         }
@@ -94,12 +93,16 @@ public:
             const double t = std::chrono::duration<double>(Clock::now() - start_).count();
             char stamp[32];
             std::snprintf(stamp, sizeof stamp, "%10.6f ", t);
-            trace_ << stamp << *line << std::endl;
+            line_.assign(stamp);
+            line_.append(*line);
+            line_.push_back('\n');
+            trace_.write(line_);
         }
     }
 
 private:
-    std::ofstream trace_;
+    RotatingFile trace_;  // rotates silently: a message per rotation would flood the console
+    std::string line_;
     Monitor monitor_;
     TrafficLog log_;
     TimePoint start_ = Clock::now();

@@ -381,6 +381,29 @@ TEST(DatagramSender, AbortAllReportsEachDatagram) {
     EXPECT_EQ(s.queued(), 0u);
 }
 
+TEST(DatagramSender, AbortToDropsOnlyThatDestinationAndFreesIt) {
+    auto s = sender();
+    const auto a = s.send(0x343, counting(1), t0);
+    const auto b = s.send(0x343, counting(1), t0);  // queued behind a
+    const auto other = s.send(0x555, counting(1), t0);
+    drain(s);
+    EXPECT_EQ(s.abort_to(0x343), 2u);
+    const auto first = s.pop_outcome();
+    const auto second = s.pop_outcome();
+    ASSERT_TRUE(first && second);
+    EXPECT_EQ(first->id, *a);
+    EXPECT_EQ(second->id, *b);
+    EXPECT_EQ(first->status, Status::kAborted);
+    EXPECT_EQ(second->status, Status::kAborted);
+    EXPECT_FALSE(s.pop_outcome());
+    EXPECT_EQ(s.queued(), 1u) << "the datagram to 0x555 still waits";
+    EXPECT_TRUE(drain(s).empty()) << "nothing queued to 0x343 was started";
+    s.send(0x343, std::vector<std::uint8_t>{2}, t0);
+    EXPECT_EQ(drain(s), (Strings{":X1A34312CN02;"})) << "the next one goes at once";
+    EXPECT_EQ(s.abort_to(0x777), 0u);
+    EXPECT_TRUE(other.has_value());
+}
+
 TEST(Datagram, SenderAndReceiverTalk) {
     auto s = sender();
     auto r = receiver();
