@@ -55,6 +55,20 @@ TEST(ScenarioTest, BadBaudAndFlowControlAreRefusedByName) {
     EXPECT_NE(error.find("flow-control"), std::string::npos) << error;
 }
 
+TEST(ScenarioTest, LogMaxBytesAndWatchVariableFromFileAndCommandLine) {
+    std::string error;
+    auto s = parse(std::string(kOneNode) + "log-max-bytes = 4096\n", {}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->log_max_bytes, 4096u);
+    s = parse(kOneNode, {"--log-max-bytes", "0", "--watch-variable", "Settings/Trim"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->log_max_bytes, 0u);
+    ASSERT_EQ(s->nodes.size(), 1u);
+    EXPECT_EQ(s->nodes[0].watch_variable, "Settings/Trim");
+    EXPECT_FALSE(parse(kOneNode, {"--log-max-bytes", "lots"}, error));
+    EXPECT_NE(error.find("log-max-bytes"), std::string::npos) << error;
+}
+
 TEST(ScenarioTest, ConnectTakesAHostName) {
     std::string error;
     const auto s = parse(kOneNode, {"--connect", "jmri.local:12021"}, error);
