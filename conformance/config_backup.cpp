@@ -44,6 +44,25 @@ bool open_node(Session& session, const std::string& node_id,
     return true;
 }
 
+// The node a file goes to, its CDI and variables, and what restoring the file onto it would
+// change (the node's values read now): what restore and diff share. The plan points into
+// entries, which point into config: they live together.
+struct NodePlan {
+    NodeInfo node;
+    NodeConfig config;
+    std::vector<ConfigEntry> entries;
+    RestorePlan plan;
+};
+
+bool plan_on_node(Session& session, const std::string& node_id, const BackupFile& file, NodePlan& p,
+                  std::ostream& out, std::ostream& err) {
+    if (!open_node(session, node_id, file.node, p.node, p.config, out, err)) return false;
+    SessionMemory memory(session, p.node);
+    p.entries = config_entries(*p.config.layout);
+    p.plan = plan_restore(p.entries, file, read_config_values(p.entries, memory));
+    return true;
+}
+
 bool read_text_file(const std::string& path, std::string& text, std::ostream& err) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
@@ -191,11 +210,6 @@ int run_config_backup(Session& session, const BackupOptions& o, std::ostream& ou
     return saved == entries.size() ? 0 : 1;
 }
 
-int run_config_backup(Session& session, const std::string& node_id, const std::string& path,
-                      std::ostream& out, std::ostream& err) {
-    return run_config_backup(session, BackupOptions{node_id, path, false}, out, err);
-}
-
 int run_restore(Session& session, const RestoreOptions& o, std::ostream& out, std::ostream& err) {
     std::string text;
     if (!read_text_file(o.path, text, err)) return 2;
@@ -205,12 +219,11 @@ int run_restore(Session& session, const RestoreOptions& o, std::ostream& out, st
         err << "lcc-conform: " << o.path << " holds no key=value line\n";
         return 2;
     }
-    NodeInfo node;
-    NodeConfig config;
-    if (!open_node(session, o.node_id, file.node, node, config, out, err)) return 2;
+    NodePlan p;
+    if (!plan_on_node(session, o.node_id, file, p, out, err)) return 2;
+    const NodeInfo& node = p.node;
+    const RestorePlan& plan = p.plan;
     SessionMemory memory(session, node);
-    const std::vector<ConfigEntry> entries = config_entries(*config.layout);
-    const RestorePlan plan = plan_restore(entries, file, read_config_values(entries, memory));
     if (plan.for_another_node()) {
         print_problems(plan, out);
         err << "lcc-conform: " << o.path << " is for another node type: it matches " << plan.matched
@@ -221,11 +234,6 @@ int run_restore(Session& session, const RestoreOptions& o, std::ostream& out, st
     if (o.dry_run) return report_restore(plan, nullptr, o, node, out);
     const ConfigRestoreOutcome done = apply_restore(plan, memory);
     return report_restore(plan, &done, o, node, out);
-}
-
-int run_restore(Session& session, const std::string& path, const std::string& node_id,
-                std::ostream& out, std::ostream& err) {
-    return run_restore(session, RestoreOptions{path, node_id, false, false}, out, err);
 }
 
 int run_diff_files(const std::string& a, const std::string& b, std::ostream& out,
@@ -256,12 +264,10 @@ int run_diff_node(Session& session, const DiffOptions& o, std::ostream& out, std
         err << "lcc-conform: " << error << "\n";
         return 2;
     }
-    NodeInfo node;
-    NodeConfig config;
-    if (!open_node(session, o.node_id, file.node, node, config, out, err)) return 2;
-    SessionMemory memory(session, node);
-    const std::vector<ConfigEntry> entries = config_entries(*config.layout);
-    const RestorePlan plan = plan_restore(entries, file, read_config_values(entries, memory));
+    NodePlan p;
+    if (!plan_on_node(session, o.node_id, file, p, out, err)) return 2;
+    const NodeInfo& node = p.node;
+    const RestorePlan& plan = p.plan;
     out << "diff: node " << node.id.to_string() << " -> " << o.path << ": " << plan.changes.size()
         << " change(s) a restore would write, " << plan.unchanged << " equal, "
         << plan.missing.size() << " key(s) of the node not in the file\n";

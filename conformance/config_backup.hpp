@@ -60,9 +60,6 @@ struct BackupOptions {
 /// CDI or file is unusable.
 int run_config_backup(Session& session, const BackupOptions& options, std::ostream& out,
                       std::ostream& err);
-/// The key=value backup of node_id to path (BackupOptions without --csv).
-int run_config_backup(Session& session, const std::string& node_id, const std::string& path,
-                      std::ostream& out, std::ostream& err);
 
 /// Options of `lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] FILE`.
 struct RestoreOptions {
@@ -79,9 +76,6 @@ struct RestoreOptions {
 /// the file or node is unusable.
 int run_restore(Session& session, const RestoreOptions& options, std::ostream& out,
                 std::ostream& err);
-/// run_restore of path onto node_id (RestoreOptions without --dry-run or --allow-unknown).
-int run_restore(Session& session, const std::string& path, const std::string& node_id,
-                std::ostream& out, std::ostream& err);
 
 /// `lcc-conform diff A B`: the differences of two backup files (either form); needs no link.
 /// 0 when they hold the same values, 1 when they differ, 2 when one cannot be read.

@@ -208,20 +208,8 @@ std::uint16_t Session::alias_of(const NodeInfo& node) const {
 
 bool Session::ping(const NodeInfo& node, Duration timeout) {
     if (round_trip(node, timeout / 2)) return true;
-    const std::size_t mark = messages_.size();
-    std::size_t scanned = mark;
-    auto answered = [&] {
-        for (; scanned < messages_.size(); ++scanned)
-            if (is_verified(messages_[scanned].message, node.id)) return true;
-        return false;
-    };
     // The alias may have changed unseen: the global form reaches the node on any alias.
-    Message global;
-    global.mti = Mti::kVerifyNodeIdGlobal;
-    const auto bytes = node.id.to_bytes();
-    global.payload.assign(bytes.begin(), bytes.end());
-    send(global);
-    return link_.run_until(answered, timeout - timeout / 2);
+    return find_node(node.id, timeout - timeout / 2).has_value();
 }
 
 std::uint64_t Session::reads(NodeId node, std::uint8_t space) const {

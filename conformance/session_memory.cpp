@@ -1,6 +1,7 @@
 #include "conformance/session_memory.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "openlcb/error_codes.hpp"
 
@@ -16,26 +17,13 @@ AccessResult to_access(const MemResult& r) {
 }  // namespace
 
 AccessResult SessionMemory::read(std::uint8_t space, std::uint32_t address, std::size_t count) {
-    AccessResult out{true, 0, {}};
-    out.data.reserve(count);
-    // Every pass adds at least one byte or returns, so the loop ends after `count` passes.
-    while (out.data.size() < count) {
-        auto n = static_cast<std::uint8_t>(std::min(kChunk, count - out.data.size()));
-        auto at = static_cast<std::uint32_t>(address + out.data.size());
-        MemResult r = session_.read(node_, static_cast<memory::Space>(space), at, n);
-        const bool end = (r.ok && r.data.empty()) ||
-                         (!r.ok && !r.rejected && r.error == error_code::kOutOfBounds);
-        if (end) {
-            // The end of the space: what came before it is the answer.
-            if (!out.data.empty()) return out;
-            return {false, error_code::kOutOfBounds, {}};
-        }
-        if (!r.ok) return to_access(r);
-        if (r.data.size() > n) r.data.resize(n);  // never trust the node's length
-        // A short reply is not the end: the next read goes on where its data ended.
-        out.data.insert(out.data.end(), r.data.begin(), r.data.end());
-    }
-    return out;
+    // read_range goes on after short replies and stops at the end of the space; what came
+    // before the end is the answer, nothing at all is 0x1082.
+    MemResult r = session_.read_range(node_, static_cast<memory::Space>(space), address,
+                                      static_cast<std::uint32_t>(count), false);
+    if (!r.ok) return to_access(r);
+    if (r.data.empty() && count != 0) return {false, error_code::kOutOfBounds, {}};
+    return {true, 0, std::move(r.data)};
 }
 
 AccessResult SessionMemory::write(std::uint8_t space, std::uint32_t address,
