@@ -1,6 +1,7 @@
 // The CSV form of a backup: RFC 4180 quoting both ways, columns by header name, and a restore
 // that refuses rows whose place is not the node's (a key of another CDI).
 #include "conformance/backup_csv.hpp"
+#include "conformance/conform_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -21,12 +22,7 @@ constexpr const char* kCdi = R"(<?xml version="1.0"?>
 class BackupCsvTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        auto parsed = cdi::parse(kCdi);
-        ASSERT_TRUE(parsed.document.has_value());
-        doc_ = std::move(*parsed.document);
-        auto laid = cdi::build_layout(doc_);
-        ASSERT_TRUE(laid.layout.has_value());
-        layout_.emplace(std::move(*laid.layout));
+        load_cdi(kCdi, doc_, layout_);
         entries_ = config_entries(*layout_);
         memory_.spaces[253] = std::vector<std::uint8_t>(64, 0);
     }

@@ -1,6 +1,7 @@
 // The reads of a configuration backup: used ranges merged into as few 64-byte reads as one
 // request per range would need, and a failed range read again variable by variable.
 #include "conformance/config_reader.hpp"
+#include "conformance/conform_test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,12 +52,7 @@ constexpr const char* kCdi = R"(<?xml version="1.0"?>
 class ConfigReaderTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        auto parsed = cdi::parse(kCdi);
-        ASSERT_TRUE(parsed.document.has_value());
-        doc_ = std::move(*parsed.document);
-        auto laid = cdi::build_layout(doc_);
-        ASSERT_TRUE(laid.layout.has_value());
-        layout_.emplace(std::move(*laid.layout));
+        load_cdi(kCdi, doc_, layout_);
         entries_ = config_entries(*layout_);
         memory_.spaces[253] = std::vector<std::uint8_t>(1322, 0);
         memory_.spaces[253][0] = 7;

@@ -1,11 +1,17 @@
-// What the conformance suites share: the node IDs of the simulated device and of the tool, and
-// reading a CDI file.
+// What the conformance suites share: the node IDs of the simulated device and of the tool,
+// reading a CDI file, and a CDI text parsed and laid out.
 #pragma once
+
+#include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
+
+#include "cdi/layout.hpp"
+#include "cdi/parser.hpp"
 
 #include "openlcb/node_id.hpp"
 
@@ -22,6 +28,16 @@ inline std::string read_text(const std::filesystem::path& p) {
     std::stringstream ss;
     ss << in.rdbuf();
     return ss.str();
+}
+
+/// Parses and lays out a CDI text into doc and layout (the layout points into doc).
+inline void load_cdi(const char* text, cdi::Document& doc, std::optional<cdi::Layout>& layout) {
+    auto parsed = cdi::parse(text);
+    ASSERT_TRUE(parsed.document.has_value());
+    doc = std::move(*parsed.document);
+    auto laid = cdi::build_layout(doc);
+    ASSERT_TRUE(laid.layout.has_value());
+    layout.emplace(std::move(*laid.layout));
 }
 
 }  // namespace olcb::conform

@@ -7,6 +7,7 @@
 
 #include "cdi/parser.hpp"
 #include "cdi/value_codec.hpp"
+#include "conformance/conform_test_util.hpp"
 #include "conformance/fake_memory.hpp"
 
 namespace olcb::conform {
@@ -28,19 +29,9 @@ constexpr const char* kCdi = R"(<?xml version="1.0"?>
 </segment>
 </cdi>)";
 
-// Parses and lays out a CDI text into doc and layout (the layout points into doc).
-void load(const char* text, cdi::Document& doc, std::optional<cdi::Layout>& layout) {
-    auto parsed = cdi::parse(text);
-    ASSERT_TRUE(parsed.document);
-    doc = std::move(*parsed.document);
-    auto lr = cdi::build_layout(doc);
-    ASSERT_TRUE(lr.layout);
-    layout.emplace(std::move(*lr.layout));
-}
-
 struct Fixture : ::testing::Test {
     void SetUp() override {
-        load(kCdi, doc, layout);
+        load_cdi(kCdi, doc, layout);
         mem.spaces[253] = std::vector<std::uint8_t>(200, 0);
         mem.spaces[251] = std::vector<std::uint8_t>(128, 0);
     }
@@ -351,7 +342,7 @@ constexpr const char* kProtectedCdi = R"(<?xml version="1.0"?>
 
 struct ProtectedFixture : ::testing::Test {
     void SetUp() override {
-        load(kProtectedCdi, doc, layout);
+        load_cdi(kProtectedCdi, doc, layout);
         mem.spaces[253] = std::vector<std::uint8_t>(16, 0);
         mem.spaces[253][0] = 2;  // Version
     }
