@@ -201,7 +201,8 @@ Decision MemoryConfigServer::on_write(Space number, std::uint32_t address, Space
         case WriteStatus::kOk:
             break;
         case WriteStatus::kReadOnly:
-            return fail(ErrorCode::kReadOnly);
+            // A space read-only in part (251's version byte) refuses as a read-only space does.
+            return Decision::reject(ErrorCode::kReadOnly);
         case WriteStatus::kOutOfBounds:
             return fail(ErrorCode::kOutOfBounds);
         case WriteStatus::kIoError:

@@ -8,7 +8,8 @@
 //  * read count 0 or > 64, truncated or malformed commands, factory reset naming another node:
 //    Datagram Rejected 0x1080; unknown command, stream commands, replies sent to us, and
 //    freeze / unfreeze / enter bootloader unless enabled: Datagram Rejected 0x1041;
-//  * unknown space: Datagram Rejected 0x1081 (no reply); write to a read-only space: 0x1083;
+//  * unknown space: Datagram Rejected 0x1081 (no reply); write to a read-only space, or one the
+//    space refuses as read-only (a read-only byte inside it, as 251's version byte): 0x1083;
 //  * read starting at/after the end: Read Reply Fail 0x1082; read running past the end: short
 //    Read Reply; write not fitting the space: Write Reply Fail 0x1082 and nothing written;
 //    storage failure: Write Reply Fail 0x1000;

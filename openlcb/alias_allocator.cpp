@@ -85,15 +85,7 @@ void AliasAllocator::handle_control(const CanFrame& frame) {
         case can::ControlFrame::kAmd:
             if (!carried) return;
             if (*carried == node_) {
-                report(AliasEvent::Kind::kDuplicateNodeId);
-                if (config_.halt_on_duplicate) {
-                    if (state_ == State::kPermitted) {
-                        const auto event = kDuplicateNodeIdEvent.to_bytes();
-                        send(can::make_frame(
-                            can::message_header(to_u16(Mti::kEventReport) & 0xFFF, alias_), event));
-                    }
-                    state_ = State::kHalted;
-                }
+                on_duplicate();
                 return;
             }
             cache_.add(src, *carried);
@@ -114,6 +106,17 @@ void AliasAllocator::handle_control(const CanFrame& frame) {
     }
 }
 
+void AliasAllocator::on_duplicate() {
+    report(AliasEvent::Kind::kDuplicateNodeId);
+    if (!config_.halt_on_duplicate) return;
+    if (state_ == State::kPermitted) {
+        const auto event = kDuplicateNodeIdEvent.to_bytes();
+        send(
+            can::make_frame(can::message_header(to_u16(Mti::kEventReport) & 0xFFF, alias_), event));
+    }
+    state_ = State::kHalted;
+}
+
 void AliasAllocator::learn_from_message(const CanFrame& frame) {
     if (can::frame_format(frame.id) != can::FrameFormat::kGlobalAddressed) return;
     switch (can::can_mti(frame.id)) {
@@ -122,7 +125,15 @@ void AliasAllocator::learn_from_message(const CanFrame& frame) {
         case to_u16(Mti::kVerifiedNodeId):
         case to_u16(Mti::kVerifiedNodeIdSimple):
             if (auto id = NodeId::from_bytes(std::span(frame.data.data(), frame.len))) {
-                if (*id != node_) cache_.add(can::source_alias(frame.id), *id);
+                const std::uint16_t src = can::source_alias(frame.id);
+                if (*id != node_) {
+                    cache_.add(src, *id);
+                } else if (can::can_mti(frame.id) != to_u16(Mti::kInitializationComplete) &&
+                           can::can_mti(frame.id) != to_u16(Mti::kInitializationCompleteSimple) &&
+                           src != alias_ && state_ == State::kPermitted) {
+                    // Another node answers a Verify with our ID: the same duplicate as an AMD.
+                    on_duplicate();
+                }
             }
             break;
         default:

@@ -22,7 +22,7 @@ struct AliasEvent {
         kReserved,         ///< RID sent, AMD not yet (only when auto_permit is off)
         kConflictRestart,  ///< tentative/reserved alias abandoned; reserving the next one
         kAliasLost,        ///< active alias hit by another node: AMR sent, now Inhibited
-        kDuplicateNodeId,  ///< another node sent AMD with our node ID
+        kDuplicateNodeId,  ///< another node sent AMD, or Verified Node ID, with our node ID
     };
     Kind kind;
     std::uint16_t alias;  ///< the alias the event is about
@@ -37,8 +37,10 @@ struct AliasAllocatorConfig {
     Duration reservation_wait = std::chrono::milliseconds(200);
     /// Send AMD right after RID; when false the owner calls permit().
     bool auto_permit = true;
-    /// On a duplicate node ID: when true, send the duplicate-node-ID PCER (if Permitted) and then
-    /// stay silent until start() is called again; when false only report the event.
+    /// On a duplicate node ID (an AMD carrying our ID, or a Verified Node ID carrying it from
+    /// another alias while we are Permitted): when true, send the duplicate-node-ID PCER (if
+    /// Permitted) and then stay silent until start() is called again; when false only report the
+    /// event.
     bool halt_on_duplicate = false;
 };
 
@@ -76,6 +78,8 @@ public:
     std::optional<AliasEvent> pop_event();
     /// Frames waiting to be transmitted.
     const std::deque<CanFrame>& pending_frames() const { return outbox_; }
+    /// True when pop_event() would return an event.
+    bool has_events() const { return !events_.empty(); }
 
     /// Current state.
     State state() const { return state_; }
@@ -97,6 +101,7 @@ private:
     void handle_own_alias_hit(const CanFrame& frame, bool is_cid, TimePoint now);
     void handle_control(const CanFrame& frame);
     void learn_from_message(const CanFrame& frame);
+    void on_duplicate();
     void send(const CanFrame& frame) { outbox_.push_back(frame); }
     void report(AliasEvent::Kind kind);
 

@@ -142,9 +142,22 @@ void NodeStack::handle_alias_event(const AliasEvent& event) {
             sender_.set_alias(0);
             assembler_.clear();
             break;
+        case AliasEvent::Kind::kDuplicateNodeId:
+            announce_duplicate();
+            break;
         default:
             break;
     }
+}
+
+void NodeStack::announce_duplicate() {
+    // halt_on_duplicate has sent its own PCER already.
+    if (!config_.builtins.duplicate_id_pcer || !initialized() || halted()) return;
+    // A flood of duplicates (or an echoing hub) must not turn into a flood of reports.
+    if (last_duplicate_pcer_ && now_ - *last_duplicate_pcer_ < kDuplicatePcerInterval) return;
+    last_duplicate_pcer_ = now_;
+    push_frame(can::make_frame(can::message_header(cmti_of(Mti::kEventReport), alias()),
+                               kDuplicateNodeIdEvent.to_bytes()));
 }
 
 void NodeStack::enter_permitted() {
@@ -171,16 +184,25 @@ void NodeStack::flush_pending() {
 
 void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
     now_ = now;
-    if (silent_ || !can::is_openlcb_frame(frame) || frame.len > 8) return;
+    if (silent_) return;
+    if (!frame.extended && !frame.remote && config_.faults.answer_standard_frames) {
+        on_standard_frame();
+        return;
+    }
+    if (!can::is_openlcb_frame(frame) || frame.len > 8) return;
+    // Every frame counts towards a burst, so the window is updated before anything is skipped.
+    const bool burst =
+        config_.faults.drop_addressed_in_bursts && in_burst(now, can::source_alias(frame.id));
     // Without defence (fault injection) a frame using our active alias is taken as if the alias
     // were not ours at all.
     const bool undefended = !config_.builtins.defend_alias && alias_.permitted() &&
                             can::source_alias(frame.id) == alias();
     if (!undefended) alias_.on_frame(frame, now);
     // The allocator reports nothing without queueing a frame, except a duplicate node ID (an
-    // AMD carrying our ID): skipping collect() otherwise keeps 1,000 stacks per bus cheap.
+    // AMD or Verified Node ID carrying our ID): skipping collect() otherwise keeps 1,000 stacks
+    // per bus cheap.
     const bool control = can::is_control(frame.id);
-    if (!alias_.pending_frames().empty() ||
+    if (!alias_.pending_frames().empty() || alias_.has_events() ||
         (control && can::classify_control(frame.id) == can::ControlFrame::kAmd)) {
         collect();
     }
@@ -198,7 +220,7 @@ void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
             if (!is_addressed(static_cast<Mti>(can::can_mti(frame.id)))) {
                 on_global_frame(frame, now);
             } else if (frame.len >= 2 && can::addressed_dest(frame.data[0], frame.data[1]) == me) {
-                on_addressed_frame(frame, now);
+                if (!burst) on_addressed_frame(frame, now);
             }
             break;
         }
@@ -216,6 +238,19 @@ void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
         default:
             break;
     }
+}
+
+bool NodeStack::in_burst(TimePoint now, std::uint16_t source) {
+    arrivals_[arrivals_seen_++ % arrivals_.size()] = {now, source};
+    std::size_t others = 0;
+    for (const Arrival& a : arrivals_) {
+        if (a.source != source && a.at != TimePoint{} && now - a.at < kBurstWindow) ++others;
+    }
+    return others > kBurstFrames;
+}
+
+void NodeStack::on_standard_frame() {
+    if (initialized()) push_verified_node_id();
 }
 
 bool NodeStack::announces_reinitialization(const CanFrame& frame, bool control,
@@ -298,26 +333,29 @@ void NodeStack::dispatch(const Message& msg) {
     collect();
 }
 
-bool NodeStack::handle_builtin(const Message& msg) {
-    const std::uint16_t src = msg.source.alias;
+void NodeStack::push_verified_node_id() {
     const Mti verified = config_.protocols.has(Protocol::kSimpleProtocol)
                              ? Mti::kVerifiedNodeIdSimple
                              : Mti::kVerifiedNodeId;
+    push_frame(
+        can::make_node_id_frame(can::message_header(cmti_of(verified), alias()), config_.node_id));
+}
+
+bool NodeStack::handle_builtin(const Message& msg) {
+    const std::uint16_t src = msg.source.alias;
     switch (msg.mti) {
         case Mti::kVerifyNodeIdGlobal: {
             if (!config_.builtins.verify_node_id) return false;
             // Answer when empty or carrying our ID; another ID (or a malformed one) is not for us.
             const auto asked = NodeId::from_bytes(msg.payload);
             if (msg.payload.empty() || (asked && *asked == config_.node_id)) {
-                push_frame(can::make_node_id_frame(can::message_header(cmti_of(verified), alias()),
-                                                   config_.node_id));
+                push_verified_node_id();
             }
             return true;
         }
         case Mti::kVerifyNodeIdAddressed:
             if (!config_.builtins.verify_node_id) return false;
-            push_frame(can::make_node_id_frame(can::message_header(cmti_of(verified), alias()),
-                                               config_.node_id));
+            push_verified_node_id();
             return true;
         case Mti::kProtocolSupportInquiry: {
             if (!config_.builtins.protocol_support) return false;

@@ -2,6 +2,8 @@
 // message assembly and dispatch, datagram transport and the mandatory built-in answers.
 #pragma once
 
+#include <array>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -37,7 +39,31 @@ struct NodeBuiltins {
     /// Defend the active alias: RID on a CID for it, AMR and a new alias when another node uses
     /// it. Off = such frames are ignored (fault injection); reservation is unaffected.
     bool defend_alias = true;
+    /// Another node claims our node ID (a Verified Node ID or AMD carrying it from another
+    /// alias): send the duplicate-node-ID PCER (01.01.00.00.00.00.02.01), at most once per
+    /// kDuplicatePcerInterval (a flood of duplicates gets one), and keep working. The PCER is
+    /// optional (fact sheet 1.6); going silent as the standard then asks would stop a tool.
+    bool duplicate_id_pcer = false;
 };
+
+/// Least time between two duplicate-node-ID PCERs (NodeBuiltins::duplicate_id_pcer).
+inline constexpr Duration kDuplicatePcerInterval = std::chrono::seconds(1);
+
+/// Frame-level misbehaviours for fault injection; all off in a well-behaved node.
+struct NodeStackFaults {
+    /// Addressed messages to us are dropped unanswered while more than kBurstFrames frames from
+    /// other sources than the message's arrived within the last kBurstWindow (a receive buffer
+    /// overrun by third-party traffic; the requester's own quick exchanges do not count).
+    bool drop_addressed_in_bursts = false;
+    /// Every standard (11-bit) data frame is answered with a Verified Node ID instead of being
+    /// ignored.
+    bool answer_standard_frames = false;
+};
+
+/// A burst for NodeStackFaults::drop_addressed_in_bursts: more than this many frames ...
+inline constexpr std::size_t kBurstFrames = 16;
+/// ... within this long.
+inline constexpr Duration kBurstWindow = std::chrono::milliseconds(10);
 
 /// Everything a NodeStack is built from.
 struct NodeStackConfig {
@@ -48,6 +74,7 @@ struct NodeStackConfig {
     DatagramReceiverConfig datagram_receiver;  ///< buffers, reassembly timeout
     MessageAssemblerConfig assembler;          ///< multi-frame limits (datagrams are ignored)
     NodeBuiltins builtins;                     ///< built-in answers switched on
+    NodeStackFaults faults;                    ///< frame-level misbehaviours (none by default)
     /// After an alias conflict took a new alias: send Initialization Complete again (and call
     /// on_initialized). Off by default, as OpenMRN: the node stays Initialized; AMD announces the
     /// new mapping.
@@ -220,6 +247,10 @@ public:
 private:
     void dispatch(const Message& msg);
     bool handle_builtin(const Message& msg);
+    void push_verified_node_id();
+    bool in_burst(TimePoint now, std::uint16_t source);
+    void on_standard_frame();
+    void announce_duplicate();
     void on_datagram_frame(const CanFrame& frame, TimePoint now);
     void on_addressed_frame(const CanFrame& frame, TimePoint now);
     void on_global_frame(const CanFrame& frame, TimePoint now);
@@ -268,6 +299,14 @@ private:
     std::multimap<TimePoint, TimerHandler> timers_;
     TimePoint now_{};
     std::optional<TimePoint> last_ame_;  // AMDs right after an AME answer it (no re-init)
+    std::optional<TimePoint> last_duplicate_pcer_;  // rate limit of duplicate_id_pcer
+    // Arrival times and sources of the last frames (drop_addressed_in_bursts), a ring.
+    struct Arrival {
+        TimePoint at{};
+        std::uint16_t source = 0;
+    };
+    std::array<Arrival, 4 * kBurstFrames> arrivals_{};
+    std::size_t arrivals_seen_ = 0;
 };
 
 }  // namespace olcb

@@ -69,6 +69,15 @@ constexpr FlagFault kFlagFaults[] = {
     {"field-reads-only", &FaultSet::field_reads_only},
     {"unknown-space-0x1041", &FaultSet::unknown_space_0x1041},
     {"readonly-0x1041", &FaultSet::readonly_0x1041},
+    {"read-past-end-garbage", &FaultSet::read_past_end_garbage},
+    {"write-past-end-spills", &FaultSet::write_past_end_spills},
+    {"highest-unreadable", &FaultSet::highest_unreadable},
+    {"acdi-version-writable", &FaultSet::acdi_version_writable},
+    {"events-stale-after-write", &FaultSet::events_stale_after_write},
+    {"events-missing", &FaultSet::events_missing},
+    {"duplicate-id-silent", &FaultSet::duplicate_id_silent},
+    {"burst-drops", &FaultSet::burst_drops},
+    {"answers-standard-frames", &FaultSet::answers_standard_frames},
 };
 
 // The faults with a whole-number parameter (0 = off, so min >= 1).
@@ -251,6 +260,22 @@ const std::vector<FaultInfo>& fault_catalog() {
         {"readonly-0x1041", "", "write to a read-only space rejected 0x1041, not 0x1083"},
         {"latency", "MS[:JITTER] (default 200)",
          "every answer sent MS ms (plus 0..JITTER ms, random) after its request, in order"},
+        {"read-past-end-garbage", "",
+         "a read of 0xFD at/after its end returns count 0xA5 bytes, not 0x1082"},
+        {"write-past-end-spills", "",
+         "writes crossing a space's end accepted; 251's excess bytes land in 253 from byte 0"},
+        {"highest-unreadable", "",
+         "Space Info of 251 and 253 reports the size as highest address (one too high)"},
+        {"acdi-version-writable", "", "writes of the 251 version byte accepted (RAM only)"},
+        {"events-stale-after-write", "",
+         "events identified as at start-up: written event IDs not identified until a restart"},
+        {"events-missing", "",
+         "every second eventid of the CDI (slots 1, 3, 5...) never identified"},
+        {"duplicate-id-silent", "", "no duplicate-node-ID PCER on a duplicate node ID"},
+        {"burst-drops", "",
+         "addressed messages dropped while more than 16 frames arrived in the last 10 ms"},
+        {"answers-standard-frames", "",
+         "every standard (11-bit) frame answered with a Verified Node ID"},
     };
     return catalog;
 }

@@ -51,10 +51,19 @@ struct FaultSet {
     /// Every restart factory-resets the writable spaces while the watched int differs from its
     /// value at creation.
     bool factory_reset_on_version_change = false;
-    bool new_alias_on_reboot = false;   ///< every restart reserves a different alias
-    bool field_reads_only = false;      ///< 251/252 reads return one ACDI field (or 1 byte)
-    bool unknown_space_0x1041 = false;  ///< read/write of an unknown space rejected 0x1041
-    bool readonly_0x1041 = false;       ///< write to a read-only space rejected 0x1041
+    bool new_alias_on_reboot = false;       ///< every restart reserves a different alias
+    bool field_reads_only = false;          ///< 251/252 reads return one ACDI field (or 1 byte)
+    bool unknown_space_0x1041 = false;      ///< read/write of an unknown space rejected 0x1041
+    bool readonly_0x1041 = false;           ///< write to a read-only space rejected 0x1041
+    bool read_past_end_garbage = false;     ///< 0xFD read at/after the end returns 0xA5 bytes
+    bool write_past_end_spills = false;     ///< crossing writes accepted; 251's tail lands in 253
+    bool highest_unreadable = false;        ///< 251/253 Space Info highest = size (one too high)
+    bool acdi_version_writable = false;     ///< writes of 251 byte 0 accepted (RAM only)
+    bool events_stale_after_write = false;  ///< identifies the start-up event IDs until restart
+    bool events_missing = false;            ///< eventid slots 1, 3, 5... never identified
+    bool duplicate_id_silent = false;       ///< no PCER on a duplicate node ID
+    bool burst_drops = false;               ///< addressed messages dropped during frame bursts
+    bool answers_standard_frames = false;   ///< any 11-bit frame answered with Verified Node ID
     /// Every answer is sent this long after its request arrived (latency=MS[:JITTER]; 0 = off).
     std::chrono::milliseconds latency{0};
     /// Up to this much more, uniformly random per answer, seeded by the node ID.

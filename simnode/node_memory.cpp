@@ -49,6 +49,37 @@ private:
     std::vector<std::uint8_t> bytes_;
 };
 
+// Space 251's version byte belongs to the firmware (fact sheet 7; OlcbChecker cd40): a write
+// including it is refused as read-only (the server answers Datagram Rejected 0x1083). With
+// acdi-version-writable it is accepted instead and the new byte kept in RAM (the rest of the
+// write goes on to the image), forgotten at restart.
+class AcdiVersionGuard : public memory::ForwardingSpace {
+public:
+    AcdiVersionGuard(memory::MemorySpace& inner, bool writable)
+        : ForwardingSpace(inner), writable_(writable) {}
+    std::size_t read(std::uint32_t address, std::span<std::uint8_t> out) override {
+        const std::size_t got = ForwardingSpace::read(address, out);
+        if (address == 0 && got > 0 && version_) out[0] = *version_;
+        return got;
+    }
+    memory::WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override {
+        if (address != 0 || in.empty()) return ForwardingSpace::write(address, in);
+        if (!writable_ || read_only()) return memory::WriteStatus::kReadOnly;
+        if (!memory::fits(size(), address, in.size())) return memory::WriteStatus::kOutOfBounds;
+        if (in.size() > 1) {
+            const auto status = ForwardingSpace::write(1, in.subspan(1));
+            if (status != memory::WriteStatus::kOk) return status;
+        }
+        version_ = in[0];
+        return memory::WriteStatus::kOk;
+    }
+    void reload() { version_.reset(); }
+
+private:
+    bool writable_;
+    std::optional<std::uint8_t> version_;  // acdi-version-writable: the byte written last
+};
+
 // write-dropped: answers like a successful write and stores nothing.
 class DropWrites : public memory::ForwardingSpace {
 public:
@@ -180,7 +211,14 @@ struct NodeMemory::Slot {
     std::unique_ptr<memory::RamSpace> ram;
     std::vector<std::unique_ptr<memory::MemorySpace>> wrappers;  // each wraps the previous
     std::vector<RamOverlay*> overlays;
+    AcdiVersionGuard* version_guard = nullptr;  // 251 with <acdi/>, byte 0 not in the CDI
     memory::MemorySpace* top = nullptr;
+
+    // Forgets what only RAM held (a power cycle).
+    void reload() const {
+        for (RamOverlay* o : overlays) o->reload();
+        if (version_guard != nullptr) version_guard->reload();
+    }
 
     memory::MemorySpace& base() const {
         if (constant) return *constant;
@@ -356,6 +394,11 @@ bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool serv
         s->wrap<MisEncode>(*options_.model->layout, number, f);
     }
     if (f.write_dropped) s->wrap<DropWrites>();
+    // A CDI that lays a variable over byte 0 (a CDI bug the cdi checks report) makes it that
+    // variable's byte: the node then stores it as its CDI says, as such real nodes do.
+    if (s->acdi_layout && !options_.model->layout->find(number, 0).valid()) {
+        s->version_guard = s->wrap<AcdiVersionGuard>(f.acdi_version_writable);
+    }
     by_number_[number] = s.get();
     slots_.push_back(std::move(s));
     return true;
@@ -497,7 +540,7 @@ memory::Snip NodeMemory::snip() const {
 bool NodeMemory::factory_reset(std::string& error) {
     for (const auto& s : slots_) {
         if (s->constant) {
-            for (RamOverlay* o : s->overlays) o->reload();
+            s->reload();
             continue;
         }
         const auto bytes = factory_image(s->number);
@@ -514,15 +557,13 @@ bool NodeMemory::factory_reset(std::string& error) {
             error = "space " + std::to_string(s->number) + ": reset failed";
             return false;
         }
-        for (RamOverlay* o : s->overlays) o->reload();
+        s->reload();
     }
     return true;
 }
 
 void NodeMemory::reboot() {
-    for (const auto& s : slots_) {
-        for (RamOverlay* o : s->overlays) o->reload();
-    }
+    for (const auto& s : slots_) s->reload();
 }
 
 bool NodeMemory::store_unique_id_counter(std::uint32_t counter) {
@@ -536,9 +577,15 @@ bool NodeMemory::store_unique_id_counter(std::uint32_t counter) {
     return true;
 }
 
+bool NodeMemory::slot_hidden(const EventSlot& e) const {
+    // events-missing: slots 1, 3, 5... of the CDI's document order.
+    return options_.faults.events_missing && (&e - options_.model->events.data()) % 2 == 1;
+}
+
 std::vector<std::pair<EventId, EventRole>> NodeMemory::events() const {
     std::vector<std::pair<EventId, EventRole>> out;
     for (const EventSlot& e : options_.model->events) {
+        if (slot_hidden(e)) continue;
         const Slot* s = slot(static_cast<std::uint8_t>(e.space));
         if (s == nullptr || e.address > 0xFFFFFFFFu) continue;
         std::array<std::uint8_t, 8> raw{};
@@ -555,7 +602,9 @@ std::vector<EventSlot> NodeMemory::events_in(std::uint8_t space, std::uint32_t a
     std::vector<EventSlot> out;
     const std::uint64_t end = std::uint64_t{address} + length;
     for (const EventSlot& e : options_.model->events) {
-        if (e.space == space && e.address < end && e.address + 8 > address) out.push_back(e);
+        if (e.space == space && e.address < end && e.address + 8 > address && !slot_hidden(e)) {
+            out.push_back(e);
+        }
     }
     return out;
 }

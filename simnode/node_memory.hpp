@@ -88,7 +88,8 @@ public:
     std::vector<std::uint8_t> factory_image(std::uint8_t number) const;
     /// Restores every writable space to its factory content; false with `error` on I/O failure.
     bool factory_reset(std::string& error);
-    /// Power cycle: forgets what only RAM held (write-not-persisted, readonly-writable).
+    /// Power cycle: forgets what only RAM held (write-not-persisted, readonly-writable,
+    /// acdi-version-writable).
     void reboot();
     /// The persisted Get Unique ID counter (never below the default event IDs handed out).
     std::uint32_t unique_id_counter() const { return unique_id_counter_; }
@@ -96,9 +97,11 @@ public:
     bool store_unique_id_counter(std::uint32_t counter);
     /// The CDI model.
     const CdiModel& model() const { return *options_.model; }
-    /// Event IDs and roles as the node reads them from its memory now (zero IDs skipped).
+    /// Event IDs and roles as the node reads them from its memory now (zero IDs skipped, and
+    /// with events-missing every second slot).
     std::vector<std::pair<EventId, EventRole>> events() const;
-    /// The event slots a written range touches (for re-advertising).
+    /// The event slots a written range touches (for re-advertising; events-missing skips every
+    /// second slot here too).
     std::vector<EventSlot> events_in(std::uint8_t space, std::uint32_t address,
                                      std::uint32_t length) const;
 
@@ -109,6 +112,7 @@ private:
     bool add_writable(std::uint8_t number, std::uint64_t size, bool served, std::string& error);
     void add_constant(std::uint8_t number, std::vector<std::uint8_t> bytes);
     Slot* slot(std::uint8_t number) const;
+    bool slot_hidden(const EventSlot& e) const;
 
     MemoryOptions options_;
     std::vector<std::unique_ptr<Slot>> slots_;

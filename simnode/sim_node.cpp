@@ -18,6 +18,8 @@ namespace {
 // How far space-info-short undercuts the real highest address.
 constexpr std::uint32_t kSpaceInfoShortBy = 16;
 constexpr std::uint8_t kConfigSpace = 0xFD;
+// What read-past-end-garbage returns for each byte past the end of 0xFD.
+constexpr std::uint8_t kPastEndGarbage = 0xA5;
 
 // field-reads-only: where the ACDI fields of 252 and 251 start and how long they are (fact
 // sheet 7); the first of each space is the version byte.
@@ -144,6 +146,9 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     if (config.faults.pip_missing)
         sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
     sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
+    sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
+    sc.faults.drop_addressed_in_bursts = config.faults.burst_drops;
+    sc.faults.answer_standard_frames = config.faults.answers_standard_frames;
     sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
     if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
         // The stack would answer these at once; the node answers them itself, late.
@@ -170,6 +175,7 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
       answer_delay_(config_.faults.latency, config_.faults.latency_jitter,
                     config_.node_id.value()) {
     memory_->serve(server_);
+    startup_events_ = memory_->events();
     if (config_.faults.abort_on_value.count() > 0 || config_.faults.factory_reset_on_version_change)
         find_watched();
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
@@ -309,7 +315,7 @@ bool SimNode::answer_message(const Message& msg) {
             const auto asked = EventId::from_bytes(msg.payload);
             if (!asked) return true;  // malformed: nothing of ours to identify
             const bool producer = msg.mti == Mti::kIdentifyProducer;
-            for (const auto& [id, role] : events()) {
+            for (const auto& [id, role] : advertised_events()) {
                 if (id == *asked && (producer ? produces(role) : consumes(role))) {
                     identified(id, producer);
                     break;
@@ -345,10 +351,15 @@ void SimNode::identified(EventId id, bool producer) {
 void SimNode::advertise_all() {
     std::set<EventId> producers;
     std::set<EventId> consumers;
-    for (const auto& [id, role] : events()) {
+    for (const auto& [id, role] : advertised_events()) {
         if (produces(role) && producers.insert(id).second) identified(id, true);
         if (consumes(role) && consumers.insert(id).second) identified(id, false);
     }
+}
+
+std::vector<std::pair<EventId, EventRole>> SimNode::advertised_events() const {
+    if (config_.faults.events_stale_after_write) return startup_events_;
+    return memory_->events();  // read now, so a written event ID counts at once
 }
 
 void SimNode::advertise(const EventSlot* begin, const EventSlot* end) {
@@ -393,6 +404,7 @@ void SimNode::power_up(TimePoint now) {
     // Like OpenMRN: a stored config version other than the firmware's wipes the configuration.
     if (config_.faults.factory_reset_on_version_change && watched_changed()) factory_reset();
     server_.reset();
+    startup_events_ = memory_->events();
     ++boot_generation_;
     answer_delay_.reset();
     // The transport is untouched: TCP clients stay connected and see a fresh start-up.
@@ -458,7 +470,7 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
     if (fx.written && fx.written->changed) {
         if (fx.identification_changed) {
             stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
-        } else {
+        } else if (!config_.faults.events_stale_after_write) {
             const auto touched = memory_->events_in(memory::to_u8(fx.written->space),
                                                     fx.written->address, fx.written->length);
             advertise(touched.data(), touched.data() + touched.size());
@@ -471,7 +483,9 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
     memory::Source source;
     source.alias = src;
     source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
-    memory::Decision decision = server_.handle(source, payload);
+    memory::Decision decision = config_.faults.write_past_end_spills
+                                    ? spilling_write(source, payload)
+                                    : server_.handle(source, payload);
     apply_reject_faults(decision);
     apply_reply_faults(decision, payload);
     const memory::SideEffects& fx = decision.effects;
@@ -495,6 +509,33 @@ std::optional<memory::Decision> SimNode::command_faults(
         return memory::Decision::reject(memory::ErrorCode::kSubcommandUnknown);
     }
     return std::nullopt;
+}
+
+// write-past-end-spills: a write crossing the end of its space stores what fits and answers
+// Write Reply OK; what lies past the end of 251 goes on into 253 from its byte 0, as OpenMRN's
+// file-backed 251 runs on into the next bytes of its file (real-world.md 1); of other spaces it
+// is dropped.
+memory::Decision SimNode::spilling_write(const memory::Source& source,
+                                         std::span<const std::uint8_t> payload) {
+    const memory::DecodeResult asked = memory::decode(payload);
+    const auto* write = std::get_if<memory::Write>(&asked.message);
+    memory::MemorySpace* space =
+        write != nullptr ? memory_->space(memory::to_u8(write->space)) : nullptr;
+    if (space == nullptr || space->read_only() || write->address >= space->size() ||
+        write->data.size() <= space->size() - write->address) {
+        return server_.handle(source, payload);
+    }
+    const std::size_t fits = space->size() - write->address;
+    memory::Write head = *write;
+    head.data.resize(fits);
+    memory::Decision decision = server_.handle(source, memory::encode(head));
+    if (!decision.accepted || write->space != memory::Space::kAcdiUser) return decision;
+    memory::MemorySpace* next = memory_->space(kConfigSpace);
+    if (next == nullptr) return decision;
+    std::span<const std::uint8_t> tail = std::span(write->data).subspan(fits);
+    tail = tail.first(std::min<std::size_t>(tail.size(), next->size()));
+    if (next->write(0, tail) != memory::WriteStatus::kOk) ++counters_.storage_errors;
+    return decision;
 }
 
 bool SimNode::reboot_on_this_write() {
@@ -533,7 +574,8 @@ void SimNode::apply_reply_faults(memory::Decision& decision,
                                  std::span<const std::uint8_t> request) {
     const FaultSet& f = config_.faults;
     if (decision.reply.empty() ||
-        !(f.read_past_end || f.space_info_short || f.reply_form || f.field_reads_only)) {
+        !(f.read_past_end || f.read_past_end_garbage || f.space_info_short || f.reply_form ||
+          f.field_reads_only || f.highest_unreadable)) {
         return;
     }
     memory::DecodeResult reply = memory::decode(decision.reply);
@@ -542,19 +584,15 @@ void SimNode::apply_reply_faults(memory::Decision& decision,
     if (f.field_reads_only) {
         if (auto* r = std::get_if<memory::ReadReply>(&reply.message)) changed = cut_to_field(*r);
     }
-    if (f.read_past_end) {
-        const auto* fail = std::get_if<memory::ReadReplyFail>(&reply.message);
-        const memory::DecodeResult asked = memory::decode(request);
-        const auto* read = std::get_if<memory::Read>(&asked.message);
-        if (fail != nullptr && read != nullptr && fail->error == memory::ErrorCode::kOutOfBounds) {
-            reply.message =
-                memory::ReadReply{read->space, read->address,
-                                  std::vector<std::uint8_t>(read->count & 0x7F, 0), read->form};
+    if (f.read_past_end || f.read_past_end_garbage)
+        changed = fill_past_end(reply, request) || changed;
+    if (auto* info = std::get_if<memory::SpaceInfoReply>(&reply.message)) {
+        if (f.highest_unreadable &&
+            (info->space == memory::Space::kAcdiUser || info->space == memory::Space::kConfig)) {
+            ++info->highest_address;  // the size, as OpenMRN's FileMemorySpace says
             changed = true;
         }
-    }
-    if (f.space_info_short) {
-        if (auto* info = std::get_if<memory::SpaceInfoReply>(&reply.message)) {
+        if (f.space_info_short) {
             info->highest_address -= std::min(info->highest_address, kSpaceInfoShortBy);
             changed = true;
         }
@@ -575,6 +613,26 @@ void SimNode::apply_reply_faults(memory::Decision& decision,
             reply.message);
     }
     if (changed) decision.reply = memory::encode(reply.message);
+}
+
+// read-past-end (every space: zeros) and read-past-end-garbage (0xFD only: 0xA5 bytes): a read
+// starting at/after the end gets Read Reply OK with `count` bytes instead of the 0x1082 failure.
+bool SimNode::fill_past_end(memory::DecodeResult& reply,
+                            std::span<const std::uint8_t> request) const {
+    const auto* fail = std::get_if<memory::ReadReplyFail>(&reply.message);
+    if (fail == nullptr || fail->error != memory::ErrorCode::kOutOfBounds) return false;
+    const memory::DecodeResult asked = memory::decode(request);
+    const auto* read = std::get_if<memory::Read>(&asked.message);
+    if (read == nullptr) return false;
+    std::uint8_t fill = 0;
+    if (!config_.faults.read_past_end) {
+        if (read->space != memory::Space::kConfig) return false;
+        fill = kPastEndGarbage;
+    }
+    reply.message =
+        memory::ReadReply{read->space, read->address,
+                          std::vector<std::uint8_t>(read->count & 0x7F, fill), read->form};
+    return true;
 }
 
 void SimNode::apply_reject_faults(memory::Decision& decision) const {

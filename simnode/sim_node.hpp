@@ -90,8 +90,9 @@ public:
     const NodeMemory& memory() const { return *memory_; }
     /// The Memory Configuration server.
     memory::MemoryConfigServer& server() { return server_; }
-    /// Event IDs and roles the node advertises now.
-    std::vector<std::pair<EventId, EventRole>> events() const { return memory_->events(); }
+    /// Event IDs and roles the node advertises now (events-stale-after-write: those it had at
+    /// its last start-up).
+    std::vector<std::pair<EventId, EventRole>> events() const { return advertised_events(); }
     /// What the node did so far.
     const NodeCounters& counters() const { return counters_; }
     /// Reset/Reboot commands obeyed.
@@ -133,6 +134,10 @@ private:
     void send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply);
     void apply_reply_faults(memory::Decision& decision, std::span<const std::uint8_t> request);
     void apply_reject_faults(memory::Decision& decision) const;
+    bool fill_past_end(memory::DecodeResult& reply, std::span<const std::uint8_t> request) const;
+    memory::Decision spilling_write(const memory::Source& source,
+                                    std::span<const std::uint8_t> payload);
+    std::vector<std::pair<EventId, EventRole>> advertised_events() const;
     void schedule_unsolicited(TimePoint at);
 
     NodeConfig config_;
@@ -150,6 +155,8 @@ private:
     std::uint8_t watched_space_ = 253;
     std::optional<std::uint32_t> watched_address_;  // see watched_address()
     std::vector<std::uint8_t> watched_snapshot_;    // its bytes when the node was created
+    // Event IDs at the last start-up (events-stale-after-write identifies only these).
+    std::vector<std::pair<EventId, EventRole>> startup_events_;
 };
 
 }  // namespace olcb::simnode

@@ -261,6 +261,28 @@ TEST_F(ServerTest, WriteReadOnlyRejected1083) {
     EXPECT_EQ(cdi_.bytes()[0], '<');
 }
 
+// A space writable but for some bytes (251's version byte) refuses those writes like a
+// read-only space: Datagram Rejected 0x1083, no reply datagram, nothing stored.
+TEST_F(ServerTest, WriteRefusedByTheSpaceAsReadOnlyRejected1083) {
+    class FirstByteReadOnly : public ForwardingSpace {
+    public:
+        using ForwardingSpace::ForwardingSpace;
+        WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override {
+            if (address == 0 && !in.empty()) return WriteStatus::kReadOnly;
+            return ForwardingSpace::write(address, in);
+        }
+    };
+    FirstByteReadOnly guarded(acdi_user_);
+    server_.add_space(Space::kAcdiUser, guarded);
+    expect_reject("20 00 00000000 FB 0341", ErrorCode::kReadOnly);
+    expect_reject("20 08 00000000 FB FF03", ErrorCode::kReadOnly);
+    EXPECT_EQ(acdi_user_.bytes()[0], 0x00);
+    EXPECT_EQ(acdi_user_.bytes()[1], 0x00);
+    expect_reply("20 00 00000001 FB 41", "20 10 00000001 FB");
+    EXPECT_EQ(acdi_user_.bytes()[1], 0x41);
+    server_.add_space(Space::kAcdiUser, acdi_user_);
+}
+
 TEST_F(ServerTest, WriteUnknownSpaceRejected1081) {
     expect_reject("20 02 00000000 41", ErrorCode::kSpaceUnknown);
     expect_reject("20 00 00000000 20 41", ErrorCode::kSpaceUnknown);

@@ -1,0 +1,477 @@
+// Issue 12: the good node follows the rules OlcbChecker's cd40, mc10, fr40/fr50/fr60, me50 and
+// the event checks test (ACDI version byte, writes crossing an end, the highest address, Write
+// Under Mask, Update Complete, event identification after a write, duplicate node ID, frame
+// format edge cases, alias collision), and the faults of issue 12 break each of them.
+#include <gtest/gtest.h>
+
+#include "sim_node_test_util.hpp"
+
+namespace olcb::simnode::test {
+namespace {
+
+constexpr std::uint32_t kDelay = 3, kPort0On = 62, kPort0Off = 70;
+constexpr std::uint32_t kConfigSize = 179;  // scenarios/default.xml space 253: 0..178
+constexpr std::uint32_t kUserSize = 128;    // space 251: 0..127
+
+// An event ID of the default node's CDI: node ID + ordinal (docs/faults.md).
+std::vector<std::uint8_t> default_event(std::uint8_t ordinal) {
+    return {0x05, 0x01, 0x01, 0x01, 0x22, 0x00, 0x00, ordinal};
+}
+
+const std::vector<std::uint8_t> kNewEvent{1, 2, 3, 4, 5, 6, 7, 8};
+
+class Issue12Test : public SimNodeTest {
+protected:
+    std::uint32_t highest(std::uint8_t space) {
+        const auto r = exchange({0x20, 0x84, space}).reply;
+        if (!r || r->size() < 7 || (*r)[1] != 0x87) return 0;
+        return static_cast<std::uint32_t>((*r)[3]) << 24 | (*r)[4] << 16 | (*r)[5] << 8 | (*r)[6];
+    }
+    // The error code of a Read/Write Reply Fail (0 when the reply is no failure).
+    static std::uint16_t fail_code(const Answer& a) {
+        if (!a.reply || a.reply->size() < 8) return 0;
+        const auto& r = *a.reply;
+        if ((r[1] & 0x08) == 0) return 0;  // the fail bit of read/write replies
+        const std::size_t at = (r[1] & 3) == 0 ? 7 : 6;
+        return static_cast<std::uint16_t>(r[at] << 8 | r[at + 1]);
+    }
+    // Identify Consumer (or Producer) for id; the frames the node answered.
+    std::vector<std::string> identify(const std::vector<std::uint8_t>& id, bool producer = false) {
+        take();
+        send_global(producer ? 0x914 : 0x8F4, id);
+        net_.run_for(10ms);
+        return take();
+    }
+    std::vector<std::string> identify_events_global() {
+        take();
+        send_global(0x970);
+        net_.run_for(10ms);
+        return take();
+    }
+    static std::string consumer_identified(const std::vector<std::uint8_t>& id) {
+        std::string text = ":X194C7343N";
+        static constexpr char kHex[] = "0123456789ABCDEF";
+        for (const auto b : id) {
+            text += kHex[b >> 4];
+            text += kHex[b & 0xF];
+        }
+        return text + ";";
+    }
+    void reboot() {
+        EXPECT_TRUE(exchange({0x20, 0xA9}).ok);
+        net_.run_for(1s);
+        ASSERT_TRUE(node_->stack().initialized());
+    }
+    // Sends an addressed Verify Node ID among n frames of noise, all at one instant.
+    void verify_in_burst(std::size_t n, const std::function<void(std::size_t)>& noise) {
+        for (std::size_t i = 0; i < n / 2; ++i) noise(i);
+        send_addressed(0x488);
+        for (std::size_t i = n / 2; i < n; ++i) noise(i);
+    }
+};
+
+// ---- A1: ACDI write-back (cd40) ----
+
+TEST_F(Issue12Test, AcdiVersionByteWriteRejected1083AndNothingStored) {
+    start(default_config());
+    const auto before = read(0xFB, 0, 4);
+    ASSERT_EQ(before, (std::vector<std::uint8_t>{2, 'T', 'e', 's'}));
+    for (const auto& data : {std::vector<std::uint8_t>{2}, std::vector<std::uint8_t>{7, 'X'}}) {
+        const Answer a = exchange(write_cmd(0xFB, 0, data));
+        EXPECT_TRUE(a.rejected);
+        EXPECT_EQ(a.code, 0x1083);
+        EXPECT_FALSE(a.reply);
+    }
+    // Write Under Mask including byte 0 too, even with an empty mask for it.
+    Answer a = exchange({0x20, 0x08, 0, 0, 0, 0, 0xFB, 0x00, 0x07, 0xFF, 'X'});
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1083);
+    EXPECT_EQ(read(0xFB, 0, 4), before);
+    write_ok(0xFB, 1, bytes_of("Renamed"));  // the user name stays writable
+    EXPECT_EQ(read(0xFB, 0, 4), (std::vector<std::uint8_t>{2, 'R', 'e', 'n'}));
+}
+
+// A CDI laying a variable over 251 byte 0 (a CDI bug of some real devices, which the cdi checks
+// report) makes that byte the variable's: written as the CDI says.
+TEST_F(Issue12Test, AcdiVersionByteWritableWhenTheCdiLaysAVariableOverIt) {
+    NodeConfig c = default_config();
+    const auto at = c.cdi.find("<segment space=\"251\" origin=\"1\">");
+    ASSERT_NE(at, std::string::npos);
+    c.cdi.replace(at, 32, "<segment space=\"251\" origin=\"0\">");
+    start(std::move(c));
+    write_ok(0xFB, 0, bytes_of("Zed"));
+    EXPECT_EQ(read(0xFB, 0, 3), bytes_of("Zed"));
+}
+
+TEST_F(Issue12Test, AnyWriteOfSpace252Rejected1083) {
+    start(default_config());
+    const auto before = read(0xFC, 0, 8);
+    for (const std::uint32_t at : {0u, 1u, 124u}) {
+        const Answer a = exchange(write_cmd(0xFC, at, {4}));
+        EXPECT_TRUE(a.rejected) << at;
+        EXPECT_EQ(a.code, 0x1083) << at;
+    }
+    EXPECT_EQ(read(0xFC, 0, 8), before);
+}
+
+// ---- A2: writes crossing the end ----
+
+TEST_F(Issue12Test, WriteCrossingTheEndFails1082AndStoresNothing) {
+    start(default_config());
+    const auto tail = read(0xFD, kConfigSize - 4, 4);
+    Answer a = exchange(write_cmd(0xFD, kConfigSize - 4, {9, 9, 9, 9, 9}));
+    EXPECT_TRUE(a.ok);
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ((*a.reply)[1], 0x19) << "Write Reply Fail, short form of 0xFD";
+    EXPECT_EQ(fail_code(a), 0x1082);
+    EXPECT_EQ(read(0xFD, kConfigSize - 4, 4), tail);
+    a = exchange(write_cmd(0xFD, kConfigSize, {9}));
+    EXPECT_EQ(fail_code(a), 0x1082);
+
+    const auto user_tail = read(0xFB, kUserSize - 2, 2);
+    const auto config_head = read(0xFD, 0, 4);
+    a = exchange(write_cmd(0xFB, kUserSize - 2, {'a', 'b', 'c', 'd'}));
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ((*a.reply)[1], 0x18) << "Write Reply Fail, byte-6 form";
+    EXPECT_EQ(fail_code(a), 0x1082);
+    EXPECT_EQ(read(0xFB, kUserSize - 2, 2), user_tail);
+    EXPECT_EQ(read(0xFD, 0, 4), config_head) << "nothing spills into 253";
+    EXPECT_EQ(fail_code(exchange(write_cmd(0xFB, kUserSize, {'a'}))), 0x1082);
+}
+
+// ---- A3: the highest address is readable, the next one is not ----
+
+TEST_F(Issue12Test, ReadAtHighestSucceedsAndPastItFails1082InEverySpace) {
+    start(default_config());
+    const std::vector<std::pair<std::uint8_t, std::uint32_t>> spaces = {
+        {0xFF, static_cast<std::uint32_t>(default_cdi().size())},
+        {0xFD, kConfigSize - 1},
+        {0xFC, 124},
+        {0xFB, kUserSize - 1}};
+    for (const auto& [space, expected] : spaces) {
+        SCOPED_TRACE(space);
+        const std::uint32_t h = highest(space);
+        EXPECT_EQ(h, expected);
+        EXPECT_EQ(read(space, h, 1).size(), 1u);
+        EXPECT_EQ(read(space, h, 64).size(), 1u) << "a read running past the end is cut short";
+        for (const std::uint32_t past : {h + 1, h + 0x100}) {
+            const Answer a = exchange(read_cmd(space, past, 1));
+            ASSERT_TRUE(a.reply);
+            EXPECT_EQ((*a.reply)[1] & 0xFC, 0x58) << "Read Reply Fail";
+            EXPECT_EQ(fail_code(a), 0x1082);
+        }
+    }
+}
+
+// ---- A4: Write Under Mask ----
+
+TEST_F(Issue12Test, WriteUnderMaskAdvertisedAndServed) {
+    start(default_config());
+    const Answer options = exchange({0x20, 0x80});
+    ASSERT_TRUE(options.reply);
+    ASSERT_GE(options.reply->size(), 7u);
+    EXPECT_EQ((*options.reply)[2] & 0x80, 0x80) << "0x8000 write under mask";
+    EXPECT_EQ((*options.reply)[4], 0xE2) << "write-lengths byte";
+
+    ASSERT_EQ(read(0xFD, kDelay, 4), (std::vector<std::uint8_t>{0, 0, 0, 0xFA}));  // 250
+    // byte 3: mask FF value 12; byte 4: mask 0F value 35 (0x00 -> 0x05).
+    const Answer a = exchange({0x20, 0x09, 0, 0, 0, kDelay, 0xFF, 0x12, 0x0F, 0x35});
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ((*a.reply)[1], 0x11) << "Write Reply OK";
+    EXPECT_EQ(read(0xFD, kDelay, 4), (std::vector<std::uint8_t>{0x12, 0x05, 0, 0xFA}));
+
+    const auto tail = read(0xFD, kConfigSize - 1, 1);
+    EXPECT_EQ(fail_code(exchange({0x20, 0x09, 0, 0, 0, kConfigSize - 1, 0xFF, 1, 0xFF, 1})),
+              0x1082);
+    EXPECT_EQ(read(0xFD, kConfigSize - 1, 1), tail);
+    const Answer ro = exchange({0x20, 0x0B, 0, 0, 0, 0, 0xFF, 0x20});
+    EXPECT_TRUE(ro.rejected);
+    EXPECT_EQ(ro.code, 0x1083);
+}
+
+// ---- A5 + A6: events follow the memory ----
+
+TEST_F(Issue12Test, IdentifyAnswersEveryEventIdOfTheCdi) {
+    start(default_config());
+    auto frames = identify_events_global();
+    ASSERT_EQ(frames.size(), 8u);
+    for (std::uint8_t i = 0; i < 8; ++i)
+        EXPECT_EQ(frames[i], consumer_identified(default_event(i)));
+    take();
+    send_addressed(0x968);
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), frames) << "Identify Events addressed";
+    EXPECT_EQ(identify(default_event(3)),
+              std::vector<std::string>{consumer_identified(default_event(3))});
+    EXPECT_TRUE(identify(default_event(3), true).empty()) << "consumed only";
+    EXPECT_TRUE(identify(default_event(9)).empty()) << "not ours";
+}
+
+TEST_F(Issue12Test, WrittenEventIdIsIdentifiedAndTheOldOneNoLonger) {
+    start(default_config());
+    take();
+    write_ok(0xFD, kPort0On, kNewEvent);
+    EXPECT_EQ(count_prefix(take(), consumer_identified(kNewEvent)), 1u) << "advertised at once";
+    EXPECT_EQ(identify(kNewEvent), std::vector<std::string>{consumer_identified(kNewEvent)});
+    EXPECT_TRUE(identify(default_event(0)).empty());
+    auto frames = identify_events_global();
+    EXPECT_EQ(count_prefix(frames, consumer_identified(kNewEvent)), 1u);
+    EXPECT_EQ(count_prefix(frames, consumer_identified(default_event(0))), 0u);
+
+    // Update Complete: plain Datagram Received OK, no reply; the memory is what counts.
+    const Answer done = exchange({0x20, 0xA8});
+    EXPECT_TRUE(done.ok);
+    EXPECT_EQ(done.ok_flags & 0x80, 0) << "no Reply Pending";
+    EXPECT_FALSE(done.reply);
+    EXPECT_EQ(identify(kNewEvent).size(), 1u);
+    reboot();
+    EXPECT_EQ(identify(kNewEvent).size(), 1u) << "still after a restart";
+}
+
+// ---- A7: duplicate node ID (me50) ----
+
+TEST_F(Issue12Test, DuplicateNodeIdSendsOnePcerPerSecondAndKeepsWorking) {
+    start(default_config());
+    const std::string pcer = ":X195B4343N0101000000000201;";
+    take();
+    send_text(":X19170456N050101012200;");  // Verified Node ID with our ID from another alias
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{pcer});
+    for (int i = 0; i < 20; ++i) send_text(":X10701457N050101012200;");  // AMD flood
+    net_.run_for(500ms);
+    EXPECT_TRUE(take().empty()) << "rate-limited";
+    send_addressed(0x488);
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"}) << "not silent";
+    net_.run_for(500ms);
+    send_text(":X10701457N050101012200;");
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{pcer}) << "again after 1 s";
+    EXPECT_TRUE(node_->stack().initialized());
+    EXPECT_EQ(alias(), 0x343);
+    send_text(":X19170456N020304050607;");  // another node's ID: nothing
+    net_.run_for(2s);
+    EXPECT_TRUE(take().empty());
+}
+
+TEST_F(Issue12Test, DuplicateIdSilentSendsNoPcer) {
+    start_with({"duplicate-id-silent"});
+    take();
+    send_text(":X19170456N050101012200;");
+    send_text(":X10701457N050101012200;");
+    net_.run_for(2s);
+    send_text(":X10701457N050101012200;");
+    net_.run_for(10ms);
+    EXPECT_TRUE(take().empty());
+    send_addressed(0x488);
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+}
+
+// ---- A8: frame format (fr40, fr50, fr60) ----
+
+TEST_F(Issue12Test, FramesWithBit28ClearAreTakenAsIfItWereSet) {
+    start(default_config());
+    take();
+    send_text(":X0070212CN;");  // AME, bit 28 clear
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X10701343N050101012200;"});
+    send_text(":X0948812CN0343;");  // addressed Verify Node ID, bit 28 clear
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+}
+
+TEST_F(Issue12Test, StandardFramesAreIgnored) {
+    start(default_config());
+    take();
+    for (std::uint32_t id = 0; id < 0x800; ++id) {
+        CanFrame f;
+        f.id = id;
+        f.extended = false;
+        f.len = 2;
+        f.data[0] = 0x03;
+        f.data[1] = 0x43;
+        port_.send(f);
+    }
+    net_.run_for(100ms);
+    EXPECT_TRUE(take().empty());
+    EXPECT_TRUE(node_->stack().initialized());
+}
+
+TEST_F(Issue12Test, AnswersStandardFramesWithVerifiedNodeId) {
+    start_with({"answers-standard-frames"});
+    take();
+    send_text(":S123N0102;");
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+}
+
+TEST_F(Issue12Test, BurstsOfFramesDoNotHideAnAddressedVerify) {
+    start(default_config());
+    take();
+    // Identify Consumer for events of nobody.
+    verify_in_burst(300, [&](std::size_t) { send_global(0x8F4, {9, 9, 9, 9, 9, 9, 9, 9}); });
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+    // Two-frame addressed messages (SNIP request framing) to another node.
+    verify_in_burst(300, [&](std::size_t i) {
+        send_text(i % 2 == 0 ? ":X19DE812CN1999;" : ":X19DE812CN2999;");
+    });
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+    // Global Verify Node ID from other aliases: each answered, the addressed one too.
+    verify_in_burst(300, [&](std::size_t i) {
+        port_.send(can::make_frame(
+            can::message_header(0x490, static_cast<std::uint16_t>(0x200 + i % 0x100))));
+    });
+    net_.run_for(10ms);
+    EXPECT_EQ(count_prefix(take(), ":X19170343N050101012200"), 301u);
+}
+
+TEST_F(Issue12Test, BurstDropsLosesAddressedMessagesInABurst) {
+    start_with({"burst-drops"});
+    take();
+    // Frames from a third party (another alias than the Verify's): what fills a receive buffer.
+    auto noise = [&] {
+        port_.send(can::make_frame(can::message_header(0x8F4, 0x456),
+                                   std::vector<std::uint8_t>{9, 9, 9, 9, 9, 9, 9, 9}));
+    };
+    verify_in_burst(300, [&](std::size_t) { noise(); });
+    net_.run_for(10ms);
+    EXPECT_TRUE(take().empty());
+    net_.run_for(20ms);
+    // 16 frames of another source within 10 ms: not a burst yet.
+    for (int i = 0; i < 16; ++i) noise();
+    send_addressed(0x488);
+    net_.run_for(20ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+    // 17 of them: dropped.
+    for (int i = 0; i < 17; ++i) noise();
+    send_addressed(0x488);
+    net_.run_for(20ms);
+    EXPECT_TRUE(take().empty());
+    send_addressed(0x488);
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"}) << "quiet again";
+    // The requester's own quick traffic is no burst.
+    for (int i = 0; i < 40; ++i) send_global(0x8F4, {9, 9, 9, 9, 9, 9, 9, 9});
+    send_addressed(0x488);
+    net_.run_for(20ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+}
+
+// ---- A9: alias collision ----
+
+TEST_F(Issue12Test, AliasCollisionSendsAmrAndMovesToANewAlias) {
+    start(default_config());
+    take();
+    send_text(":X10701343N020304050607;");  // another node's AMD with our alias
+    net_.run_for(10ms);
+    auto frames = take();
+    ASSERT_FALSE(frames.empty());
+    EXPECT_EQ(frames[0], ":X10703343N050101012200;") << "AMR";
+    net_.run_for(300ms);
+    const std::uint16_t now_alias = alias();
+    EXPECT_NE(now_alias, 0x343);
+    EXPECT_TRUE(node_->stack().initialized());
+    frames = take();
+    char amd[40];
+    std::snprintf(amd, sizeof amd, ":X10701%03XN050101012200;", now_alias);
+    EXPECT_EQ(count_prefix(frames, amd), 1u);
+    send_addressed(0x488);  // to the new alias
+    net_.run_for(10ms);
+    char verified[40];
+    std::snprintf(verified, sizeof verified, ":X19170%03XN050101012200;", now_alias);
+    EXPECT_EQ(take(), std::vector<std::string>{verified});
+    // A burst (made-up senders, foreign node ID) after the move: the new alias still answers.
+    verify_in_burst(300, [&](std::size_t i) {
+        port_.send(can::make_node_id_frame(
+            can::message_header(0x490, static_cast<std::uint16_t>(0xA5A + i % 3)),
+            NodeId{0x020112FE0002ull}));
+    });
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{verified});
+}
+
+// ---- the faults of issue 12 ----
+
+TEST_F(Issue12Test, ReadPastEndGarbage) {
+    start_with({"read-past-end-garbage"});
+    const Answer a = exchange(read_cmd(0xFD, kConfigSize, 8));
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ((*a.reply)[1], 0x51) << "Read Reply OK";
+    EXPECT_EQ(read(0xFD, kConfigSize, 8), std::vector<std::uint8_t>(8, 0xA5));
+    EXPECT_EQ(read(0xFD, kConfigSize + 0x100, 3), std::vector<std::uint8_t>(3, 0xA5));
+    EXPECT_EQ(read(0xFD, kConfigSize - 1, 8).size(), 1u) << "a crossing read is still cut";
+    EXPECT_EQ(fail_code(exchange(read_cmd(0xFB, kUserSize, 1))), 0x1082) << "0xFD only";
+}
+
+TEST_F(Issue12Test, WritePastEndSpills) {
+    start_with({"write-past-end-spills"});
+    const Answer a = exchange(write_cmd(0xFB, kUserSize - 2, {'a', 'b', 'c', 'd', 'e'}));
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ((*a.reply)[1], 0x10) << "Write Reply OK";
+    EXPECT_EQ(read(0xFB, kUserSize - 2, 2), bytes_of("ab"));
+    EXPECT_EQ(read(0xFD, 0, 3), bytes_of("cde")) << "the rest lands in 253 from byte 0";
+    write_ok(0xFD, kConfigSize - 2, {7, 7, 7, 7});
+    EXPECT_EQ(read(0xFD, kConfigSize - 2, 4), (std::vector<std::uint8_t>{7, 7}));
+    EXPECT_EQ(fail_code(exchange(write_cmd(0xFD, kConfigSize, {1}))), 0x1082)
+        << "a write starting at the end still fails";
+}
+
+TEST_F(Issue12Test, HighestUnreadable) {
+    start_with({"highest-unreadable"});
+    EXPECT_EQ(highest(0xFB), kUserSize);
+    EXPECT_EQ(highest(0xFD), kConfigSize);
+    EXPECT_EQ(fail_code(exchange(read_cmd(0xFB, kUserSize, 1))), 0x1082);
+    EXPECT_EQ(fail_code(exchange(read_cmd(0xFD, kConfigSize, 1))), 0x1082);
+    EXPECT_EQ(highest(0xFF), default_cdi().size()) << "other spaces as usual";
+    EXPECT_EQ(highest(0xFC), 124u);
+}
+
+TEST_F(Issue12Test, AcdiVersionWritable) {
+    start_with({"acdi-version-writable"});
+    write_ok(0xFB, 0, {7, 'X'});
+    EXPECT_EQ(read(0xFB, 0, 2), (std::vector<std::uint8_t>{7, 'X'}));
+    EXPECT_EQ(node_->snip_payload()[0], 4) << "SNIP's own version bytes are literal";
+    reboot();
+    EXPECT_EQ(read(0xFB, 0, 2), (std::vector<std::uint8_t>{2, 'X'})) << "the byte was RAM only";
+}
+
+TEST_F(Issue12Test, EventsStaleAfterWrite) {
+    start_with({"events-stale-after-write"});
+    take();
+    write_ok(0xFD, kPort0On, kNewEvent);
+    EXPECT_EQ(count_prefix(take(), ":X194C7"), 0u) << "the write advertises nothing";
+    EXPECT_TRUE(identify(kNewEvent).empty());
+    EXPECT_EQ(identify(default_event(0)).size(), 1u) << "the old ID is still identified";
+    auto frames = identify_events_global();
+    EXPECT_EQ(count_prefix(frames, consumer_identified(default_event(0))), 1u);
+    EXPECT_EQ(count_prefix(frames, consumer_identified(kNewEvent)), 0u);
+    EXPECT_TRUE(exchange({0x20, 0xA8}).ok);
+    EXPECT_TRUE(identify(kNewEvent).empty()) << "Update Complete does not help";
+    reboot();
+    EXPECT_EQ(identify(kNewEvent).size(), 1u);
+    EXPECT_TRUE(identify(default_event(0)).empty());
+}
+
+TEST_F(Issue12Test, EventsMissing) {
+    start_with({"events-missing"});
+    auto frames = identify_events_global();
+    EXPECT_EQ(frames, (std::vector<std::string>{
+                          consumer_identified(default_event(0)),
+                          consumer_identified(default_event(2)),
+                          consumer_identified(default_event(4)),
+                          consumer_identified(default_event(6)),
+                      }));
+    EXPECT_TRUE(identify(default_event(1)).empty());
+    EXPECT_EQ(identify(default_event(2)).size(), 1u);
+    take();
+    write_ok(0xFD, kPort0Off, kNewEvent);  // slot 1
+    EXPECT_EQ(count_prefix(take(), ":X194C7"), 0u);
+    EXPECT_TRUE(identify(kNewEvent).empty());
+    EXPECT_EQ(read(0xFD, kPort0Off, 8), kNewEvent) << "stored as usual";
+}
+
+}  // namespace
+}  // namespace olcb::simnode::test
