@@ -24,14 +24,15 @@ enum class Category : std::uint8_t {
     kCdi,
     kAcdi,
     kEncoding,
-    kLink,  ///< the transport itself (an adapter unplugged, a hub gone): not the node's fault
-    kNode,  ///< the node as a whole: it stopped answering or restarted during the run
+    kLink,    ///< the transport itself (an adapter unplugged, a hub gone): not the node's fault
+    kNode,    ///< the node as a whole: it stopped answering or restarted during the run
+    kEvents,  ///< event identification (Identify Events, Identify Producer/Consumer)
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
-/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link" or
-/// "node".
+/// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link",
+/// "node" or "events".
 std::string_view category_name(Category category);
 
 /// One executed check.
@@ -44,7 +45,14 @@ struct CheckResult {
         section;  ///< the standard and section, e.g. "CDI S 5" or "MemoryConfigurationS 4.8"
     std::string expected;  ///< for failures: what the standard wants (may be empty)
     std::string seen;      ///< for failures: what the node did (may be empty)
+    /// Further lines (every CDI error, every variable of a merged result); may be empty.
+    std::vector<std::string> details{};
 };
+
+/// Merges results that share an ID into one, at the first one's place, so IDs are unique in a
+/// node's report: the worst status (FAIL, WARN, PASS, SKIP) with the first such result's message
+/// (saying how many more), expected and seen; every merged message in details.
+void merge_duplicate_ids(std::vector<CheckResult>& results);
 
 /// Every check run against one node, in the order they ran.
 struct NodeReport {

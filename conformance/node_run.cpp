@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "cdi/parser.hpp"
+#include "conformance/checks/events.hpp"
 #include "conformance/protocol_checks.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "memory/snip.hpp"
@@ -56,13 +57,23 @@ NodeReport NodeRun::run() {
         plan();
         if (capture_backup() && take_lock()) {
             encode();
+            follow_event_write();
             after_incident();
             restore_and_verify();
             release_lock();
         }
     }
     findings();
+    select_results();
     return std::move(report_);
+}
+
+void NodeRun::select_results() {
+    // One result per ID (per-variable SKIPs and the like become one, with details), and only
+    // what --only / --skip asked for.
+    merge_duplicate_ids(report_.checks);
+    std::erase_if(report_.checks,
+                  [&](const CheckResult& c) { return !options_.selection.wants_id(c.id); });
 }
 
 void NodeRun::measure() {
@@ -115,6 +126,11 @@ bool NodeRun::writes_allowed() {
         skip_writes("--read-only: no write", "nothing written (--read-only)");
         return false;
     }
+    if (!options_.selection.wants_writes()) {
+        skip_writes("no check that writes is selected (--only / --skip)",
+                    "nothing written (no writing check selected)");
+        return false;
+    }
     if (stop_requested()) {
         skip_writes("interrupted", "nothing written (interrupted)");
         return false;
@@ -152,10 +168,13 @@ void NodeRun::plan() {
     eo_.acdi_user = ctx_.document->acdi.has_value();
     eo_.protection = options_.protection;
     plan_ = plan_encoding(*ctx_.layout, eo_);
-    // Spaces the standard makes read-only (CDI, ACDI manufacturer) are never written, even when
-    // a CDI lays variables there: cdi.acdi-spaces reports such a CDI.
+    // Spaces the standard makes read-only (CDI, ACDI manufacturer) and the ACDI user version
+    // byte (251 @0, refused by nodes as OlcbChecker's cd40 asks) are never written, even when a
+    // CDI lays variables there: cdi.acdi-spaces reports such a CDI.
     const std::size_t planned = plan_.probes.size();
-    std::erase_if(plan_.probes, [](const Probe& p) { return p.space == 0xFF || p.space == 0xFC; });
+    std::erase_if(plan_.probes, [](const Probe& p) {
+        return p.space == 0xFF || p.space == 0xFC || (p.space == 0xFB && p.address == 0);
+    });
     read_only_skipped_ = planned - plan_.probes.size();
 }
 
@@ -313,10 +332,22 @@ void NodeRun::encode() {
         report_.checks.push_back(CheckResult{
             "encoding.read-only-spaces", Category::kEncoding, Status::kSkip,
             std::to_string(read_only_skipped_) +
-                " variables in the read-only spaces 252/255 not written (see cdi.acdi-spaces)",
+                " variables in the read-only spaces 252/255 or on the ACDI version byte (251 @0) "
+                "not written (see cdi.acdi-spaces)",
             "MemoryConfigurationS 4.2", "", ""});
     }
     in_flight_ = std::move(out.in_flight);
+}
+
+void NodeRun::follow_event_write() {
+    // Under the backup and the lock like the encoding checks, after them: one eventid variable
+    // rewritten, Update Complete, identified anew, the original back.
+    if (incident_ || link_lost() || stop_requested() ||
+        !options_.selection.wants_id("events.follow-write"))
+        return;
+    for (auto& c : checks::events_follow_write(session_, node_, ctx_, options_.protection))
+        report_.checks.push_back(std::move(c));
+    if (!incident_) incident_ = watch_.check_now("checking events after a write");
 }
 
 void NodeRun::after_incident() {

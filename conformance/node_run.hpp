@@ -41,9 +41,11 @@ private:
     bool take_lock();
     void encode();
     void release_lock();
+    void follow_event_write();
     void after_incident();
     void restore_and_verify();
     void findings();
+    void select_results();
     void note_slow_node();
 
     void skip_writes(const std::string& reason, const std::string& summary);

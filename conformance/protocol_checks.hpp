@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "conformance/check_context.hpp"
+#include "conformance/check_registry.hpp"
 #include "conformance/check_result.hpp"
 #include "conformance/session.hpp"
 
@@ -24,6 +25,10 @@ struct ProtocolOptions {
     bool read_only = false;
     /// Upper bound of the CDI download when Space Info gives none.
     std::uint32_t max_cdi_bytes = 1024 * 1024;
+    /// --reboot: checks that need a Reset/Reboot (the start-up sequence) may send one.
+    bool reboot = false;
+    /// --only / --skip / --thorough: which registry entries run.
+    CheckSelection selection;
 };
 
 /// Runs every protocol check against node, filling ctx for later checks.

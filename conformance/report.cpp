@@ -47,6 +47,7 @@ nlohmann::json node_json(const NodeReport& report) {
                             {"section", c.section}};
         if (!c.expected.empty()) j["expected"] = c.expected;
         if (!c.seen.empty()) j["seen"] = c.seen;
+        if (!c.details.empty()) j["details"] = c.details;
         checks.push_back(std::move(j));
     }
     Summary s = summarize({report});
@@ -108,6 +109,13 @@ std::string format_check(const CheckResult& check, bool colour) {
         if (!check.seen.empty()) line += "\n      seen:     " + printable(check.seen);
         if (!check.section.empty()) line += "\n      section:  " + check.section;
     }
+    // Details (every CDI error, every merged result) under the line, the first few only.
+    constexpr std::size_t kShown = 10;
+    for (std::size_t i = 0; i < check.details.size() && i < kShown; ++i)
+        line += "\n      - " + printable(check.details[i]);
+    if (check.details.size() > kShown)
+        line +=
+            "\n      ... " + std::to_string(check.details.size() - kShown) + " more (see --json)";
     return line;
 }
 
@@ -174,6 +182,7 @@ std::string to_junit(const std::vector<NodeReport>& reports, const RunInfo& run)
             if (!c.expected.empty()) detail += "\nexpected: " + printable(c.expected);
             if (!c.seen.empty()) detail += "\nseen: " + printable(c.seen);
             if (!c.section.empty()) detail += "\nsection: " + printable(c.section);
+            for (const std::string& d : c.details) detail += "\n- " + printable(d);
             if (c.status == Status::kFail) {
                 auto f = tc.append_child("failure");
                 f.append_attribute("message") = printable(c.message).c_str();

@@ -12,6 +12,7 @@
 
 #include "conformance/backup.hpp"
 #include "conformance/check_context.hpp"
+#include "conformance/check_registry.hpp"
 #include "conformance/check_result.hpp"
 #include "conformance/protection.hpp"
 #include "conformance/session.hpp"
@@ -33,6 +34,9 @@ struct RunOptions {
     std::chrono::seconds node_wait{30};
     /// Protected settings, --exclude / --only, --write-protected.
     ProtectionRules protection;
+    /// Which checks are reported (--only / --skip with check IDs, --thorough); the encoding
+    /// phase runs only when one of its checks is selected.
+    CheckSelection selection;
     /// Multiplies every answer and silence window (--timeout-scale).
     double timeout_scale = 1.0;
     /// The command that restores a kept backup FILE later, e.g. "lcc-conform --serial DEV

@@ -201,6 +201,11 @@ NodeTrack Session::track(NodeId id) const {
     return it == tracks_.end() ? NodeTrack{} : it->second;
 }
 
+void Session::excuse_reservations(NodeId id, std::uint32_t n) {
+    auto it = tracks_.find(id);
+    if (it != tracks_.end()) it->second.reservations -= std::min(n, it->second.reservations);
+}
+
 std::uint16_t Session::alias_of(const NodeInfo& node) const {
     auto it = tracks_.find(node.id);
     return it != tracks_.end() && it->second.alias != 0 ? it->second.alias : node.alias;

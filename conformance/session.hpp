@@ -21,6 +21,14 @@
 
 namespace olcb::conform {
 
+/// lcc-conform's own node IDs: 05.01.01.01.3F.01 to .FE (the self-assigned experimental range),
+/// one per run.
+inline constexpr std::uint64_t kToolIdBase = 0x0501'0101'3F00ull;
+/// True when id is one an lcc-conform run takes.
+constexpr bool is_tool_id(NodeId id) {
+    return (id.value() & ~std::uint64_t{0xFF}) == kToolIdBase;
+}
+
 /// A node found on the segment.
 struct NodeInfo {
     NodeId id;
@@ -46,7 +54,8 @@ struct NodeTrack {
     std::uint16_t alias = 0;            ///< current alias (0: never seen)
     std::uint32_t initializations = 0;  ///< Initialization Complete messages seen from it
     /// Alias reservations seen: an AMD with its node ID from an alias that sent RID since that
-    /// alias's previous AMD (AMDs answering an AME do not count).
+    /// alias's previous AMD (AMDs answering an AME do not count), less those a check excused
+    /// (Session::excuse_reservations).
     std::uint32_t reservations = 0;
     TimePoint last_heard{};  ///< time of the last frame from its current alias
 };
@@ -92,6 +101,10 @@ public:
 
     /// What the session has seen of node id (a default NodeTrack when never seen).
     NodeTrack track(NodeId id) const;
+    /// Takes n alias reservations of node id out of track(id).reservations: ones a check
+    /// provoked (an alias collision it staged, a Reset it sent), which the node watch must not
+    /// take for a restart nobody asked for.
+    void excuse_reservations(NodeId id, std::uint32_t n);
     /// The node's current alias as tracked from the traffic, else node.alias.
     std::uint16_t alias_of(const NodeInfo& node) const;
     /// Verify Node ID addressed to the node's current alias; when no answer in half the timeout,

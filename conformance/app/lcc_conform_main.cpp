@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "conformance/check_registry.hpp"
 #include "conformance/config_backup.hpp"
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
@@ -27,7 +28,6 @@ namespace {
 constexpr int kUsage = 2;
 // The tool's own node IDs: self-assigned IDs of the experimental range 05.01.01.01.3F.01 to
 // 05.01.01.01.3F.FE; each run takes one of its own so concurrent runs on one bus don't collide.
-constexpr std::uint64_t kToolIdBase = 0x0501'0101'3F00ull;
 
 NodeId pick_tool_id(const po::variables_map& vm, std::string& error) {
     if (vm.count("tool-id")) {
@@ -123,7 +123,15 @@ po::options_description check_options() {
         "exclude", po::value<std::vector<std::string>>()->composing(),
         "never write variables whose backup key matches GLOB (repeatable), e.g. '*.Internal "
         "data.*'")("only", po::value<std::vector<std::string>>()->composing(),
-                   "write only variables whose backup key matches GLOB (repeatable)")(
+                   "run only checks matching PATTERN when it starts with a category "
+                   "('memory.*', 'frame.collision'); else write only variables whose backup key "
+                   "matches it (repeatable)")(
+        "skip", po::value<std::vector<std::string>>()->composing(),
+        "do not run checks whose ID matches PATTERN (repeatable), e.g. 'frame.capacity'")(
+        "thorough", "also run the long and disruptive checks (docs/checks.md, --thorough)")(
+        "list-checks", po::value<std::string>()->implicit_value("text"),
+        "print every check (ID, category, section, OlcbChecker checks, summary); "
+        "--list-checks=markdown prints docs/checks.md's registry tables")(
         "write-protected",
         "also probe protected settings (read-only hints, 'do not change'), one at a time")(
         "node-wait", po::value<unsigned>()->default_value(30),
@@ -259,7 +267,13 @@ RunOptions run_options(const po::variables_map& vm) {
     ro.node_wait = std::chrono::seconds(vm["node-wait"].as<unsigned>());
     ro.timeout_scale = vm["timeout-scale"].as<double>();
     if (vm.count("exclude")) ro.protection.exclude = vm["exclude"].as<std::vector<std::string>>();
-    if (vm.count("only")) ro.protection.only = vm["only"].as<std::vector<std::string>>();
+    if (vm.count("only")) {
+        // One option for both, as users type it: a check ID pattern starts with a category.
+        for (const std::string& p : vm["only"].as<std::vector<std::string>>())
+            (is_check_pattern(p) ? ro.selection.only : ro.protection.only).push_back(p);
+    }
+    if (vm.count("skip")) ro.selection.skip = vm["skip"].as<std::vector<std::string>>();
+    ro.selection.thorough = vm.count("thorough") > 0;
     ro.protection.write_protected = vm.count("write-protected") > 0;
     ro.restore_command = "lcc-conform" + transport_arguments(vm) + " restore";
     ro.progress = is_terminal(2);
@@ -271,7 +285,7 @@ RunOptions run_options(const po::variables_map& vm) {
 std::vector<std::string> late_nodes(Session& session, const std::vector<NodeInfo>& checked) {
     std::vector<std::string> out;
     for (const NodeInfo& seen : session.nodes_seen()) {
-        if ((seen.id.value() & ~std::uint64_t{0xFF}) == kToolIdBase) continue;
+        if (is_tool_id(seen.id)) continue;
         const bool known = std::any_of(checked.begin(), checked.end(),
                                        [&](const NodeInfo& n) { return n.id == seen.id; });
         if (!known) out.push_back(seen.id.to_string());
@@ -286,6 +300,8 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
     ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
         ProtocolOptions po_opts;
         po_opts.read_only = ro.read_only;
+        po_opts.reboot = ro.reboot;
+        po_opts.selection = ro.selection;
         return run_protocol_checks(s, n, po_opts, ctx);
     };
     install_stop_handlers();
@@ -363,6 +379,24 @@ int main_checked(int argc, char** argv) {
     if (vm.count("help")) {
         print_help(opts);
         return 0;
+    }
+    if (vm.count("list-checks")) {
+        const std::string form = vm["list-checks"].as<std::string>();
+        if (form != "text" && form != "markdown") {
+            std::cerr << "lcc-conform: --list-checks takes text or markdown\n";
+            return kUsage;
+        }
+        std::cout << (form == "markdown" ? format_check_markdown() : format_check_list());
+        return 0;
+    }
+    if (vm.count("skip")) {
+        for (const std::string& p : vm["skip"].as<std::vector<std::string>>()) {
+            if (is_check_pattern(p)) continue;
+            std::cerr << "lcc-conform: --skip '" << p
+                      << "': not a check ID pattern (it starts with a category, e.g. "
+                         "'memory.*'); to leave variables alone use --exclude\n";
+            return kUsage;
+        }
     }
     std::vector<std::string> args;
     if (vm.count("args")) args = vm["args"].as<std::vector<std::string>>();

@@ -122,7 +122,7 @@ TEST_F(SafetyTest, WriteProtectedProbesInternalDataOneAtATimeAndTheNodeSurvives)
 }
 
 TEST_F(SafetyTest, RebootOnWriteIsReportedWithTheVariableAndNothingMoreIsWritten) {
-    start("reboot-on-write=5");
+    start("reboot-on-write=7");
     const NodeReport r = run();
     ASSERT_EQ(dut_->counters().write_reboots, 1u);
     const CheckResult* rebooted = find(r, "node.rebooted");
@@ -130,7 +130,8 @@ TEST_F(SafetyTest, RebootOnWriteIsReportedWithTheVariableAndNothingMoreIsWritten
     EXPECT_EQ(rebooted->category, Category::kNode);
     EXPECT_NE(rebooted->message.find("last test value written"), std::string::npos)
         << rebooted->message;
-    // The 5th write is the original going back into the first variable after its 4 test values.
+    // The 7th write (write-under-mask made 2) is the original going back into the first variable
+    // after its 4 test values.
     EXPECT_NE(rebooted->message.find("restoring Node identity.User Name"), std::string::npos)
         << rebooted->message;
     // The writes after the reboot are the restore alone: no encoding check failed because of it.

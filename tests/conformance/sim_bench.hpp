@@ -136,4 +136,55 @@ inline std::string dump(const std::vector<CheckResult>& results) {
     return s;
 }
 
+/// The check with this ID, expected with this status (a placeholder result when absent).
+inline const CheckResult& expect_status(const std::vector<CheckResult>& results,
+                                        const std::string& id, Status status) {
+    static const CheckResult missing = [] {
+        CheckResult c;
+        c.id = "(missing)";
+        return c;
+    }();
+    const CheckResult* c = find_check(results, id);
+    EXPECT_NE(c, nullptr) << id << "\n" << dump(results);
+    if (!c) return missing;
+    EXPECT_EQ(c->status, status) << id << "\n" << dump(results);
+    return *c;
+}
+
+/// True when part occurs in text.
+inline bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+/// A bare NodeStack as the node under test: what it answers is what the test makes it answer.
+struct FakeBench {
+    SimNetwork net;
+    NodeStack node;
+    std::unique_ptr<Link> link;
+    std::unique_ptr<Session> session;
+
+    explicit FakeBench(NodeStackConfig config) : node(std::move(config)) {
+        net.set_logging(false);
+        net.add_stack(node);
+        node.start(net.now());
+        link = make_sim_link(net, kTool);
+        session = std::make_unique<Session>(*link);
+    }
+    /// Starts our node and finds the fake.
+    std::optional<NodeInfo> start() {
+        EXPECT_TRUE(session->start());
+        auto n = session->find_node(kDut);
+        EXPECT_TRUE(n);
+        return n;
+    }
+};
+
+/// The fake's configuration: kDut with these protocols.
+inline NodeStackConfig fake_config(ProtocolSet protocols = ProtocolSet{Protocol::kDatagram}) {
+    NodeStackConfig c;
+    c.node_id = kDut;
+    c.protocols = protocols;
+    return c;
+}
+
 }  // namespace olcb::conform::testing

@@ -1,0 +1,385 @@
+#include "conformance/check_run.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+#include <variant>
+
+#include "cdi/parser.hpp"
+#include "memory/acdi.hpp"
+#include "memory/memory_config_codec.hpp"
+#include "openlcb/can_defs.hpp"
+
+namespace olcb::conform {
+namespace {
+
+using memory::Space;
+
+// An MTI the fact sheet does not assign, with the address bit set (its own OIR example).
+constexpr std::uint16_t kUnknownAddressedMti = 0x04F9;
+// A node ID that is not ours, for the CID probe.
+constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
+// Most bytes of node-supplied text a message quotes.
+constexpr std::size_t kMaxQuote = 80;
+
+// An ACDI block read field by field, each string up to its NUL: some nodes (OpenLcbCLib) serve
+// only reads that start at a field and refuse the bytes after a string's NUL, which no tool
+// needs. The block comes back whole, each string field padded with zeros after its NUL.
+MemResult read_acdi_block(Session& s, const NodeInfo& node, Space space) {
+    using namespace memory::acdi;
+    struct Field {
+        std::size_t offset, size;
+    };
+    static constexpr Field kManufacturer[] = {{kManufacturerVersionOffset, 1},
+                                              {kManufacturerOffset, kManufacturerSize},
+                                              {kModelOffset, kModelSize},
+                                              {kHardwareVersionOffset, kHardwareVersionSize},
+                                              {kSoftwareVersionOffset, kSoftwareVersionSize}};
+    static constexpr Field kUser[] = {{kUserVersionOffset, 1},
+                                      {kUserNameOffset, kUserNameSize},
+                                      {kUserDescriptionOffset, kUserDescriptionSize}};
+    const bool user = space == Space::kAcdiUser;
+    const std::span<const Field> fields =
+        user ? std::span<const Field>(kUser) : std::span<const Field>(kManufacturer);
+    MemResult total;
+    total.ok = true;
+    total.data.assign(user ? kUserBlockSize : kManufacturerBlockSize, 0);
+    for (const Field& f : fields) {
+        MemResult r = s.read_range(node, space, static_cast<std::uint32_t>(f.offset),
+                                   static_cast<std::uint32_t>(f.size), f.size > 1);
+        total.temporary_rejects += r.temporary_rejects;
+        if (!r.ok || r.data.empty()) {
+            r.ok = false;
+            return r;
+        }
+        std::copy_n(r.data.begin(), std::min(r.data.size(), f.size),
+                    total.data.begin() + static_cast<std::ptrdiff_t>(f.offset));
+    }
+    return total;
+}
+
+}  // namespace
+
+std::string hex(unsigned value, int width) {
+    char b[16];
+    std::snprintf(b, sizeof b, "0x%0*X", width, value);
+    return b;
+}
+
+std::string clip(std::string_view text) {
+    if (text.size() <= kMaxQuote) return std::string(text);
+    std::size_t n = kMaxQuote;
+    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
+    return std::string(text.substr(0, n)) + "...";
+}
+
+std::string quoted(std::string_view text) {
+    return "\"" + clip(text) + "\"";
+}
+
+std::string describe(const MemResult& r) {
+    if (r.timed_out) return "no answer";
+    if (r.rejected)
+        return r.error ? "Datagram Rejected " + hex(r.error)
+                       : "Datagram Rejected without an error code";
+    if (!r.ok) return r.error ? "error " + hex(r.error) : "failed without an error code";
+    return std::to_string(r.data.size()) + " bytes";
+}
+
+Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t want) {
+    const std::string standard = "; the standard gives " + hex(want);
+    if (r.timed_out) return {false, what + ": no answer" + standard, "no answer"};
+    if (r.ok) {
+        const std::string got = r.data.empty() ? "accepted" : "returned " + describe(r);
+        return {false, what + " " + got + standard, got};
+    }
+    const std::string code = r.error ? hex(r.error) : "no error code";
+    if (r.error == want) return {true, what + " refused with " + code, code};
+    return {false, what + " refused with " + code + standard, code};
+}
+
+std::string space_suffix(std::uint8_t space) {
+    char b[4];
+    std::snprintf(b, sizeof b, "%02x", space);
+    return b;
+}
+
+void Verdict::judge(bool ok, std::string message, std::string expected, std::string seen) {
+    add(ok ? Status::kPass : Status::kFail, std::move(message), ok ? "" : std::move(expected),
+        ok ? "" : std::move(seen));
+}
+
+void Verdict::warn(std::string message, std::vector<std::string> details) {
+    add(Status::kWarn, std::move(message), {}, {}, std::move(details));
+}
+
+void Verdict::skip(std::string why) {
+    add(Status::kSkip, std::move(why), {}, {});
+}
+
+void Verdict::add(Status status, std::string message, std::string expected, std::string seen,
+                  std::vector<std::string> details) {
+    CheckResult c;
+    c.id = id_;
+    c.status = status;
+    c.message = std::move(message);
+    c.expected = std::move(expected);
+    c.seen = std::move(seen);
+    c.details = std::move(details);
+    run_.add(std::move(c));
+}
+
+CheckRun::CheckRun(Session& session, const NodeInfo& node, const ProtocolOptions& options,
+                   CheckContext& ctx)
+    : s_(session),
+      node_(node),
+      o_(options),
+      ctx_(ctx),
+      start_frame_(session.frame_mark()),
+      started_(session.link().now()) {}
+
+std::uint16_t CheckRun::alias() const {
+    return s_.alias_of(node_);
+}
+
+bool CheckRun::from_node(const CanFrame& f) const {
+    return f.extended && can::source_alias(f.id) == alias();
+}
+
+Verdict CheckRun::out() {
+    return Verdict(*this, current_ ? std::string(current_->id) : std::string());
+}
+
+Verdict CheckRun::out(std::uint8_t space) {
+    std::string id = current_ ? std::string(current_->id) : std::string();
+    if (id.ends_with(kPerSpace)) id.resize(id.size() - kPerSpace.size());
+    return Verdict(*this, id + "." + space_suffix(space));
+}
+
+void CheckRun::run(const CheckSpec& spec) {
+    current_ = &spec;
+    if (spec.run) spec.run(*this);
+    current_ = nullptr;
+}
+
+void CheckRun::add(CheckResult result) {
+    if (const CheckSpec* spec = find_check(result.id)) {
+        result.category = spec->category;
+        if (result.section.empty()) result.section = std::string(spec->section);
+    }
+    out_.push_back(std::move(result));
+}
+
+std::optional<NodeId> CheckRun::other_tool() {
+    for (const NodeInfo& n : s_.nodes_seen())
+        if (is_tool_id(n.id) && n.id != s_.tool_id()) return n.id;
+    return std::nullopt;
+}
+
+bool CheckRun::others_spoke(std::size_t mark) {
+    for (const CanFrame& f : s_.frames_since(mark)) {
+        if (!f.extended) continue;  // standard frames: only ours are sent (fr60)
+        const std::uint16_t src = can::source_alias(f.id);
+        if (src != alias() && src != s_.tool_alias()) return true;
+    }
+    return false;
+}
+
+MemResult CheckRun::note(MemResult r) {
+    tally(r);
+    return r;
+}
+
+void CheckRun::tally(const MemResult& r) {
+    ctx_.temporary_rejects += r.temporary_rejects;
+    if (r.ok || (!r.rejected && !r.timed_out)) memory_works_ = true;
+}
+
+const FrameProbe& CheckRun::frame_probe() {
+    if (frame_probe_) return *frame_probe_;
+    FrameProbe p;
+    const std::uint16_t me = s_.tool_alias();
+    const std::uint16_t node = alias();
+    const std::size_t fmark = s_.frame_mark();
+    const std::size_t mmark = s_.message_mark();
+    s_.inject(can::make_ame(me));
+    s_.inject(can::make_ame(me, node_.id));
+    s_.inject(can::make_cid(7, NodeId{kOtherNodeId}, node));
+    s_.inject(can::make_frame(can::message_header(kUnknownAddressedMti & 0x0FFF, me),
+                              std::array<std::uint8_t, 2>{static_cast<std::uint8_t>(node >> 8),
+                                                          static_cast<std::uint8_t>(node & 0xFF)}));
+    Message verify;
+    verify.mti = Mti::kVerifyNodeIdAddressed;
+    verify.destination = NodeHandle{node_.id, node};
+    s_.send(verify);
+    // Every answer is awaited up to the answer window (on a 1,000-node segment the node's AMD
+    // sits behind 999 others); then the checks judge what came.
+    std::size_t frames_seen = fmark, messages_seen = mmark;
+    auto count_answers = [&] {
+        for (const CanFrame& f : s_.frames_since(frames_seen)) {
+            if (!from_node(f) || !can::is_control(f.id)) continue;
+            const auto kind = can::classify_control(f.id);
+            if (kind == can::ControlFrame::kAmd && f.len == 6 &&
+                NodeId::from_bytes({f.data.data(), 6}) == node_.id)
+                ++p.amd;
+            if (kind == can::ControlFrame::kRid) ++p.rid;
+        }
+        frames_seen = s_.frame_mark();
+        for (const auto& r : s_.messages_since(messages_seen)) {
+            const Message& m = r.message;
+            if (m.source.alias != alias()) continue;
+            if (m.mti == Mti::kOptionalInteractionRejected && m.payload.size() >= 4 &&
+                (m.payload[2] << 8 | m.payload[3]) == kUnknownAddressedMti && (m.payload[0] & 0x10))
+                p.oir = true;
+            if ((m.mti == Mti::kVerifiedNodeId || m.mti == Mti::kVerifiedNodeIdSimple) &&
+                NodeId::from_bytes(m.payload) == node_.id) {
+                p.verified = true;
+                p.verified_mti = m.mti;
+            }
+        }
+        messages_seen = s_.message_mark();
+        return p.amd >= 2 && p.rid >= 1 && p.oir && p.verified;
+    };
+    s_.link().run_until(count_answers, o_.answer_window);
+    count_answers();
+    frame_probe_ = p;
+    return *frame_probe_;
+}
+
+const std::optional<std::vector<std::uint8_t>>& CheckRun::snip_raw() {
+    if (!snip_asked_) {
+        snip_asked_ = true;
+        snip_raw_ = s_.snip_payload(node_);
+        if (snip_raw_ && !snip_raw_->empty()) ctx_.snip = memory::decode_snip(*snip_raw_);
+    }
+    return snip_raw_;
+}
+
+const std::optional<ProtocolSet>& CheckRun::pip() {
+    if (!pip_asked_) {
+        pip_asked_ = true;
+        ctx_.pip = s_.protocol_support(node_);
+    }
+    return ctx_.pip;
+}
+
+const MemResult& CheckRun::config_options() {
+    if (!options_result_) {
+        memory::Message reply;
+        MemResult r = s_.command(node_, memory::encode(memory::GetConfigOptions{}), &reply);
+        tally(r);
+        if (auto* p = std::get_if<memory::ConfigOptionsReply>(&reply); r.ok && p) ctx_.options = *p;
+        options_result_ = std::move(r);
+    }
+    return *options_result_;
+}
+
+const SpaceInfo& CheckRun::space_info(std::uint8_t space) {
+    auto known = ctx_.spaces.find(space);
+    if (known != ctx_.spaces.end() && known->second.answered) return known->second;
+    memory::Message reply;
+    const auto payload = memory::encode(memory::GetSpaceInfo{static_cast<Space>(space)});
+    const MemResult& r = note(s_.command(node_, payload, &reply));
+    SpaceInfo info;
+    if (r.ok) {
+        if (auto* p = std::get_if<memory::SpaceInfoReply>(&reply)) {
+            info = {true, true, p->read_only, p->highest_address, p->lowest_address};
+        } else if (std::holds_alternative<memory::SpaceInfoNotPresent>(reply)) {
+            info.answered = true;
+        }
+    }
+    ctx_.spaces[space] = info;
+    return ctx_.spaces[space];
+}
+
+const CdiDownload& CheckRun::cdi() {
+    if (cdi_) return *cdi_;
+    const SpaceInfo ff = space_info(0xFF);
+    const std::uint32_t len =
+        ff.present ? std::min(ff.highest_address + 1, o_.max_cdi_bytes) : o_.max_cdi_bytes;
+    CdiDownload d;
+    d.result = s_.read_range(node_, Space::kCdi, 0, len, true, ctx_.cdi_progress);
+    tally(d.result);
+    d.read_ok = d.result.ok && !d.result.data.empty();
+    ctx_.cdi_nul_found = !d.result.data.empty() && d.result.data.back() == 0;
+    ctx_.cdi_bytes = d.result.data;
+    if (ctx_.cdi_nul_found) ctx_.cdi_bytes.pop_back();
+    const std::string_view text(reinterpret_cast<const char*>(ctx_.cdi_bytes.data()),
+                                ctx_.cdi_bytes.size());
+    if (d.read_ok) {
+        auto parsed = cdi::parse(text);
+        if (parsed.document) {
+            ctx_.document = std::make_unique<cdi::Document>(std::move(*parsed.document));
+            auto lr = cdi::build_layout(*ctx_.document);
+            if (lr.layout) ctx_.layout = std::move(lr.layout);
+        }
+    }
+    cdi_ = std::move(d);
+    return *cdi_;
+}
+
+const cdi::ValidationReport& CheckRun::validation() {
+    if (!validation_) {
+        cdi();
+        const auto& b = ctx_.cdi_bytes;
+        validation_ = cdi::validate({reinterpret_cast<const char*>(b.data()), b.size()});
+    }
+    return *validation_;
+}
+
+const FormProbe& CheckRun::form_probe() {
+    if (form_probe_) return *form_probe_;
+    FormProbe p;
+    p.space = data_space();
+    const auto space = static_cast<Space>(p.space);
+    p.byte6 = note(s_.read(node_, space, 0, 8, memory::SpaceForm::kByte6));
+    if (p.space >= 0xFD)
+        p.short_form = note(s_.read(node_, space, 0, 8, memory::SpaceForm::kShort));
+    form_probe_ = std::move(p);
+    return *form_probe_;
+}
+
+bool CheckRun::cdi_forms_ok() {
+    return cdi().result.reply_in_request_form;
+}
+
+bool CheckRun::acdi_blocks() {
+    if (acdi_read_) return *acdi_read_;
+    cdi();
+    acdi_read_ = false;
+    if (!ctx_.document || !ctx_.document->acdi) return false;
+    MemResult m = read_acdi_block(s_, node_, Space::kAcdiManufacturer);
+    tally(m);
+    if (m.ok) ctx_.acdi_manufacturer = m.data;
+    MemResult u = read_acdi_block(s_, node_, Space::kAcdiUser);
+    tally(u);
+    if (u.ok) ctx_.acdi_user = u.data;
+    acdi_manufacturer_result_ = std::move(m);
+    acdi_user_result_ = std::move(u);
+    acdi_read_ = true;
+    return true;
+}
+
+bool CheckRun::memory_works() {
+    if (!memory_works_) config_options();
+    return memory_works_;
+}
+
+std::vector<std::uint8_t> CheckRun::layout_spaces() {
+    cdi();
+    std::set<std::uint8_t> spaces;
+    if (ctx_.layout)
+        for (const auto& e : ctx_.layout->extents())
+            spaces.insert(static_cast<std::uint8_t>(e.space));
+    return {spaces.begin(), spaces.end()};
+}
+
+std::uint8_t CheckRun::data_space() {
+    std::optional<std::uint8_t> best;
+    // Prefer a space with both forms, so the form check covers the short one.
+    for (std::uint8_t sp : layout_spaces())
+        if (!best || (sp >= 0xFD && *best < 0xFD)) best = sp;
+    return best.value_or(0xFF);
+}
+
+}  // namespace olcb::conform

@@ -1,0 +1,193 @@
+// The state one node's protocol checks share: the session, what earlier checks learned (the
+// CheckContext), and probes that several checks judge (one exchange, asked once, on first use,
+// so any selection of checks works on its own). Check functions live in conformance/checks/.
+#pragma once
+
+#include <any>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "cdi/validator.hpp"
+#include "conformance/check_context.hpp"
+#include "conformance/check_registry.hpp"
+#include "conformance/check_result.hpp"
+#include "conformance/protocol_checks.hpp"
+#include "conformance/session.hpp"
+
+namespace olcb::conform {
+
+/// Answers to the injected control frames and first messages (AME, CID, unknown MTI, Verify).
+struct FrameProbe {
+    std::size_t amd = 0;              ///< AMD frames from the node with its node ID
+    std::size_t rid = 0;              ///< RID frames from the node
+    bool oir = false;                 ///< OIR with a permanent code echoing the unknown MTI
+    bool verified = false;            ///< Verified Node ID to the addressed Verify
+    std::optional<Mti> verified_mti;  ///< which Verified MTI (simple or full) it used
+};
+
+/// 8-byte reads of the data space in both forms (the short form only for 0xFD-0xFF).
+struct FormProbe {
+    std::uint8_t space = 0xFF;
+    MemResult byte6;
+    std::optional<MemResult> short_form;
+};
+
+/// The CDI download of space 0xFF.
+struct CdiDownload {
+    MemResult result;      ///< the read_range() outcome
+    bool read_ok = false;  ///< data came
+};
+
+/// Judges one request the standard refuses with a given code.
+struct Refusal {
+    bool pass = false;
+    std::string message;  ///< what happened, with the code the standard gives when it differs
+    std::string seen;     ///< the code, "accepted", "returned N bytes" or "no answer"
+};
+
+/// "0x1082" (width hex digits).
+std::string hex(unsigned value, int width = 4);
+/// At most 80 bytes of node-supplied text, cut on a UTF-8 boundary.
+std::string clip(std::string_view text);
+/// clip() in double quotes.
+std::string quoted(std::string_view text);
+/// What an exchange did, in words ("no answer", "Datagram Rejected 0x1081", "8 bytes").
+std::string describe(const MemResult& r);
+/// Judges r against the refusal code `want` the standard gives for `what`.
+Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t want);
+/// "fd" for 0xFD: how per-space IDs carry the space.
+std::string space_suffix(std::uint8_t space);
+
+class CheckRun;
+
+/// Results of one check: the entry's ID (or, per space, ID.<sp>), category and section.
+class Verdict {
+public:
+    Verdict(CheckRun& run, std::string id) : run_(run), id_(std::move(id)) {}
+    /// PASS when ok, else FAIL with what was expected and what came.
+    void judge(bool ok, std::string message, std::string expected = {}, std::string seen = {});
+    void pass(std::string message) { judge(true, std::move(message)); }
+    void fail(std::string message, std::string expected, std::string seen) {
+        judge(false, std::move(message), std::move(expected), std::move(seen));
+    }
+    void warn(std::string message, std::vector<std::string> details = {});
+    void skip(std::string why);
+    /// A result with every field given (details: one line each, e.g. every CDI error).
+    void add(Status status, std::string message, std::string expected, std::string seen,
+             std::vector<std::string> details = {});
+
+private:
+    CheckRun& run_;
+    std::string id_;
+};
+
+/// One node's protocol checks in progress.
+class CheckRun {
+public:
+    CheckRun(Session& session, const NodeInfo& node, const ProtocolOptions& options,
+             CheckContext& ctx);
+
+    Session& session() { return s_; }
+    const NodeInfo& node() const { return node_; }
+    const ProtocolOptions& options() const { return o_; }
+    CheckContext& ctx() { return ctx_; }
+    /// The node's alias now: a node that re-initialised may have taken another one.
+    std::uint16_t alias() const;
+    /// True when the frame is an extended frame from the node's current alias.
+    bool from_node(const CanFrame& frame) const;
+
+    /// Results of the check being run.
+    Verdict out();
+    /// Results of the per-space check being run for one space.
+    Verdict out(std::uint8_t space);
+    /// Runs one entry (sets it current, then calls its function).
+    void run(const CheckSpec& spec);
+    /// Adds a finished result (Verdict uses it).
+    void add(CheckResult result);
+    /// The results so far, in order.
+    std::vector<CheckResult> take() { return std::move(out_); }
+    /// Where the run started (the quiet window of message.no-unsolicited counts from here).
+    std::size_t start_frame() const { return start_frame_; }
+    TimePoint started() const { return started_; }
+
+    /// Another lcc-conform run seen on the segment (its node ID), if any.
+    std::optional<NodeId> other_tool();
+    /// True when a frame since mark came from a source other than the node and lcc-conform
+    /// (another tool or node spoke, so a silence window proves nothing).
+    bool others_spoke(std::size_t mark);
+    /// Counts temporary rejects and learns whether memory configuration works at all.
+    MemResult note(MemResult r);
+    /// note() without the copy.
+    void tally(const MemResult& r);
+
+    // --- probes: asked once, on first use ---
+    const FrameProbe& frame_probe();
+    /// The SNIP reply's payload (nullopt: no reply).
+    const std::optional<std::vector<std::uint8_t>>& snip_raw();
+    /// The Protocol Support Reply (also in ctx().pip).
+    const std::optional<ProtocolSet>& pip();
+    /// Get Configuration Options (also in ctx().options); the exchange's outcome.
+    const MemResult& config_options();
+    /// Get Address Space Information for space (cached in ctx().spaces).
+    const SpaceInfo& space_info(std::uint8_t space);
+    /// Space 0xFF downloaded, parsed and laid out into ctx().
+    const CdiDownload& cdi();
+    /// cdi::validate() of the downloaded CDI text.
+    const cdi::ValidationReport& validation();
+    /// Spaces 252/251 read field by field into ctx() (only with <acdi/>): true when read.
+    bool acdi_blocks();
+    /// The outcome of reading 252 (after acdi_blocks()).
+    const MemResult& acdi_manufacturer_result() const { return acdi_manufacturer_result_; }
+    /// The outcome of reading 251 (after acdi_blocks()).
+    const MemResult& acdi_user_result() const { return acdi_user_result_; }
+    /// True when any memory-config exchange got an answer (asks Options when none was made).
+    bool memory_works();
+    /// The spaces the CDI's segments use, in ascending order.
+    std::vector<std::uint8_t> layout_spaces();
+    /// The space the form checks read (a CDI space, 0xFD-0xFF preferred; else 0xFF).
+    std::uint8_t data_space();
+    /// The data space read in both forms.
+    const FormProbe& form_probe();
+    /// What a topic file's probe learned this run, by key (nullptr before it is remembered).
+    template <typename T>
+    const T* memo(const std::string& key) const {
+        auto it = memos_.find(key);
+        return it == memos_.end() ? nullptr : std::any_cast<T>(&it->second);
+    }
+    /// Keeps a probe's outcome for the other checks of this run.
+    template <typename T>
+    const T& remember(const std::string& key, T value) {
+        return *std::any_cast<T>(&(memos_[key] = std::move(value)));
+    }
+    /// The replies of the CDI download came in their request's form.
+    bool cdi_forms_ok();
+
+private:
+    Session& s_;
+    NodeInfo node_;
+    ProtocolOptions o_;
+    CheckContext& ctx_;
+    std::vector<CheckResult> out_;
+    const CheckSpec* current_ = nullptr;
+    std::size_t start_frame_ = 0;
+    TimePoint started_{};
+    bool memory_works_ = false;
+    std::optional<FrameProbe> frame_probe_;
+    bool snip_asked_ = false;
+    std::optional<std::vector<std::uint8_t>> snip_raw_;
+    bool pip_asked_ = false;
+    std::optional<MemResult> options_result_;
+    std::optional<CdiDownload> cdi_;
+    std::optional<bool> acdi_read_;
+    std::optional<cdi::ValidationReport> validation_;
+    std::optional<FormProbe> form_probe_;
+    std::map<std::string, std::any> memos_;
+    MemResult acdi_manufacturer_result_, acdi_user_result_;
+};
+
+}  // namespace olcb::conform

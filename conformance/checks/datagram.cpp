@@ -1,0 +1,28 @@
+// Datagram transport as seen on the CDI reads, and the run's temporary rejects.
+#include "conformance/checks/checks.hpp"
+
+namespace olcb::conform::checks {
+
+void datagram_ok_before_reply(CheckRun& run) {
+    const CdiDownload& d = run.cdi();
+    if (!d.read_ok) return run.out().skip("depends on cdi.read: no read reply to judge");
+    run.out().judge(d.result.datagram_ok_seen, "Datagram Received OK precedes every read reply",
+                    "OK then reply", "a read reply without a prior Datagram Received OK");
+}
+
+void datagram_reply_pending(CheckRun& run) {
+    const CdiDownload& d = run.cdi();
+    if (!d.read_ok) return run.out().skip("depends on cdi.read: no read reply to judge");
+    run.out().judge(d.result.reply_pending, "Datagram Received OK of a read has Reply Pending",
+                    "flag 0x80", "flags without 0x80");
+}
+
+void datagram_temporary_rejects(CheckRun& run) {
+    // Temporary rejects are legal (the retried request succeeded, or another check failed), but
+    // a node that needs them on an idle bus is worth a look: warn, never fail.
+    const unsigned n = run.ctx().temporary_rejects;
+    if (n == 0) return run.out().pass("no datagram was rejected temporarily");
+    run.out().warn(std::to_string(n) + " datagrams rejected temporarily (0x2xxx) and retried");
+}
+
+}  // namespace olcb::conform::checks

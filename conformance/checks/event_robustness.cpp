@@ -1,0 +1,80 @@
+// Event messages a configurable node need not act on must not upset it: a PCER with payload
+// (OlcbChecker ev60) and a Learn Event (ev70). The node passes when it neither restarts nor
+// stops answering.
+#include <array>
+
+#include "conformance/checks/checks.hpp"
+#include "openlcb/can_defs.hpp"
+
+namespace olcb::conform::checks {
+namespace {
+
+// Frames that carry an event ID of lcc-conform's own range (05.01.01.01.3F.xx), which no
+// device produces or consumes.
+std::array<std::uint8_t, 8> tool_event(Session& s, std::uint8_t tag) {
+    const std::uint64_t id = s.tool_id().value();
+    std::array<std::uint8_t, 8> e{};
+    for (int i = 0; i < 6; ++i) e[i] = static_cast<std::uint8_t>(id >> (8 * (5 - i)));
+    e[6] = 0xEE;
+    e[7] = tag;
+    return e;
+}
+
+// After the frames went out: no restart (a new alias reservation or Initialization Complete)
+// within the silence window, and the node still answers Verify Node ID.
+void judge_unharmed(CheckRun& run, const NodeTrack& before, const std::string& what) {
+    Session& s = run.session();
+    s.wait(run.options().window);
+    const NodeTrack now = s.track(run.node().id);
+    const bool restarted =
+        now.initializations != before.initializations || now.reservations != before.reservations;
+    const bool answers = s.ping(run.node(), run.options().answer_window);
+    std::string seen;
+    if (restarted) seen = "the node restarted (Initialization Complete)";
+    if (!answers) seen = "the node no longer answers Verify Node ID";
+    run.out().judge(seen.empty(), what, "no restart, still answering", seen);
+}
+
+}  // namespace
+
+void pcer_payload_tolerated(CheckRun& run) {
+    Session& s = run.session();
+    const NodeTrack before = s.track(run.node().id);
+    const std::uint16_t me = s.tool_alias();
+    const auto event = tool_event(s, 0x60);
+    const std::array<std::uint8_t, 8> payload = {1, 2, 3, 4, 5, 6, 7, 8};
+    // Payloads of 4, 8 and 12 bytes, and one of 255 middle frames (2,044 bytes).
+    for (int middles : {0, 0, 1, 255}) {
+        s.inject(can::make_frame(can::message_header(can::kCanMtiPcerPayloadFirst, me), event));
+        for (int i = 0; i < middles; ++i)
+            s.inject(
+                can::make_frame(can::message_header(can::kCanMtiPcerPayloadMiddle, me), payload));
+        s.inject(can::make_frame(can::message_header(can::kCanMtiPcerPayloadLast, me),
+                                 std::span(payload).first(middles == 0 ? 4 : 8)));
+    }
+    judge_unharmed(run, before, "PCERs with payloads of 4 to 2,044 bytes leave the node running");
+}
+
+void learn_tolerated(CheckRun& run) {
+    Session& s = run.session();
+    const NodeTrack before = s.track(run.node().id);
+    s.inject(can::make_frame(can::message_header(to_u16(Mti::kLearnEvent) & 0x0FFF, s.tool_alias()),
+                             tool_event(s, 0x70)));
+    judge_unharmed(run, before, "Learn Event leaves the node running");
+}
+
+std::vector<CheckSpec> event_robustness_checks() {
+    return {
+        {"events.pcer-payload-tolerated", Category::kEvents, "EventTransportS; CanFrameTransferS",
+         "ev60",
+         "PCERs with payload (first/middle/last frames, 4 to 2,044 payload bytes) of an event in "
+         "lcc-conform's own range: no restart, the node still answers Verify Node ID",
+         pcer_payload_tolerated},
+        {"events.learn-tolerated", Category::kEvents, "EventTransportS", "ev70",
+         "Learn Event with an event of lcc-conform's own range: no restart, the node still "
+         "answers (only with --thorough: a node in learn mode would store the event)",
+         learn_tolerated, true},
+    };
+}
+
+}  // namespace olcb::conform::checks

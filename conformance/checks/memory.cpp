@@ -1,0 +1,167 @@
+// Memory Configuration basics: Options, reply latency and forms, Space Info against the layout,
+// unknown spaces, Lock/Reserve and the read-only spaces refusing writes.
+#include <set>
+#include <variant>
+
+#include "conformance/checks/checks.hpp"
+
+namespace olcb::conform::checks {
+namespace {
+
+using memory::Space;
+
+// A node ID that is not ours, for the lock check.
+constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
+
+// Lock/Reserve with id: the node ID the reply says holds the lock, nullopt without a reply.
+std::optional<std::uint64_t> lock_cmd(CheckRun& run, std::uint64_t id, MemResult& last) {
+    memory::Message reply;
+    last = run.note(run.session().command(run.node(), memory::encode(memory::Lock{id}), &reply));
+    if (auto* p = std::get_if<memory::LockReply>(&reply); last.ok && p) return p->node_id;
+    return std::nullopt;
+}
+
+}  // namespace
+
+void memory_config_options(CheckRun& run) {
+    const MemResult& r = run.config_options();
+    run.out().judge(run.ctx().options.has_value(), "Get Configuration Options answered",
+                    "reply 20 82", r.ok ? "a reply other than 20 82" : describe(r));
+}
+
+void memory_reply_latency(CheckRun& run) {
+    const CdiDownload& d = run.cdi();
+    if (!d.read_ok) return run.out().skip("depends on cdi.read: no read reply to time");
+    const auto ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(d.result.reply_latency).count();
+    run.out().judge(d.result.reply_latency <= run.options().max_reply_latency,
+                    "read replies within 750 ms", "<= 750 ms", std::to_string(ms) + " ms");
+}
+
+void memory_options_acdi_flags(CheckRun& run) {
+    run.config_options();
+    run.acdi_blocks();
+    const CheckContext& ctx = run.ctx();
+    if (!ctx.options) return run.out().skip("depends on memory.config-options: no Options reply");
+    const std::uint16_t c = ctx.options->available_commands;
+    const bool r252 = ctx.acdi_manufacturer.has_value();
+    const bool r251 = ctx.acdi_user.has_value();
+    const bool w251 = r251 && !run.space_info(0xFB).read_only;
+    const bool ok =
+        ((c & 0x0800) != 0) == r252 && ((c & 0x0400) != 0) == r251 && ((c & 0x0200) != 0) == w251;
+    std::string want = std::string(r252 ? "0x0800 set" : "0x0800 clear") +
+                       (r251 ? ", 0x0400 set" : ", 0x0400 clear") +
+                       (w251 ? ", 0x0200 set" : ", 0x0200 clear");
+    run.out().judge(ok, "Options flags 0x0800/0x0400/0x0200 agree with spaces 252/251",
+                    std::move(want), "available commands " + hex(c));
+}
+
+void memory_space_info_layout(CheckRun& run) {
+    run.cdi();
+    if (!run.ctx().layout) return run.out(0xFD).skip("depends on cdi.valid: no layout");
+    for (const auto& e : run.ctx().layout->extents()) {
+        const auto sp = static_cast<std::uint8_t>(e.space);
+        const SpaceInfo& info = run.space_info(sp);
+        const bool big = info.present && e.end > 0 && info.highest_address + 1 >= e.end;
+        run.out(sp).judge(
+            big, "Space Info of space " + hex(sp, 2) + " covers the CDI layout",
+            "highest >= " + std::to_string(e.end - 1),
+            info.present ? "highest " + std::to_string(info.highest_address) : "not present");
+    }
+}
+
+void memory_read_byte6_form(CheckRun& run) {
+    const FormProbe& p = run.form_probe();
+    run.out().judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form", "data",
+                    describe(p.byte6));
+}
+
+void memory_read_short_form(CheckRun& run) {
+    const FormProbe& p = run.form_probe();
+    if (!p.short_form)
+        return run.out().skip("space " + hex(p.space, 2) + " has only the byte-6 form");
+    run.out().judge(p.short_form->ok, "read of space " + hex(p.space, 2) + " in the short form",
+                    "data", describe(*p.short_form));
+}
+
+void memory_reply_form(CheckRun& run) {
+    const FormProbe& p = run.form_probe();
+    std::string seen;
+    if (!p.byte6.ok || !p.byte6.reply_in_request_form)
+        seen = "byte-6 read answered in the short form";
+    if (p.short_form && (!p.short_form->ok || !p.short_form->reply_in_request_form))
+        seen = "short-form read answered in the byte-6 form";
+    if (!run.cdi_forms_ok()) seen = "CDI reads answered in the other form";
+    run.out().judge(seen.empty(), "replies use the form of the request", "same form", seen);
+}
+
+void memory_read_short_at_end(CheckRun& run) {
+    const SpaceInfo ff = run.space_info(0xFF);
+    if (!ff.present || ff.highest_address < 3)
+        return run.out().skip("depends on cdi.space-info: 0xFF not present or too small");
+    const MemResult& e =
+        run.note(run.session().read(run.node(), Space::kCdi, ff.highest_address - 3, 8));
+    run.out().judge(e.ok && e.data.size() == 4,
+                    "read across the end of 0xFF returns the 4 bytes left", "4 bytes", describe(e));
+}
+
+void memory_unknown_space(CheckRun& run) {
+    std::set<std::uint8_t> used = {0xFF, 0xFE, 0xFD, 0xFC, 0xFB, 0xFA, 0xF9, 0xF8, 0xEF};
+    for (std::uint8_t sp : run.layout_spaces()) used.insert(sp);
+    std::uint8_t unknown = 0x50;
+    while (used.count(unknown)) ++unknown;
+    const MemResult& u =
+        run.note(run.session().read(run.node(), static_cast<Space>(unknown), 0, 8));
+    const Refusal refused =
+        judge_refusal(u, "read of unknown space " + std::to_string(unknown), 0x1081);
+    run.out().judge(refused.pass, refused.message, "0x1081", refused.seen);
+}
+
+void memory_lock(CheckRun& run) {
+    MemResult last;
+    const std::uint64_t me = run.session().tool_id().value();
+    auto first = lock_cmd(run, me, last);
+    if (!first && !last.ok && !last.timed_out) {
+        // Refusing an optional command is allowed; the code it gave is still worth a look.
+        const std::string code = last.error ? hex(last.error) : "no error code";
+        return run.out().warn("Lock/Reserve rejected with " + code +
+                              " (optional command; lcc-conform writes without the lock)");
+    }
+    if (!first) return run.out().skip("Lock/Reserve not answered (optional)");
+    if (*first != me && *first != 0) {
+        // Another tool holds the lock: zeros would release it behind that tool's back.
+        return run.out().skip("the node is locked by " + NodeId(*first).to_string() +
+                              ": lock check not run");
+    }
+    auto second = lock_cmd(run, kOtherNodeId, last);
+    auto released = lock_cmd(run, 0, last);
+    auto id = [](const std::optional<std::uint64_t>& v) {
+        return v ? NodeId(*v).to_string() : std::string("no reply");
+    };
+    const bool ok = *first == me && second && *second == me && released && *released == 0;
+    run.out().judge(ok, "reserve holds our ID, another ID does not take it, zeros release it",
+                    "ours, ours, 0", id(first) + ", " + id(second) + ", " + id(released));
+    if (released && *released != 0) lock_cmd(run, 0, last);
+}
+
+void memory_readonly_refused(CheckRun& run) {
+    if (run.options().read_only) return run.out(0xFF).skip("--read-only");
+    for (std::uint8_t sp : {0xFF, 0xFC}) {
+        const SpaceInfo& info = run.space_info(sp);
+        if (!info.present) continue;
+        // Rewrite the byte already there: nothing changes even on a faulty node.
+        const MemResult& r = run.note(run.session().read(run.node(), static_cast<Space>(sp), 0, 1));
+        if (!r.ok || r.data.empty()) {
+            run.out(sp).skip("byte 0 of space " + hex(sp, 2) + " unreadable: " + describe(r));
+            continue;
+        }
+        const std::vector<std::uint8_t> byte = r.data;
+        const MemResult& w =
+            run.note(run.session().write(run.node(), static_cast<Space>(sp), 0, byte));
+        const Refusal refused =
+            judge_refusal(w, "write to read-only space " + std::to_string(sp), 0x1083);
+        run.out(sp).judge(refused.pass, refused.message, "0x1083", refused.seen);
+    }
+}
+
+}  // namespace olcb::conform::checks

@@ -1,0 +1,491 @@
+// The memory checks at the edges of each address space (the highest address, past the end, a
+// write crossing the end), write under mask, Update Complete and the Options write-lengths byte.
+// They run before the safety backup exists, so every write leaves memory as it was even on a
+// node with the very bug looked for: it writes the bytes just read, and reads them back after.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "conformance/backup_keys.hpp"
+#include "conformance/checks/checks.hpp"
+#include "conformance/protection.hpp"
+#include "memory/memory_config_codec.hpp"
+
+namespace olcb::conform::checks {
+namespace {
+
+using memory::Space;
+
+constexpr std::uint8_t kCdiSpace = 0xFF;
+constexpr std::uint8_t kConfigSpace = 0xFD;
+constexpr std::uint8_t kAcdiManufacturer = 0xFC;
+constexpr std::uint8_t kAcdiUser = 0xFB;
+constexpr std::uint16_t kOutOfBounds = 0x1082;
+// OlcbChecker mc60 reads this far past the highest address of 0xFD, 64 bytes in the byte-6 form.
+constexpr std::uint32_t kFarPastEnd = 0x100;
+constexpr std::uint8_t kFarCount = 64;
+// Bytes of 0xFD watched while 0xFB is written across its end: OpenMRN's file-backed 251 runs on
+// into the first bytes of 253 (real-world.md §1).
+// Most bytes memory.write-past-end watches (and would put back) for a spilling write.
+constexpr std::size_t kMaxSnapshot = 16 * 1024;
+// Options write-lengths: the bits the current standard has sent as 1, ignoring the stream bit.
+constexpr std::uint8_t kWriteLengthsMask = 0xFE;
+constexpr std::uint8_t kWriteLengthsWant = 0xE2;
+
+Space as_space(std::uint8_t sp) {
+    return static_cast<Space>(sp);
+}
+
+std::string space_name(std::uint8_t sp) {
+    return "space " + hex(sp, 2);
+}
+
+std::string byte_list(std::span<const std::uint8_t> bytes) {
+    std::string s;
+    for (std::uint8_t b : bytes) s += (s.empty() ? "" : " ") + hex(b, 2);
+    return s;
+}
+
+MemResult read(CheckRun& run, std::uint8_t sp, std::uint32_t address, std::uint8_t count,
+               memory::SpaceForm form = memory::SpaceForm::kAuto) {
+    MemResult r = run.session().read(run.node(), as_space(sp), address, count, form);
+    run.note(r);
+    return r;
+}
+
+MemResult write(CheckRun& run, std::uint8_t sp, std::uint32_t address,
+                std::span<const std::uint8_t> data) {
+    MemResult r = run.session().write(run.node(), as_space(sp), address, data);
+    run.note(r);
+    return r;
+}
+
+// The spaces whose edges are checked: those every tool reads plus every space the CDI lays out,
+// each only when Space Info says it is present; 0xFF first.
+std::vector<std::uint8_t> bounded_spaces(CheckRun& run) {
+    std::set<std::uint8_t> spaces = {kCdiSpace, kConfigSpace, kAcdiManufacturer, kAcdiUser};
+    for (std::uint8_t sp : run.layout_spaces()) spaces.insert(sp);
+    std::vector<std::uint8_t> out;
+    for (auto it = spaces.rbegin(); it != spaces.rend(); ++it)
+        if (run.space_info(*it).present) out.push_back(*it);
+    return out;
+}
+
+// True when the CDI uses 0xFB: a segment in it, or <acdi/> (which lays out its user block).
+bool acdi_user_used(CheckRun& run) {
+    run.cdi();
+    const std::vector<std::uint8_t> used = run.layout_spaces();
+    const bool in_layout = std::find(used.begin(), used.end(), kAcdiUser) != used.end();
+    return in_layout || (run.ctx().document && run.ctx().document->acdi);
+}
+
+// Spaces a write may touch: writable per Space Info and used by the CDI; never 0xFF or 0xFC.
+std::vector<std::uint8_t> writable_spaces(CheckRun& run) {
+    std::vector<std::uint8_t> out;
+    for (std::uint8_t sp : bounded_spaces(run)) {
+        if (sp == kCdiSpace || sp == kAcdiManufacturer || run.space_info(sp).read_only) continue;
+        if (sp == kConfigSpace || sp == kAcdiUser) {
+            const std::vector<std::uint8_t> used = run.layout_spaces();
+            const bool in_layout = std::find(used.begin(), used.end(), sp) != used.end();
+            if (!in_layout && !(sp == kAcdiUser && acdi_user_used(run))) continue;
+        }
+        out.push_back(sp);
+    }
+    return out;
+}
+
+// Why the byte must not be written ("" when it may be): the protected variable holding it.
+std::string protected_at(CheckRun& run, std::uint8_t sp, std::uint32_t address) {
+    const auto& layout = run.ctx().layout;
+    if (!layout) return {};
+    const cdi::Cursor c = layout->find(sp, address);
+    if (!c.valid()) return {};
+    const std::string why = protection_reason(*layout, c);
+    return why.empty() ? "" : c.path() + " (" + why + ")";
+}
+
+// Writes original back at once and reads it again: "" when it came back, else what is wrong.
+std::string restore(CheckRun& run, std::uint8_t sp, std::uint32_t address,
+                    std::span<const std::uint8_t> original) {
+    const MemResult w = write(run, sp, address, original);
+    const MemResult back = read(run, sp, address, static_cast<std::uint8_t>(original.size()));
+    if (back.ok && back.data.size() == original.size() &&
+        std::equal(original.begin(), original.end(), back.data.begin()))
+        return {};
+    return "original not restored: writing " + byte_list(original) + " back to " + space_name(sp) +
+           " at " + hex(address, 8) + " got " + describe(w) + ", it reads " +
+           (back.ok ? byte_list(back.data) : describe(back));
+}
+
+// ---- memory.read-at-highest.<sp> ----
+
+void read_at_highest(CheckRun& run) {
+    for (std::uint8_t sp : bounded_spaces(run)) {
+        const std::uint32_t highest = run.space_info(sp).highest_address;
+        const MemResult r = read(run, sp, highest, 1);
+        const std::string what = "1-byte read at " + hex(highest, 8) + " of " + space_name(sp) +
+                                 " (Space Info's highest address)";
+        if (r.ok && !r.data.empty()) {
+            run.out(sp).pass(what + " returned data");
+            continue;
+        }
+        std::string message =
+            what + (r.error ? " failed with " + hex(r.error) : ": " + describe(r));
+        // OpenMRN's file-backed spaces give their size here, one past the last byte.
+        if (highest > 0 && r.error == kOutOfBounds) {
+            const MemResult before = read(run, sp, highest - 1, 1);
+            if (before.ok && !before.data.empty())
+                message += "; " + hex(highest - 1, 8) +
+                           " reads: Space Info gives the size, not the highest address";
+        }
+        run.out(sp).fail(message, "1 byte", describe(r));
+    }
+}
+
+// ---- memory.read-past-end.<sp> ----
+
+void read_past_end(CheckRun& run) {
+    for (std::uint8_t sp : bounded_spaces(run)) {
+        const std::uint32_t highest = run.space_info(sp).highest_address;
+        if (highest == 0xFFFFFFFFu) {
+            run.out(sp).skip(space_name(sp) + " ends at 0xFFFFFFFF: no address past it");
+            continue;
+        }
+        const MemResult next = read(run, sp, highest + 1, 8);
+        Refusal verdict = judge_refusal(
+            next,
+            "8-byte read at " + hex(highest + 1, 8) + ", past the end of " + space_name(sp) + ",",
+            kOutOfBounds);
+        std::string also;
+        // OlcbChecker mc60's read, well past the end of 0xFD.
+        if (sp == kConfigSpace && highest <= 0xFFFFFFFFu - kFarPastEnd) {
+            const std::uint32_t far = highest + kFarPastEnd;
+            const MemResult r = read(run, sp, far, kFarCount, memory::SpaceForm::kByte6);
+            const Refusal v = judge_refusal(
+                r, "64-byte read at " + hex(far, 8) + ", past the end of " + space_name(sp) + ",",
+                kOutOfBounds);
+            if (verdict.pass && !v.pass) verdict = v;
+            also = " and at " + hex(far, 8);
+        }
+        if (verdict.pass)
+            run.out(sp).pass("reads past the end of " + space_name(sp) + " (at " +
+                             hex(highest + 1, 8) + also + ") refused with 0x1082");
+        else
+            run.out(sp).fail(verdict.message, "0x1082", verdict.seen);
+    }
+}
+
+// ---- memory.write-past-end.<sp> ----
+
+// The last byte of a space and its value. When Space Info's highest address does not read (it
+// gives the size), the byte before it is the last one.
+struct LastByte {
+    std::uint32_t address = 0;
+    std::uint8_t value = 0;
+    bool below_highest = false;
+};
+
+std::optional<LastByte> last_byte(CheckRun& run, std::uint8_t sp, std::string& why) {
+    const std::uint32_t highest = run.space_info(sp).highest_address;
+    const MemResult r = read(run, sp, highest, 1);
+    if (r.ok && !r.data.empty()) return LastByte{highest, r.data[0], false};
+    if (highest > 0 && r.error == kOutOfBounds) {
+        const MemResult before = read(run, sp, highest - 1, 1);
+        if (before.ok && !before.data.empty()) return LastByte{highest - 1, before.data[0], true};
+    }
+    why = "the last byte of " + space_name(sp) + " does not read (" + describe(r) +
+          "), so nothing is written";
+    return std::nullopt;
+}
+
+// Every byte a spilling write could reach that a tool can read back: the extents the CDI lays
+// out in each writable space, and 251 bytes 1..127 (OpenMRN's 251 spills into its config file,
+// onto whatever 253 holds there: its "Internal data" version, real-world.md §1).
+struct Snapshot {
+    struct Range {
+        std::uint8_t space = 0;
+        std::uint32_t address = 0;
+        std::vector<std::uint8_t> bytes;
+    };
+    std::vector<Range> ranges;
+};
+
+std::optional<Snapshot> snapshot(CheckRun& run, std::string& why) {
+    Snapshot snap;
+    std::vector<std::pair<std::uint8_t, std::pair<std::uint32_t, std::uint32_t>>> wanted;
+    const std::vector<std::uint8_t> writable = writable_spaces(run);
+    auto is_writable = [&](std::uint32_t sp) {
+        return std::find(writable.begin(), writable.end(), sp) != writable.end();
+    };
+    if (run.ctx().layout)
+        for (const auto& e : run.ctx().layout->extents())
+            if (e.end > e.begin && is_writable(e.space))
+                wanted.push_back({static_cast<std::uint8_t>(e.space),
+                                  {static_cast<std::uint32_t>(e.begin),
+                                   static_cast<std::uint32_t>(e.end - e.begin)}});
+    if (is_writable(kAcdiUser)) wanted.push_back({kAcdiUser, {1, 127}});
+    std::size_t total = 0;
+    for (const auto& [sp, range] : wanted) {
+        total += range.second;
+        if (total > kMaxSnapshot) {
+            why = "the writable spaces hold more than " + std::to_string(kMaxSnapshot) +
+                  " bytes: too many to watch for a spilling write";
+            return std::nullopt;
+        }
+        const MemResult r = run.note(run.session().read_range(
+            run.node(), static_cast<memory::Space>(sp), range.first, range.second, false));
+        if (!r.ok || r.data.size() != range.second) {
+            why = space_name(sp) + " bytes " + hex(range.first, 8) + ".. do not read back (" +
+                  describe(r) + "), so a write spilling into them could not be undone";
+            return std::nullopt;
+        }
+        snap.ranges.push_back({sp, range.first, r.data});
+    }
+    return snap;
+}
+
+// What the write changed, each difference already written back: "" when nothing changed.
+std::string undo_changes(CheckRun& run, std::uint8_t sp, const LastByte& last,
+                         const Snapshot& before) {
+    std::string found;
+    auto note = [&](std::string what, std::span<const std::uint8_t> original, std::uint8_t space,
+                    std::uint32_t address) {
+        const std::string undone = restore(run, space, address, original);
+        found +=
+            (found.empty() ? "" : "; ") + what + (undone.empty() ? "; restored" : "; " + undone);
+    };
+    const MemResult back = read(run, sp, last.address, 1);
+    if (!back.ok || back.data.empty() || back.data[0] != last.value) {
+        note("the last byte (" + hex(last.address, 8) + ") reads " +
+                 (back.ok && !back.data.empty() ? hex(back.data[0], 2) : describe(back)) +
+                 " instead of " + hex(last.value, 2),
+             std::span(&last.value, 1), sp, last.address);
+    }
+    for (const Snapshot::Range& r : before.ranges) {
+        const MemResult now = run.note(
+            run.session().read_range(run.node(), static_cast<memory::Space>(r.space), r.address,
+                                     static_cast<std::uint32_t>(r.bytes.size()), false));
+        for (std::size_t i = 0; i < r.bytes.size(); ++i) {
+            if (now.ok && i < now.data.size() && now.data[i] == r.bytes[i]) continue;
+            const auto at = static_cast<std::uint32_t>(r.address + i);
+            note(space_name(r.space) + " byte " + hex(at, 8) + " changed (the write spilled)",
+                 std::span(&r.bytes[i], 1), r.space, at);
+        }
+    }
+    return found;
+}
+
+void judge_crossing(CheckRun& run, std::uint8_t sp, const LastByte& last, const MemResult& w,
+                    const std::string& changed) {
+    std::string what =
+        "2-byte write at " + hex(last.address, 8) + " crossing the end of " + space_name(sp);
+    if (last.below_highest)
+        what += " (Space Info's highest address " + hex(last.address + 1, 8) + " does not read)";
+    const std::string after = changed.empty() ? "" : "; memory changed: " + changed;
+    if (w.ok) {
+        run.out(sp).fail(what + " was accepted" +
+                             (changed.empty() ? " (no byte a tool can read changed)" : after) +
+                             "; the byte past the end may be stored where no tool reads it",
+                         "refused with 0x1082", "accepted");
+    } else if (w.timed_out) {
+        run.out(sp).fail(what + ": no answer" + after, "refused with 0x1082", "no answer");
+    } else if (!changed.empty()) {
+        run.out(sp).fail(what + " was refused with " + hex(w.error) + after, "memory unchanged",
+                         changed);
+    } else {
+        const std::string code = w.error ? hex(w.error) : "no error code";
+        run.out(sp).pass(what + " refused with " + code +
+                         (w.error == kOutOfBounds ? "" : " (the standard gives 0x1082)"));
+    }
+}
+
+void write_past_end_space(CheckRun& run, std::uint8_t sp) {
+    std::string why;
+    const std::optional<LastByte> last = last_byte(run, sp, why);
+    if (!last) return run.out(sp).skip(why);
+    if (std::string p = protected_at(run, sp, last->address); !p.empty())
+        return run.out(sp).skip("the last byte of " + space_name(sp) + " belongs to " + p);
+    // Where a spilling node puts the extra byte is its own business (OpenMRN's 251: onto 253's
+    // internal data): everything a tool can read is kept and put back at once when it changed.
+    std::string unsafe;
+    const std::optional<Snapshot> before = snapshot(run, unsafe);
+    if (!before) return run.out(sp).skip(unsafe);
+    const std::array<std::uint8_t, 2> data{last->value, last->value};
+    const MemResult w = write(run, sp, last->address, data);
+    judge_crossing(run, sp, *last, w, undo_changes(run, sp, *last, *before));
+}
+
+void write_past_end(CheckRun& run) {
+    for (std::uint8_t sp : writable_spaces(run)) {
+        if (run.options().read_only)
+            run.out(sp).skip("--read-only");
+        else
+            write_past_end_space(run, sp);
+    }
+}
+
+// ---- memory.write-under-mask ----
+
+struct MaskTarget {
+    std::uint8_t space = 0;
+    std::uint32_t address = 0;
+    std::string path;
+};
+
+// The first byte of the first unprotected variable (int, string, eventid, float) of a writable
+// CDI space.
+std::optional<MaskTarget> mask_target(CheckRun& run) {
+    const auto& layout = run.ctx().layout;
+    if (!layout) return std::nullopt;
+    const std::vector<std::uint8_t> writable = writable_spaces(run);
+    std::optional<MaskTarget> found;
+    layout->visit([&](const cdi::Cursor& c) {
+        const auto sp = static_cast<std::uint8_t>(c.space());
+        if (c.space() > 0xFF || c.address() > 0xFFFFFFFFu || !is_backed_up(c.element()) ||
+            std::find(writable.begin(), writable.end(), sp) == writable.end() ||
+            !protection_reason(*layout, c).empty())
+            return true;
+        found = MaskTarget{sp, static_cast<std::uint32_t>(c.address()), c.path()};
+        return false;
+    });
+    return found;
+}
+
+MemResult write_masked(CheckRun& run, const MaskTarget& t, std::uint8_t mask, std::uint8_t value) {
+    const memory::WriteUnderMask wum{as_space(t.space), t.address, {{mask, value}}};
+    MemResult r = run.session().command(run.node(), memory::encode(wum));
+    run.note(r);
+    return r;
+}
+
+// One write under mask that must leave the byte at v; "" when it did, else what went wrong
+// (the byte already put back).
+std::string masked_step(CheckRun& run, const MaskTarget& t, std::uint8_t v, std::uint8_t mask,
+                        std::uint8_t data) {
+    const std::string what = "write under mask (mask " + hex(mask, 2) + ", data " + hex(data, 2) +
+                             ") to " + t.path + " (" + space_name(t.space) + " at " +
+                             hex(t.address, 8) + ")";
+    const MemResult w = write_masked(run, t, mask, data);
+    const MemResult back = read(run, t.space, t.address, 1);
+    const bool kept = back.ok && !back.data.empty() && back.data[0] == v;
+    std::string problem;
+    if (!w.ok) problem = what + ": " + describe(w) + " although Options advertise it (0x8000)";
+    if (!kept) {
+        problem = what + " left " +
+                  (back.ok && !back.data.empty() ? hex(back.data[0], 2) : describe(back)) +
+                  " instead of " + hex(v, 2);
+        const std::string undone = restore(run, t.space, t.address, std::span(&v, 1));
+        problem += undone.empty() ? "; restored" : "; " + undone;
+    }
+    return problem;
+}
+
+void write_under_mask(CheckRun& run) {
+    Verdict out = run.out();
+    if (run.options().read_only) return out.skip("--read-only");
+    run.config_options();
+    const auto& options = run.ctx().options;
+    if (!options) return out.skip("no Get Configuration Options reply");
+    if ((options->available_commands & memory::available_commands::kWriteUnderMask) == 0)
+        return out.skip("write under mask not advertised (Options bit 0x8000 clear)");
+    run.cdi();
+    const std::optional<MaskTarget> t = mask_target(run);
+    if (!t) return out.skip("no unprotected variable in a writable CDI space");
+    const MemResult first = read(run, t->space, t->address, 1);
+    if (!first.ok || first.data.empty())
+        return out.skip(t->path + " does not read (" + describe(first) + "): nothing written");
+    const std::uint8_t v = first.data[0];
+    // Mask 0x00 must change nothing whatever the data; mask 0xFF with the byte's own value
+    // writes it unchanged: neither leaves a test value, even on a node that gets masks wrong.
+    std::string problem = masked_step(run, *t, v, 0x00, static_cast<std::uint8_t>(~v));
+    if (problem.empty()) problem = masked_step(run, *t, v, 0xFF, v);
+    if (!problem.empty())
+        return out.fail(problem, "the byte unchanged (" + hex(v, 2) + ")", problem);
+    out.pass("write under mask to " + t->path + ": mask 0x00 with data " +
+             hex(static_cast<std::uint8_t>(~v), 2) + " left " + hex(v, 2) + ", mask 0xFF with " +
+             hex(v, 2) + " kept it");
+}
+
+// ---- memory.update-complete ----
+
+void update_complete(CheckRun& run) {
+    Verdict out = run.out();
+    // It writes nothing, but tells the node its configuration changed: not under --read-only.
+    if (run.options().read_only) return out.skip("--read-only");
+    Session& s = run.session();
+    const std::uint32_t inits = s.track(run.node().id).initializations;
+    MemResult r = s.command(run.node(), memory::encode(memory::UpdateComplete{}));
+    run.note(r);
+    const bool alive = s.ping(run.node(), run.options().answer_window);
+    const bool restarted = s.track(run.node().id).initializations > inits;
+    if (!alive)
+        return out.fail("the node stopped answering after Update Complete (20 A8)",
+                        "Datagram Received OK, node answering", "no Verified Node ID");
+    if (r.rejected)
+        return out.fail("Update Complete (20 A8) rejected with " +
+                            (r.error ? hex(r.error) : std::string("no error code")),
+                        "Datagram Received OK", describe(r));
+    if (!r.ok && !restarted)
+        return out.fail("Update Complete (20 A8): " + describe(r), "Datagram Received OK",
+                        describe(r));
+    out.pass(restarted ? "Update Complete (20 A8): the node re-initialized (allowed) and answers"
+                       : "Update Complete (20 A8) acknowledged; the node still answers");
+}
+
+// ---- memory.options-write-lengths ----
+
+void options_write_lengths(CheckRun& run) {
+    Verdict out = run.out();
+    run.config_options();
+    const auto& options = run.ctx().options;
+    if (!options) return out.skip("no Get Configuration Options reply");
+    const std::uint8_t wl = options->write_lengths;
+    const std::string what = "Options write-lengths byte " + hex(wl, 2);
+    if ((wl & kWriteLengthsMask) == kWriteLengthsWant)
+        return out.pass(what + ": 0x80, 0x40, 0x20, 0x02 set, 0x10 clear" +
+                        ((wl & 1) ? ", streams" : ""));
+    out.fail(what + ": the current standard sends 0x80, 0x40, 0x20 and 0x02 as 1 and 0x10 as 0",
+             "0xE2 (0xE3 with streams)", hex(wl, 2));
+}
+
+}  // namespace
+
+std::vector<CheckSpec> memory_bounds_checks() {
+    return {
+        {"memory.read-at-highest.<sp>", Category::kMemory, "MemoryConfigurationS §4.4, §4.14",
+         "mc20, mc30",
+         "1-byte read at Space Info's highest address of 0xFF, 0xFD, 0xFC, 0xFB and every CDI "
+         "space (each present per Space Info): data; 0x1082 there means Space Info gives the size",
+         read_at_highest},
+        {"memory.read-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.4", "mc60",
+         "8-byte read at highest+1 of each space (and 64 bytes at highest+0x100 of 0xFD): refused "
+         "with exactly 0x1082 (Datagram Rejected or Read Reply Fail); data or OK fails",
+         read_past_end},
+        {"memory.write-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.6", "",
+         "(--thorough) writable spaces the CDI uses (0xFB, CDI spaces): every byte the CDI lays "
+         "out there read first, 2 bytes written at the last byte (its value twice), everything "
+         "read again: refused (0x1082 preferred) and nothing changed, a changed byte put back at "
+         "once; thorough because a node without the bounds check stores the extra byte where no "
+         "tool can read it back (OpenMRN: 251's lands on 253's internal data, put back; 253's "
+         "grows its config file by a byte); SKIP on a protected last byte and with --read-only",
+         write_past_end, true},
+        {"memory.write-under-mask", Category::kMemory, "MemoryConfigurationS §4.10", "mc70",
+         "when Options advertise 0x8000: write under mask mask 0x00 data ~v, then mask 0xFF data "
+         "v, on the first byte of the first unprotected writable CDI variable: reads v after each "
+         "(a changed byte is written back at once)",
+         write_under_mask},
+        {"memory.update-complete", Category::kMemory, "MemoryConfigurationS Update Complete", "",
+         "Update Complete (20 A8): Datagram Received OK (or a re-initialization), then the node "
+         "still answers Verify Node ID",
+         update_complete},
+        {"memory.options-write-lengths", Category::kMemory, "MemoryConfigurationS §4.13", "mc10",
+         "Get Configuration Options write-lengths byte: (byte & 0xFE) == 0xE2",
+         options_write_lengths},
+    };
+}
+
+}  // namespace olcb::conform::checks

@@ -1,0 +1,88 @@
+// SNIP: its version bytes, and its strings against the ACDI spaces and the CDI.
+#include <initializer_list>
+
+#include "conformance/checks/checks.hpp"
+#include "memory/acdi.hpp"
+
+namespace olcb::conform::checks {
+namespace {
+
+// One string both sides should hold, named for the message.
+struct Field {
+    const char* name;
+    const std::string* want;
+    const std::string* got;
+};
+
+// "SNIP model "B" differs from <source> "A"" for the first field that differs; "" when none.
+std::string first_difference(std::initializer_list<Field> fields, const std::string& source,
+                             std::string& want, std::string& got) {
+    for (const Field& f : fields) {
+        if (*f.want == *f.got) continue;
+        want = quoted(*f.want);
+        got = quoted(*f.got);
+        std::string message = std::string("SNIP ") + f.name;
+        message.append(" ").append(got).append(" differs from ");
+        message.append(source).append(" ").append(want);
+        return message;
+    }
+    return {};
+}
+
+}  // namespace
+
+void snip_version_bytes(CheckRun& run) {
+    const auto& raw = run.snip_raw();
+    if (!raw || raw->empty() || !run.ctx().snip) return run.out().skip("no SNIP reply");
+    const bool ok = (*raw)[0] == 4 && run.ctx().snip->user_version == 2;
+    run.out().judge(
+        ok, "SNIP version bytes 4 and 2", "4, 2",
+        std::to_string((*raw)[0]) + ", " + std::to_string(run.ctx().snip->user_version));
+}
+
+void snip_matches_acdi(CheckRun& run) {
+    run.snip_raw();
+    run.acdi_blocks();
+    CheckContext& ctx = run.ctx();
+    if (!ctx.snip) return run.out().skip("depends on snip.version-bytes: no SNIP reply");
+    if (!ctx.acdi_manufacturer || !ctx.acdi_user)
+        return run.out().skip("spaces 252/251 not read (no <acdi/> in the CDI, or unreadable)");
+    const memory::Snip from = memory::snip_from_acdi(*ctx.acdi_manufacturer, *ctx.acdi_user);
+    const memory::Snip& sn = *ctx.snip;
+    std::string want, got;
+    std::string diff =
+        first_difference({{"manufacturer", &from.manufacturer, &sn.manufacturer},
+                          {"model", &from.model, &sn.model},
+                          {"hardware version", &from.hardware_version, &sn.hardware_version},
+                          {"software version", &from.software_version, &sn.software_version}},
+                         "ACDI 252", want, got);
+    if (diff.empty())
+        diff =
+            first_difference({{"user name", &from.user_name, &sn.user_name},
+                              {"user description", &from.user_description, &sn.user_description}},
+                             "ACDI 251", want, got);
+    run.out().judge(diff.empty(),
+                    diff.empty() ? "SNIP strings equal the ACDI 252/251 strings" : diff, want, got);
+}
+
+void snip_matches_cdi(CheckRun& run) {
+    run.snip_raw();
+    run.cdi();
+    CheckContext& ctx = run.ctx();
+    if (!ctx.snip) return run.out().skip("depends on snip.version-bytes: no SNIP reply");
+    if (!ctx.document || !ctx.document->identification)
+        return run.out().skip("the CDI has no <identification> (or did not parse)");
+    const auto& id = *ctx.document->identification;
+    const memory::Snip& sn = *ctx.snip;
+    std::string want, got;
+    const std::string diff =
+        first_difference({{"manufacturer", &id.manufacturer, &sn.manufacturer},
+                          {"model", &id.model, &sn.model},
+                          {"hardware version", &id.hardware_version, &sn.hardware_version},
+                          {"software version", &id.software_version, &sn.software_version}},
+                         "CDI <identification>", want, got);
+    run.out().judge(diff.empty(),
+                    diff.empty() ? "SNIP strings equal the CDI <identification>" : diff, want, got);
+}
+
+}  // namespace olcb::conform::checks

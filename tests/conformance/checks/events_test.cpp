@@ -1,0 +1,164 @@
+// The event checks (conformance/checks/events.cpp) against the simulated node: every one passes
+// on the default and io-board nodes, each catches its fault, events.follow-write puts the
+// original back, and the whole set of new checks stays under a second of simulated time.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "conformance/check_run.hpp"
+#include "conformance/checks/checks.hpp"
+#include "conformance/checks/events.hpp"
+#include "conformance/sim_bench.hpp"
+
+namespace olcb::conform {
+namespace {
+
+using testing::contains;
+using testing::dump;
+using testing::expect_status;
+using testing::find_check;
+using testing::SimBench;
+
+std::string io_board_cdi() {
+    return read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios/io-board.xml");
+}
+
+std::vector<CheckResult> run_specs(SimBench& b, const std::vector<CheckSpec>& specs,
+                                   CheckContext& ctx) {
+    auto node = b.start();
+    if (!node) return {};
+    CheckRun run(*b.session, *node, ProtocolOptions{}, ctx);
+    for (const CheckSpec& spec : specs) run.run(spec);
+    return run.take();
+}
+
+std::vector<CheckResult> run_events(SimBench& b) {
+    CheckContext ctx;
+    return run_specs(b, checks::event_checks(), ctx);
+}
+
+// The follow-write check after the read-only checks filled the context (layout, timing).
+std::vector<CheckResult> follow_write(SimBench& b, const ProtectionRules& rules = {}) {
+    CheckContext ctx;
+    run_specs(b, checks::event_checks(), ctx);
+    return checks::events_follow_write(*b.session, *b.session->find_node(kDut), ctx, rules);
+}
+
+std::vector<std::uint8_t> config_bytes(SimBench& b) {
+    return b.dut->memory().read(0xFD, 0, 1u << 16);
+}
+
+TEST(EventChecksTest, DefaultNodePasses) {
+    SimBench b;
+    const auto results = run_events(b);
+    ASSERT_EQ(results.size(), 4u) << dump(results);
+    for (const auto& r : results) {
+        EXPECT_EQ(r.status, Status::kPass) << dump(results);
+        EXPECT_EQ(r.category, Category::kEvents) << r.id;
+    }
+    const auto& g = expect_status(results, "events.identify-global", Status::kPass);
+    EXPECT_TRUE(contains(g.message, "8 consumed")) << g.message;
+    const auto& pc = expect_status(results, "events.identify-producer-consumer", Status::kPass);
+    EXPECT_TRUE(contains(pc.message, "no produced event identified")) << pc.message;
+    EXPECT_TRUE(contains(pc.message, "05.01.01.01.3F.FF.FF.FE")) << pc.message;
+    expect_status(results, "events.cdi-events-identified", Status::kPass);
+}
+
+TEST(EventChecksTest, IoBoardNodePassesWithBothRoles) {
+    SimBench b({}, io_board_cdi());
+    const auto results = run_events(b);
+    for (const auto& r : results) EXPECT_EQ(r.status, Status::kPass) << dump(results);
+    const auto& pc = expect_status(results, "events.identify-producer-consumer", Status::kPass);
+    EXPECT_TRUE(contains(pc.message, "Producer Identified")) << pc.message;
+    EXPECT_TRUE(contains(pc.message, "Consumer Identified")) << pc.message;
+    const auto& cdi = expect_status(results, "events.cdi-events-identified", Status::kPass);
+    EXPECT_TRUE(contains(cdi.message, "all 64 event IDs")) << cdi.message;
+}
+
+TEST(EventChecksTest, MissingEventsWarnListingThem) {
+    SimBench b({"events-missing"}, io_board_cdi());
+    const auto results = run_events(b);
+    const auto& c = expect_status(results, "events.cdi-events-identified", Status::kWarn);
+    EXPECT_TRUE(contains(c.message, "32 of 64 event IDs")) << c.message;
+    EXPECT_EQ(c.details.size(), 32u);
+    EXPECT_TRUE(contains(c.details.front(), "Lines[1](Line 1)")) << c.details.front();
+    // What it identifies it identifies the same way every time.
+    expect_status(results, "events.identify-global", Status::kPass);
+    expect_status(results, "events.identify-addressed", Status::kPass);
+    expect_status(results, "events.identify-producer-consumer", Status::kPass);
+}
+
+TEST(EventChecksTest, EachCheckWorksOnItsOwn) {
+    for (const CheckSpec& spec : checks::event_checks()) {
+        SimBench b;
+        CheckContext ctx;
+        const auto results = run_specs(b, {spec}, ctx);
+        ASSERT_EQ(results.size(), 1u) << spec.id << "\n" << dump(results);
+        EXPECT_EQ(results[0].status, Status::kPass) << dump(results);
+    }
+}
+
+TEST(EventChecksTest, NewChecksTakeUnderASecondOnTheDefaultNode) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    std::vector<CheckSpec> specs = checks::memory_bounds_checks();
+    for (auto list : {checks::acdi_write_checks(), checks::event_checks()})
+        specs.insert(specs.end(), list.begin(), list.end());
+    CheckContext ctx;
+    CheckRun run(*b.session, *node, ProtocolOptions{}, ctx);
+    const TimePoint start = b.net.now();
+    for (const CheckSpec& spec : specs) run.run(spec);
+    const Duration took = b.net.now() - start;
+    const auto results = run.take();
+    for (const auto& r : results) EXPECT_NE(r.status, Status::kFail) << dump(results);
+    EXPECT_LT(took, std::chrono::seconds(1))
+        << std::chrono::duration_cast<std::chrono::milliseconds>(took).count() << " ms";
+}
+
+TEST(EventFollowWriteTest, DefaultNodeFollowsAndTheOriginalIsBack) {
+    SimBench b;
+    const auto before = config_bytes(b);
+    const auto results = follow_write(b);
+    ASSERT_EQ(results.size(), 1u) << dump(results);
+    EXPECT_EQ(results[0].id, "events.follow-write");
+    EXPECT_EQ(results[0].category, Category::kEvents);
+    EXPECT_EQ(results[0].status, Status::kPass) << dump(results);
+    EXPECT_TRUE(contains(results[0].message, "05.01.01.01.3F.FE.")) << results[0].message;
+    EXPECT_EQ(config_bytes(b), before);
+}
+
+TEST(EventFollowWriteTest, IoBoardNodeFollows) {
+    SimBench b({}, io_board_cdi());
+    const auto before = config_bytes(b);
+    const auto results = follow_write(b);
+    ASSERT_EQ(results.size(), 1u) << dump(results);
+    EXPECT_EQ(results[0].status, Status::kPass) << dump(results);
+    EXPECT_EQ(config_bytes(b), before);
+}
+
+TEST(EventFollowWriteTest, StaleEventsFailAndTheOriginalIsBack) {
+    SimBench b({"events-stale-after-write"});
+    const auto before = config_bytes(b);
+    const auto results = follow_write(b);
+    ASSERT_EQ(results.size(), 1u) << dump(results);
+    EXPECT_EQ(results[0].status, Status::kFail) << dump(results);
+    EXPECT_TRUE(contains(results[0].message, "no answer")) << results[0].message;
+    EXPECT_TRUE(contains(results[0].message, "still identified")) << results[0].message;
+    EXPECT_EQ(config_bytes(b), before);
+}
+
+TEST(EventFollowWriteTest, ExcludedVariablesAreNeverWritten) {
+    SimBench b;
+    const auto before = config_bytes(b);
+    ProtectionRules rules;
+    rules.exclude = {"*event*"};
+    const auto results = follow_write(b, rules);
+    ASSERT_EQ(results.size(), 1u) << dump(results);
+    EXPECT_EQ(results[0].status, Status::kSkip) << dump(results);
+    EXPECT_TRUE(contains(results[0].message, "nothing written")) << results[0].message;
+    EXPECT_EQ(config_bytes(b), before);
+}
+
+}  // namespace
+}  // namespace olcb::conform
