@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/cdi_reader.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/asio.hpp"
 #include "openlcb/in_process_bus.hpp"
@@ -28,12 +29,13 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace olcb;
+using bench::kReadSize;
+using bench::Reader;
 using simnode::NodeConfig;
 using simnode::SimNode;
 
 constexpr NodeId kNodeId{0x05'01'01'01'22'00ull};
 constexpr NodeId kToolId{0x02'01'0D'00'00'01ull};
-constexpr std::uint8_t kReadSize = 64;
 // The largest corpus CDI that validates (the bigger train-node CDI does not, so no node serves
 // it).
 constexpr std::string_view kLargeCdi = "corpus/cdi/bowties__rrcirkits_signal_lcc_rev_c7c.xml";
@@ -47,9 +49,9 @@ std::string read_file(const fs::path& p) {
     return s.str();
 }
 
-// scenarios/default.xml of the source tree this file belongs to.
+// scenarios/default.xml of the source tree (not from __FILE__: ccache may make it relative).
 std::string default_cdi() {
-    return read_file(fs::path(__FILE__).parent_path().parent_path() / "scenarios/default.xml");
+    return read_file(fs::path(OLCB_SOURCE_DIR) / "scenarios/default.xml");
 }
 
 class TempDir {
@@ -87,68 +89,6 @@ NodeStackConfig tool_config() {
     c.protocols = {Protocol::kDatagram, Protocol::kMemoryConfiguration};
     return c;
 }
-
-// Tool side: reads space 0xFF in 64-byte reads, one at a time, from callbacks.
-class Reader {
-public:
-    using Now = std::function<TimePoint()>;
-
-    Reader(NodeStack& stack, Now now) : stack_(stack), now_(std::move(now)) {
-        stack_.set_message_handler([](const Message&) { return true; });
-        stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
-    }
-
-    // Starts reading count bytes at address (one read), or the whole space (whole = true).
-    void start(std::uint16_t node, std::uint32_t address, bool whole) {
-        node_ = node;
-        whole_ = whole;
-        data_.clear();
-        done_ = false;
-        reads_ = 0;
-        address_ = address;
-        send();
-    }
-    bool done() const { return done_; }
-    const std::vector<std::uint8_t>& data() const { return data_; }
-    std::size_t reads() const { return reads_; }
-
-private:
-    void send() {
-        memory::Read r;
-        r.space = memory::Space::kCdi;
-        r.address = address_ + static_cast<std::uint32_t>(data_.size());
-        r.count = kReadSize;
-        ++reads_;
-        if (!stack_.send_datagram(node_, memory::encode(r), now_())) {
-            throw std::runtime_error("send_datagram refused");
-        }
-    }
-    void on_datagram(const ReceivedDatagram& d) {
-        stack_.accept_datagram(d.source_alias);
-        const auto decoded = memory::decode(d.payload);
-        const auto* reply =
-            decoded.ok() ? std::get_if<memory::ReadReply>(&decoded.message) : nullptr;
-        if (!reply) {
-            done_ = true;
-            return;
-        }
-        data_.insert(data_.end(), reply->data.begin(), reply->data.end());
-        if (!whole_ || reply->data.size() < kReadSize) {
-            done_ = true;
-        } else {
-            send();
-        }
-    }
-
-    NodeStack& stack_;
-    Now now_;
-    std::uint16_t node_ = 0;
-    std::uint32_t address_ = 0;
-    bool whole_ = false;
-    bool done_ = false;
-    std::size_t reads_ = 0;
-    std::vector<std::uint8_t> data_;
-};
 
 // A SimNode behind a TCP hub and a tool joined over loopback, all on one io_context.
 class TcpRig {

@@ -21,8 +21,6 @@ private:
     HandlerSlot handler_;
 };
 
-namespace {}  // namespace
-
 InProcessBus::InProcessBus() = default;
 
 InProcessBus::InProcessBus(boost::asio::io_context& io)
@@ -32,12 +30,11 @@ InProcessBus::~InProcessBus() = default;
 
 Transport& InProcessBus::add_endpoint(FrameHandler handler) {
     ports_.push_back(std::make_unique<Port>(*this, ports_.size(), std::move(handler)));
-    waiting_.emplace_back();
     return *ports_.back();
 }
 
 void InProcessBus::enable_timing(std::uint32_t bitrate) {
-    bitrate_ = bitrate == 0 ? 1 : bitrate;
+    pacer_.emplace(bitrate);
 }
 
 InProcessBus::Duration InProcessBus::now() const {
@@ -46,14 +43,12 @@ InProcessBus::Duration InProcessBus::now() const {
 }
 
 std::size_t InProcessBus::pending() const {
-    std::size_t n = fifo_.size() + (on_wire_ ? 1 : 0);
-    for (const auto& q : waiting_) n += q.size();
-    return n;
+    return fifo_.size() + (pacer_ ? pacer_->pending() : 0);
 }
 
 void InProcessBus::enqueue(std::size_t sender, const CanFrame& frame) {
-    if (bitrate_) {
-        waiting_[sender].push_back({frame, now()});
+    if (pacer_) {
+        pacer_->push(sender, frame, now());
     } else {
         fifo_.emplace_back(sender, frame);
     }
@@ -69,7 +64,7 @@ void InProcessBus::fan_out(std::size_t sender, const CanFrame& frame) {
 }
 
 std::size_t InProcessBus::deliver(std::size_t max_frames) {
-    if (bitrate_) return advance_to(now(), max_frames);
+    if (pacer_) return advance_to(now(), max_frames);
     if (delivering_) return 0;
     FlagGuard guard(delivering_);
     std::size_t count = 0;
@@ -82,53 +77,25 @@ std::size_t InProcessBus::deliver(std::size_t max_frames) {
     return count;
 }
 
-bool InProcessBus::start_next_frame() {
-    if (on_wire_) return true;
-    std::optional<Duration> earliest;
-    for (const auto& q : waiting_) {
-        if (!q.empty() && (!earliest || q.front().sent_at < *earliest))
-            earliest = q.front().sent_at;
-    }
-    if (!earliest) return false;
-    const Duration start = std::max(bus_free_at_, *earliest);
-    // Arbitration among every port that had a frame ready when the bus became free.
-    std::size_t winner = waiting_.size();
-    for (std::size_t i = 0; i < waiting_.size(); ++i) {
-        const auto& q = waiting_[i];
-        if (q.empty() || q.front().sent_at > start) continue;
-        if (winner == waiting_.size() || q.front().frame.id < waiting_[winner].front().frame.id) {
-            winner = i;
-        }
-    }
-    const CanFrame frame = waiting_[winner].front().frame;
-    waiting_[winner].pop_front();
-    const Duration length = can_frame_time(frame.len, *bitrate_);
-    on_wire_ = OnWire{frame, winner, start + length};
-    bus_free_at_ = start + length;
-    busy_time_ += length;
-    bits_on_wire_ += can_frame_bits(frame.len);
-    return true;
-}
-
 std::optional<InProcessBus::Duration> InProcessBus::next_completion() {
-    if (!bitrate_ || !start_next_frame()) return std::nullopt;
-    return on_wire_->completes_at;
+    if (!pacer_) return std::nullopt;
+    return pacer_->next_completion();
 }
 
 std::size_t InProcessBus::advance_to(Duration t, std::size_t max_frames) {
     if (delivering_) return 0;
-    if (!bitrate_) {
+    if (!pacer_) {
         if (!io_) now_ = std::max(now_, t);
         return deliver(max_frames);
     }
     FlagGuard guard(delivering_);
     std::size_t count = 0;
-    while (count < max_frames && start_next_frame() && on_wire_->completes_at <= t) {
-        const OnWire done = *on_wire_;
-        on_wire_.reset();
+    while (count < max_frames) {
+        const auto done = pacer_->pop(t);
+        if (!done) break;
         // Handlers see the bus clock at the frame's completion, so their replies queue from then.
-        if (!io_) now_ = std::max(now_, done.completes_at);
-        fan_out(done.sender, done.frame);
+        if (!io_) now_ = std::max(now_, done->completed_at);
+        fan_out(static_cast<std::size_t>(done->source), done->frame);
         ++count;
     }
     if (!io_) now_ = std::max(now_, t);
@@ -138,7 +105,7 @@ std::size_t InProcessBus::advance_to(Duration t, std::size_t max_frames) {
 std::size_t InProcessBus::run_until_idle(std::size_t max_frames) {
     std::size_t count = 0;
     while (count < max_frames) {
-        if (!bitrate_) {
+        if (!pacer_) {
             const std::size_t n = deliver(max_frames - count);
             count += n;
             if (n == 0) break;
@@ -155,7 +122,7 @@ std::size_t InProcessBus::run_until_idle(std::size_t max_frames) {
 
 void InProcessBus::schedule_io() {
     std::weak_ptr<bool> alive = alive_;
-    if (!bitrate_) {
+    if (!pacer_) {
         if (wakeup_posted_) return;
         wakeup_posted_ = true;
         boost::asio::post(*io_, [alive, this] {
@@ -174,7 +141,7 @@ void InProcessBus::schedule_io() {
 }
 
 void InProcessBus::on_io_wakeup() {
-    if (!bitrate_) {
+    if (!pacer_) {
         wakeup_posted_ = false;
         // Deliver only what was queued before this wakeup so endless ping-pong cannot starve the
         // io_context; frames sent meanwhile already posted the next wakeup.

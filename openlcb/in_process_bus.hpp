@@ -10,29 +10,11 @@
 #include <vector>
 
 #include "openlcb/asio.hpp"
+#include "openlcb/bus_pacer.hpp"
+#include "openlcb/can_timing.hpp"
 #include "openlcb/transport.hpp"
 
 namespace olcb {
-
-/// Worst-case bit count on the wire of one 29-bit data frame with `len` (0..8) data bytes.
-///
-/// Fields before the CRC delimiter are subject to stuffing: SOF 1 + base ID 11 + SRR 1 + IDE 1 +
-/// extended ID 18 + RTR 1 + r1 1 + r0 1 + DLC 4 + data 8n + CRC 15 = 54 + 8n bits. Worst case,
-/// one stuff bit follows the first 5 equal bits and then every 4 further bits:
-/// floor((54 + 8n - 1) / 4). Unstuffed tail: CRC delimiter 1 + ACK slot 1 + ACK delimiter 1 +
-/// EOF 7 + intermission 3 = 13. Total = 54 + 8n + 13 + floor((53 + 8n) / 4); 80 bits for n = 0,
-/// 160 bits for n = 8 (Davis et al., "CAN schedulability analysis: refuted, revisited", 2007).
-constexpr std::uint32_t can_frame_bits(std::uint8_t len) {
-    const std::uint32_t n = len > 8 ? 8 : len;
-    const std::uint32_t stuffed = 54 + 8 * n;
-    return stuffed + 13 + (stuffed - 1) / 4;
-}
-
-/// Time one worst-case 29-bit frame of `len` data bytes occupies a bus running at `bitrate` bit/s.
-constexpr std::chrono::nanoseconds can_frame_time(std::uint8_t len, std::uint32_t bitrate) {
-    return std::chrono::nanoseconds(std::uint64_t{can_frame_bits(len)} * 1'000'000'000ull /
-                                    (bitrate == 0 ? 1 : bitrate));
-}
 
 /// An in-process CAN segment: frames one port sends reach every other port in a fixed order.
 ///
@@ -40,9 +22,10 @@ constexpr std::chrono::nanoseconds can_frame_time(std::uint8_t len, std::uint32_
 /// bus's simulated clock. With an io_context deliveries are posted to it (and, with the timing
 /// model, happen when the steady clock reaches each frame's completion time). With the timing
 /// model the bus is serialised like real CAN: one frame at a time; when the bus falls idle the
-/// lowest ID among the ports' oldest waiting frames wins arbitration; each port sends in order.
-/// The bus picks the next frame lazily (on advance_to() or next_completion()), so frames sent at
-/// the same simulated instant before that call all take part in the arbitration.
+/// lowest ID among the ports' oldest waiting frames wins arbitration; each port sends in order
+/// (the schedule is a BusPacer, the same one the TCP hub's --bitrate uses). The bus picks the
+/// next frame lazily (on advance_to() or next_completion()), so frames sent at the same
+/// simulated instant before that call all take part in the arbitration.
 class InProcessBus {
 public:
     /// Bus time: simulated (manual bus) or steady-clock time since construction (io_context bus).
@@ -62,7 +45,7 @@ public:
     /// Turns on the bit-timing model at `bitrate` bit/s; call before any frame is sent.
     void enable_timing(std::uint32_t bitrate = 125000);
     /// True when the bit-timing model is on.
-    bool timing_enabled() const { return bitrate_.has_value(); }
+    bool timing_enabled() const { return pacer_.has_value(); }
 
     /// Delivers frames whose time has come (all queued ones without the timing model), including
     /// frames handlers send meanwhile, up to `max_frames`; returns how many were delivered.
@@ -80,9 +63,9 @@ public:
     /// Completion time of the frame on the wire or next to go on it (timing model only).
     std::optional<Duration> next_completion();
     /// Accumulated time the bus carried frames (timing model only).
-    Duration busy_time() const { return busy_time_; }
+    Duration busy_time() const { return pacer_ ? pacer_->busy_time() : Duration{0}; }
     /// Accumulated worst-case bits put on the wire (timing model only).
-    std::uint64_t bits_on_wire() const { return bits_on_wire_; }
+    std::uint64_t bits_on_wire() const { return pacer_ ? pacer_->bits_on_wire() : 0; }
     /// Frames delivered so far (each counted once, however many ports received it).
     std::uint64_t frames_delivered() const { return frames_delivered_; }
     /// Frames sent but not yet delivered.
@@ -90,31 +73,16 @@ public:
 
 private:
     class Port;
-    struct Waiting {
-        CanFrame frame;
-        Duration sent_at;
-    };
-    struct OnWire {
-        CanFrame frame;
-        std::size_t sender;
-        Duration completes_at;
-    };
 
     void enqueue(std::size_t sender, const CanFrame& frame);
     void fan_out(std::size_t sender, const CanFrame& frame);
-    bool start_next_frame();
     void schedule_io();
     void on_io_wakeup();
 
     std::vector<std::unique_ptr<Port>> ports_;
     std::deque<std::pair<std::size_t, CanFrame>> fifo_;  // untimed mode
-    std::vector<std::deque<Waiting>> waiting_;           // timed mode, one queue per port
-    std::optional<OnWire> on_wire_;
-    std::optional<std::uint32_t> bitrate_;
+    std::optional<BusPacer> pacer_;                      // timed mode; sources = port indices
     Duration now_{0};
-    Duration bus_free_at_{0};
-    Duration busy_time_{0};
-    std::uint64_t bits_on_wire_ = 0;
     std::uint64_t frames_delivered_ = 0;
     bool delivering_ = false;
 

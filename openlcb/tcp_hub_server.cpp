@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "openlcb/bus_pacer.hpp"
+#include "openlcb/flag_guard.hpp"
 #include "openlcb/gridconnect.hpp"
 
 namespace olcb {
@@ -22,9 +24,14 @@ constexpr auto kHousekeeping = std::chrono::milliseconds(100);
 }  // namespace
 
 struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
+    // Who sent a frame: a number per client and local endpoint, never reused, so a frame still
+    // waiting for the bus after its client left is not mistaken for a newcomer's.
+    using SourceKey = BusPacer::Source;
+
     struct Client {
-        explicit Client(tcp::socket s) : socket(std::move(s)) {}
+        Client(tcp::socket s, SourceKey k) : socket(std::move(s)), key(k) {}
         tcp::socket socket;
+        SourceKey key;
         gridconnect::Parser parser;
         std::array<char, kReadChunk> read_buf{};
         std::string pending;  // waiting for the next write
@@ -43,26 +50,31 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
 
     class LocalPort final : public Transport {
     public:
-        LocalPort(Impl& hub, FrameHandler handler) : hub_(hub) { handler_.set(std::move(handler)); }
+        LocalPort(Impl& hub, SourceKey key, FrameHandler handler) : hub_(hub), key_(key) {
+            handler_.set(std::move(handler));
+        }
         void send(const CanFrame& frame) override {
             ++hub_.stats.frames_received;
-            hub_.relay(Source{nullptr, this}, frame);
+            hub_.relay(key_, frame);
         }
         void set_handler(FrameHandler handler) override { handler_.set(std::move(handler)); }
         void receive(const CanFrame& frame) { handler_(frame); }
+        SourceKey key() const { return key_; }
 
     private:
         Impl& hub_;
+        SourceKey key_;
         HandlerSlot handler_;
     };
 
-    struct Source {
-        const Client* client;
-        const LocalPort* local;
-    };
-
     Impl(boost::asio::io_context& io_context, Options opts)
-        : io(io_context), acceptor(io_context), timer(io_context), options(opts) {}
+        : io(io_context),
+          acceptor(io_context),
+          timer(io_context),
+          bus_timer(io_context),
+          options(opts) {
+        if (options.bitrate > 0) pacer.emplace(options.bitrate);
+    }
 
     void accept() {
         acceptor.async_accept(
@@ -98,7 +110,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
                                   static_cast<int>(options.socket_send_buffer_bytes)),
                               ignored);
         }
-        auto client = std::make_shared<Client>(std::move(socket));
+        auto client = std::make_shared<Client>(std::move(socket), next_key++);
         client->remote = remote;
         client->address = address;
         client->tokens = options.max_client_frames_per_second;  // a full second's burst
@@ -137,13 +149,14 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
                 client->parser.feed(std::string_view(client->read_buf.data(), n),
                                     [&](const CanFrame& frame) {
                                         ++self->stats.frames_received;
-                                        self->relay(Source{client.get(), nullptr}, frame);
+                                        self->relay(client->key, frame);
                                     });
                 self->stats.parse_errors += client->parser.errors() - errors_before;
                 client->last_rx = SteadyClock::now();
                 if (client->closed) return;
                 self->charge(*client, client->parser.frames() - frames_before);
-                if (client->tokens < 0 || self->congested(client->last_rx, self->pause_level())) {
+                if (client->tokens < 0 || self->congested(client->last_rx, self->pause_level()) ||
+                    self->bus_backlogged(*client, self->options.max_client_bus_frames)) {
                     // Its bytes wait in the kernel; TCP slows the sender until the queues drain.
                     client->paused = true;
                     ++self->stats.read_pauses;
@@ -153,8 +166,14 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
             });
     }
 
-    // Frames sent from inside a local handler are queued so that relays never nest.
-    void relay(Source source, const CanFrame& frame) {
+    // Frames sent from inside a local handler are queued so that relays never nest. On a paced
+    // bus every frame waits for its turn on the wire instead.
+    void relay(SourceKey source, const CanFrame& frame) {
+        if (pacer) {
+            pacer->push(source, frame, bus_now());
+            arm_bus();
+            return;
+        }
         relay_queue.emplace_back(source, frame);
         if (relaying) return;
         relaying = true;
@@ -168,12 +187,12 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         sweep();
     }
 
-    void relay_one(Source source, const CanFrame& frame) {
+    void relay_one(SourceKey source, const CanFrame& frame) {
         line.clear();
         gridconnect::format_to(frame, line);
         line.push_back('\n');
         for (const auto& client : clients) {
-            if (client.get() == source.client || client->closed) continue;
+            if (client->key == source || client->closed) continue;
             if (client->pending.size() + line.size() > options.max_client_queue_bytes) {
                 ++stats.clients_dropped_slow;
                 log("dropped client " + client->remote + ": it reads too slowly (" +
@@ -191,8 +210,49 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         }
         // Index loop: a local handler may add local endpoints.
         for (std::size_t i = 0; i < locals.size() && !stopped; ++i) {
-            if (locals[i].get() != source.local) locals[i]->receive(frame);
+            if (locals[i]->key() != source) locals[i]->receive(frame);
         }
+    }
+
+    BusPacer::Duration bus_now() const {
+        return std::chrono::duration_cast<BusPacer::Duration>(SteadyClock::now() - bus_epoch);
+    }
+
+    // One wait for the paced bus: the completion of the frame on the wire is fixed once the
+    // pacer chose it, so a wait already armed never has to move.
+    void arm_bus() {
+        if (bus_armed || relaying || stopped) return;
+        const auto next = pacer->next_completion();
+        if (!next) return;
+        bus_armed = true;
+        bus_timer.expires_at(bus_epoch + *next);
+        bus_timer.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+            self->bus_armed = false;
+            if (ec || self->stopped) return;
+            self->release_due();
+        });
+    }
+
+    // Delivers every frame whose transmission completed by now. A late wake-up delivers what
+    // completed meanwhile at once: the bus keeps its own schedule, so lateness does not add up.
+    // Frames sent from handlers meanwhile complete after now (a frame takes > 0 s), so this ends.
+    void release_due() {
+        {
+            FlagGuard guard(relaying);
+            const auto now = bus_now();
+            while (!stopped) {
+                const auto done = pacer->pop(now);
+                if (!done) break;
+                relay_one(done->source, done->frame);
+            }
+        }
+        sweep();
+        resume_if_clear(SteadyClock::now());
+        arm_bus();
+    }
+
+    bool bus_backlogged(const Client& c, std::size_t level) const {
+        return pacer && pacer->queued(c.key) > level;
     }
 
     void write(const std::shared_ptr<Client>& client) {
@@ -260,6 +320,8 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
                 refill(*client, now);
                 if (client->tokens < 0) continue;  // over its rate: the next tick looks again
             }
+            // Its frames going out on the bus call this again.
+            if (bus_backlogged(*client, options.max_client_bus_frames / 2)) continue;
             client->paused = false;
             read(client);
         }
@@ -317,6 +379,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         boost::system::error_code ignored;
         acceptor.close(ignored);
         timer.cancel();
+        bus_timer.cancel();
         for (const auto& client : clients) close(*client);
         clients.clear();
     }
@@ -324,11 +387,16 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     boost::asio::io_context& io;
     tcp::acceptor acceptor;
     boost::asio::steady_timer timer;
+    boost::asio::steady_timer bus_timer;
     Options options;
     Stats stats;
+    std::optional<BusPacer> pacer;  // options.bitrate > 0
+    SteadyClock::time_point bus_epoch = SteadyClock::now();
+    bool bus_armed = false;
+    SourceKey next_key = 0;
     std::vector<std::shared_ptr<Client>> clients;
     std::vector<std::unique_ptr<LocalPort>> locals;
-    std::deque<std::pair<Source, CanFrame>> relay_queue;
+    std::deque<std::pair<SourceKey, CanFrame>> relay_queue;
     std::string line;
     ConnectionHandler on_connect;
     LogHandler on_log;
@@ -376,7 +444,8 @@ std::uint16_t TcpHubServer::port() const {
 }
 
 Transport& TcpHubServer::add_local_endpoint(FrameHandler handler) {
-    impl_->locals.push_back(std::make_unique<Impl::LocalPort>(*impl_, std::move(handler)));
+    impl_->locals.push_back(
+        std::make_unique<Impl::LocalPort>(*impl_, impl_->next_key++, std::move(handler)));
     return *impl_->locals.back();
 }
 
@@ -399,7 +468,13 @@ std::size_t TcpHubServer::client_count() const {
 }
 
 TcpHubServer::Stats TcpHubServer::stats() const {
-    return impl_->stats;
+    Stats s = impl_->stats;
+    if (const auto& pacer = impl_->pacer) {
+        s.bus_frames_waiting = pacer->pending();
+        s.bus_busy_time = pacer->busy_time();
+        s.bus_bits = pacer->bits_on_wire();
+    }
+    return s;
 }
 
 }  // namespace olcb

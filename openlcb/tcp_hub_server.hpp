@@ -35,6 +35,14 @@ struct TcpHubOptions {
     std::uint32_t max_client_frames_per_second = 0;
     /// A client that sent nothing this long is closed (0 = never).
     std::chrono::milliseconds idle_timeout{0};
+    /// Paces the segment as one CAN bus at this many bit/s (0 = off): every frame, whoever sent
+    /// it, occupies the bus for can_frame_time() and reaches the others when it completes
+    /// (BusPacer: lowest ID wins when several wait, each sender in order).
+    std::uint32_t bitrate = 0;
+    /// With bitrate: a client with more frames than this waiting for the bus has its reads
+    /// paused until half of them went out (as a CAN adapter's full transmit buffer stops its
+    /// host), so a flood waits in TCP instead of the hub's memory.
+    std::size_t max_client_bus_frames = 64;
 };
 
 /// A TCP server joining its clients (and local endpoints) into one virtual CAN segment.
@@ -49,6 +57,9 @@ struct TcpHubOptions {
 /// queue would exceed max_client_queue_bytes or it stays congested past slow_reader_timeout
 /// (dropping single frames would silently corrupt multi-frame messages; a dropped client
 /// notices and can reconnect). Every refusal and drop is reported to the log handler.
+/// With Options::bitrate the segment is paced like one real CAN bus (see there): a local
+/// endpoint's send() then only queues its frame, and every delivery (to clients and to local
+/// handlers) runs from the io_context once the frame's transmission has completed.
 class TcpHubServer {
 public:
     /// Limits of one hub.
@@ -66,6 +77,9 @@ public:
         std::uint64_t parse_errors = 0;     ///< invalid or over-long frame texts from clients
         std::size_t queued_bytes = 0;       ///< output bytes currently held for all clients
         std::size_t peak_client_queue_bytes = 0;
+        std::size_t bus_frames_waiting = 0;         ///< with bitrate: frames not yet off the bus
+        std::chrono::nanoseconds bus_busy_time{0};  ///< with bitrate: time the bus carried frames
+        std::uint64_t bus_bits = 0;                 ///< with bitrate: worst-case bits sent
     };
 
     /// Called after a client was accepted, with its remote address as "HOST:PORT".

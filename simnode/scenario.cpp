@@ -45,6 +45,7 @@ constexpr std::string_view kProcessKeys[] = {"listen",
                                              "candump",
                                              "run-for",
                                              "latency",
+                                             "bitrate",  // CAN bit timing of the whole segment
                                              "start-on-connect",
                                              "max-clients",
                                              "max-clients-per-address",
@@ -54,6 +55,10 @@ constexpr std::string_view kProcessKeys[] = {"listen",
 constexpr std::uint64_t kMaxCount = 100000;
 // Faster than any UART a USB-CAN adapter uses; above it a typo is more likely than a rate.
 constexpr unsigned long kMaxBaud = 12'000'000;
+// The CAN bit rates of real segments: 10 kbit/s (the slowest CiA rate) to 1 Mbit/s (classic
+// CAN's top); OpenLCB uses 125 kbit/s.
+constexpr std::uint64_t kMinBitrate = 10'000;
+constexpr std::uint64_t kMaxBitrate = 1'000'000;
 constexpr std::string_view kSectionPrefix = "node.";
 
 bool contains(std::span<const std::string_view> keys, std::string_view key) {
@@ -169,6 +174,9 @@ po::options_description cli_options() {
     testing.add_options()("latency", po::value<std::string>()->value_name("MS[:JITTER]"),
                           "every node answers MS ms (plus 0..JITTER ms) late, as the fault "
                           "latency=MS[:JITTER]; a node's own latency fault wins")(
+        "bitrate", po::value<std::string>()->value_name("N"),
+        "pace the segment (hub or in-process bus) as one CAN bus of N bit/s, "
+        "10000..1000000, e.g. 125000 (default 0 = off)")(
         "start-on-connect", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
         "with listen: every node logs in again (CID..RID, AMD, Initialization Complete) "
         "whenever a TCP client connects");
@@ -448,6 +456,13 @@ public:
             const auto parsed = parse_faults({"latency=" + *v}, why);
             if (!parsed) return fail("latency '" + *v + "' must be MS or MS:JITTER (milliseconds)");
             latency_ = *parsed;
+        }
+        if (const auto* v = single(keys, "bitrate")) {
+            const auto n = parse_bytes(*v);
+            if (!n || (*n != 0 && (*n < kMinBitrate || *n > kMaxBitrate))) {
+                return fail("bitrate '" + *v + "' must be 0 (off) or 10000..1000000 bit/s");
+            }
+            scenario_.bitrate = static_cast<std::uint32_t>(*n);
         }
         if (const auto* v = single(keys, "start-on-connect")) {
             const auto on = parse_bool(*v);

@@ -44,6 +44,7 @@ struct Scenario {
     std::size_t max_clients = 64;     ///< hub connections beyond are refused
     std::size_t max_clients_per_address = 48;  ///< hub connections from one address
     double idle_timeout = 0;                   ///< seconds; a silent client is closed (0 = never)
+    std::uint32_t bitrate = 0;  ///< pace the segment at CAN bit timing, bit/s (0 = off)
     /// Every TCP client connecting to the hub makes every node log in again (needs listen).
     bool start_on_connect = false;
     std::filesystem::path scenario_file;  ///< the .ini read (empty: everything inline)

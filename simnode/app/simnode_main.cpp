@@ -164,6 +164,7 @@ int run(const Scenario& scenario) {
         options.socket_send_buffer_bytes = kHubSendBufferBytes;
         options.idle_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(
             std::chrono::duration<double>(scenario.idle_timeout));
+        options.bitrate = scenario.bitrate;
         hub = std::make_unique<TcpHubServer>(io, options);
         hub->set_log_handler([](const std::string& line) { say("hub: " + line); });
         if (const auto ec = hub->listen(scenario.listen->host, scenario.listen->port)) {
@@ -173,6 +174,7 @@ int run(const Scenario& scenario) {
         }
     } else {
         bus = std::make_unique<InProcessBus>(io);
+        if (scenario.bitrate > 0) bus->enable_timing(scenario.bitrate);
     }
     Transport& node_port = add_port({});
 
@@ -255,7 +257,15 @@ int run(const Scenario& scenario) {
     }
 
     describe_nodes(nodes);
-    if (hub) say("listening on " + HostPort{scenario.listen->host, hub->port()}.to_string());
+    // The bit rate follows the address, without a colon: scripts take the port after the last.
+    const std::string paced = scenario.bitrate > 0
+                                  ? " (bus paced at " + std::to_string(scenario.bitrate) + " bit/s)"
+                                  : "";
+    if (hub) {
+        say("listening on " + HostPort{scenario.listen->host, hub->port()}.to_string() + paced);
+    } else if (!paced.empty()) {
+        say("in-process segment" + paced);
+    }
     auto started = Clock::now();
     bool nodes_started = false;
     if (scenario.start_on_connect && hub) {
