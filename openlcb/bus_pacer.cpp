@@ -51,7 +51,7 @@ std::optional<BusPacer::Duration> BusPacer::next_completion() {
 
 std::optional<BusPacer::Done> BusPacer::pop(Duration now) {
     if (!start_next_frame() || on_wire_->completed_at > now) return std::nullopt;
-    std::optional<Done> done = std::move(on_wire_);
+    std::optional<Done> done = on_wire_;
     on_wire_.reset();
     return done;
 }

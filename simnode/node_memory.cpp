@@ -488,7 +488,8 @@ std::vector<std::uint8_t> NodeMemory::factory_image(std::uint8_t number) const {
         if (!value && e.kind == cdi::ElementKind::kString) value.emplace(e.size, 0);
         if (!value || c.address() + value->size() > bytes.size()) return;
         if (!acdi_layout) apply_encoding_faults(options_.faults, e, *value);
-        std::copy(value->begin(), value->end(), bytes.begin() + c.address());
+        std::copy(value->begin(), value->end(),
+                  bytes.begin() + static_cast<std::ptrdiff_t>(c.address()));
     });
     if (number == kAcdiUserSpace) {
         memory::AcdiUser user;

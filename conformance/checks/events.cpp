@@ -382,12 +382,13 @@ void identify_addressed(CheckRun& run) {
         return out.pass(a.empty() ? "Identify Events addressed and global both unanswered"
                                   : "Identify Events addressed answered with " + a.describe() +
                                         ", the same events as global");
-    const std::string first = diff.front();
+    const std::string message =
+        "the answer to Identify Events addressed differs from the global "
+        "one (" +
+        std::to_string(diff.size()) + " differences; first " + diff.front() + ")";
     if (diff.size() > kMaxDetails) diff.resize(kMaxDetails);
-    out.add(Status::kFail,
-            "the answer to Identify Events addressed differs from the global one (" +
-                std::to_string(diff.size()) + " differences; first " + first + ")",
-            "the events of the global answer", a.describe(), std::move(diff));
+    out.add(Status::kFail, message, "the events of the global answer", a.describe(),
+            std::move(diff));
 }
 
 // ---- events.cdi-events-identified ----
@@ -443,6 +444,7 @@ void cdi_events_identified(CheckRun& run) {
         return out.pass("all " + std::to_string(ids.size()) +
                         " event IDs of the CDI's eventid variables identified" + cap);
     std::vector<std::string> details;
+    details.reserve(missing.size() + ev.unreadable.size());
     for (const auto& [id, path] : missing) details.push_back(path + " = " + event_text(id));
     for (const std::string& u : ev.unreadable) details.push_back("unreadable: " + u);
     if (details.size() > kMaxDetails) details.resize(kMaxDetails);
@@ -489,9 +491,11 @@ void identify_producer_consumer(CheckRun& run) {
             std::string(asks[i].producer ? "Identify Producer " : "Identify Consumer ") +
             event_text(asks[i].id);
         const std::string reply = asks[i].producer ? "Producer Identified" : "Consumer Identified";
-        if (expected[i] && !answered[i]) wrong.push_back(what + ": no " + reply);
-        if (!expected[i] && answered[i]) wrong.push_back(what + " (not the node's): " + reply);
-        parts.push_back(what + (expected[i] ? ": " + reply : ": silence"));
+        if (expected[i] && !answered[i])
+            wrong.push_back(std::string(what).append(": no ").append(reply));
+        if (!expected[i] && answered[i])
+            wrong.push_back(std::string(what).append(" (not the node's): ").append(reply));
+        parts.push_back(std::string(what).append(": ").append(expected[i] ? reply : "silence"));
     }
     if (a.produced.empty()) parts.push_back("no produced event identified to ask for");
     if (a.consumed.empty()) parts.push_back("no consumed event identified to ask for");

@@ -31,7 +31,7 @@ constexpr std::uint8_t kFarCount = 64;
 // Bytes of 0xFD watched while 0xFB is written across its end: OpenMRN's file-backed 251 runs on
 // into the first bytes of 253 (real-world.md §1).
 // Most bytes memory.write-past-end watches (and would put back) for a spilling write.
-constexpr std::size_t kMaxSnapshot = 16 * 1024;
+constexpr std::size_t kMaxSnapshot = std::size_t{16} * 1024;
 // Options write-lengths: the bits the current standard has sent as 1, ignoring the stream bit.
 constexpr std::uint8_t kWriteLengthsMask = 0xFE;
 constexpr std::uint8_t kWriteLengthsWant = 0xE2;
@@ -252,8 +252,8 @@ std::optional<Snapshot> snapshot(CheckRun& run, std::string& why) {
 std::string undo_changes(CheckRun& run, std::uint8_t sp, const LastByte& last,
                          const Snapshot& before) {
     std::string found;
-    auto note = [&](std::string what, std::span<const std::uint8_t> original, std::uint8_t space,
-                    std::uint32_t address) {
+    auto note = [&](const std::string& what, std::span<const std::uint8_t> original,
+                    std::uint8_t space, std::uint32_t address) {
         const std::string undone = restore(run, space, address, original);
         found +=
             (found.empty() ? "" : "; ") + what + (undone.empty() ? "; restored" : "; " + undone);

@@ -100,8 +100,8 @@ bool judge_window(CheckRun& run, std::size_t mark, std::uint16_t other, SilenceA
 }  // namespace
 
 const SilenceAnswers& silence_probe(CheckRun& run) {
-    static const std::string kKey = "message.silence-probe";
-    if (const SilenceAnswers* known = run.memo<SilenceAnswers>(kKey)) return *known;
+    static const std::string key = "message.silence-probe";
+    if (const SilenceAnswers* known = run.memo<SilenceAnswers>(key)) return *known;
     Session& s = run.session();
     SilenceAnswers a;
     const auto other = other_alias(run);
@@ -123,7 +123,7 @@ const SilenceAnswers& silence_probe(CheckRun& run) {
         }
     }
     a.has_other = other.has_value();
-    return run.remember(kKey, std::move(a));
+    return run.remember(key, std::move(a));
 }
 
 namespace {
