@@ -3,8 +3,10 @@
 #pragma once
 
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -439,6 +441,20 @@ private:
 /// Path of a file in the source tree.
 inline std::filesystem::path source_path(std::string_view relative) {
     return std::filesystem::path(OLCB_SOURCE_DIR) / relative;
+}
+
+/// A TCP connection to 127.0.0.1:port (a raw hub client); -1 when refused.
+inline int connect_to(std::uint16_t port) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_port = htons(port);
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+        if (fd >= 0) ::close(fd);
+        return -1;
+    }
+    return fd;
 }
 
 }  // namespace olcb::e2e

@@ -22,19 +22,6 @@ using std::chrono::steady_clock;
 constexpr NodeId kDefaultNode{0x05'01'01'01'22'00ull};
 constexpr std::uint32_t kBitrate = 125000;
 
-int connect_to(std::uint16_t port) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(port);
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-        if (fd >= 0) ::close(fd);
-        return -1;
-    }
-    return fd;
-}
-
 // A frame of the burst: a PCER-shaped frame from `alias` numbered `seq`.
 CanFrame burst_frame(std::uint16_t alias, std::uint32_t seq) {
     CanFrame f;

@@ -19,19 +19,6 @@ namespace {
 
 constexpr NodeId kDefaultNode{0x05'01'01'01'22'00ull};
 
-int connect_to(std::uint16_t port) {
-    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    sockaddr_in addr{};
-    addr.sin_family = AF_INET;
-    addr.sin_port = htons(port);
-    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    if (fd < 0 || ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
-        if (fd >= 0) ::close(fd);
-        return -1;
-    }
-    return fd;
-}
-
 // True when the peer closed fd (reads until EOF or timeout, discarding data).
 bool closed_by_peer(int fd, milliseconds timeout) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
