@@ -76,6 +76,12 @@ nlohmann::json node_json(const NodeReport& report) {
               {"restore", report.restore_summary}}}};
 }
 
+// Node names and messages carry the node's own bytes, which may not be UTF-8: they are written
+// with U+FFFD in place of invalid bytes instead of aborting the report (and the run) on them.
+std::string dump_json(const nlohmann::json& root) {
+    return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 std::string format_duration(double seconds) {
     if (seconds < 0) seconds = 0;
     const long long total = std::llround(seconds);
@@ -139,7 +145,7 @@ std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run) 
     if (reports.size() == 1) {
         nlohmann::json root = node_json(reports.front());
         extras(root);
-        return root.dump(2) + "\n";
+        return dump_json(root);
     }
     nlohmann::json nodes = nlohmann::json::array();
     for (const NodeReport& r : reports) nodes.push_back(node_json(r));
@@ -152,7 +158,7 @@ std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run) 
                              {"skip", s.skip},
                              {"total", s.total()}}}};
     extras(root);
-    return root.dump(2) + "\n";
+    return dump_json(root);
 }
 
 std::string to_junit(const std::vector<NodeReport>& reports, const RunInfo& run) {

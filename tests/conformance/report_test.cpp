@@ -61,6 +61,16 @@ TEST(ToJson, HasNodeChecksAndSummary) {
     EXPECT_EQ(many["summary"]["fail"], 2);
 }
 
+TEST(ToJson, InvalidUtf8FromTheNodeIsReplacedNotFatal) {
+    NodeReport r = sample();
+    r.name = "bad\xff\xfename";
+    r.checks[0].message = "user name \"bad\xff\xfename\"";
+    const std::string text = to_json({r});
+    const auto j = nlohmann::json::parse(text, nullptr, false);
+    ASSERT_FALSE(j.is_discarded()) << text;
+    EXPECT_EQ(j["node"]["name"], "bad\xEF\xBF\xBD\xEF\xBF\xBDname");  // two U+FFFD
+}
+
 TEST(ToJunit, WellFormedOneTestcasePerCheck) {
     std::string xml = to_junit({sample()});
     pugi::xml_document doc;
