@@ -15,10 +15,6 @@ namespace {
 
 using memory::Space;
 
-// An MTI the fact sheet does not assign, with the address bit set (its own OIR example).
-constexpr std::uint16_t kUnknownAddressedMti = 0x04F9;
-// A node ID that is not ours, for the CID probe.
-constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
 // Most bytes of node-supplied text a message quotes.
 constexpr std::size_t kMaxQuote = 80;
 

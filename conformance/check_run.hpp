@@ -21,6 +21,15 @@
 
 namespace olcb::conform {
 
+/// An MTI the fact sheet does not assign, with the address bit set (its own OIR example).
+inline constexpr std::uint16_t kUnknownAddressedMti = 0x04F9;
+/// An unassigned global MTI (no address or event bits): nodes must ignore it silently.
+inline constexpr std::uint16_t kUnknownGlobalMti = 0x0930;
+/// A node ID that is not ours nor the node's, for the CID probe and the lock check.
+inline constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
+/// Silence windows a silence check tries while other sources keep speaking.
+inline constexpr int kQuietAttempts = 3;
+
 /// Answers to the injected control frames and first messages (AME, CID, unknown MTI, Verify).
 struct FrameProbe {
     std::size_t amd = 0;              ///< AMD frames from the node with its node ID

@@ -26,8 +26,6 @@ constexpr std::size_t kBurstFrames = 300;
 constexpr Duration kBurstAnswer = 800ms;
 // Standard-frame IDs sent without --thorough (spread over the whole 11-bit range).
 constexpr unsigned kStandardIdsQuick = 64;
-// Silence windows tried while other sources keep speaking, before a silence check gives up.
-constexpr int kQuietAttempts = 3;
 // With --thorough every ID OlcbChecker fr60 sends: 0x000..0x7FE.
 constexpr unsigned kStandardIdsAll = 2047;
 // How long a node has from Reset/Reboot to its Initialization Complete.

@@ -10,9 +10,6 @@ namespace {
 
 using memory::Space;
 
-// A node ID that is not ours, for the lock check.
-constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
-
 // Lock/Reserve with id: the node ID the reply says holds the lock, nullopt without a reply.
 std::optional<std::uint64_t> lock_cmd(CheckRun& run, std::uint64_t id, MemResult& last) {
     memory::Message reply;

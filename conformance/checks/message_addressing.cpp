@@ -17,12 +17,6 @@ namespace {
 
 using C = Category;
 
-// An MTI the fact sheet does not assign, with the address bit set (its own OIR example).
-constexpr std::uint16_t kUnknownAddressedMti = 0x04F9;
-// An unassigned global MTI (no address or event bits): nodes must ignore it silently.
-constexpr std::uint16_t kUnknownGlobalMti = 0x0930;
-// Silence windows tried while other sources keep speaking.
-constexpr int kQuietAttempts = 3;
 // The well-known event a node reports a duplicate node ID with (CanFrameTransferS 6.2.6).
 constexpr std::array<std::uint8_t, 8> kDuplicateEvent = {0x01, 0x01, 0, 0, 0, 0, 0x02, 0x01};
 
