@@ -78,6 +78,7 @@ void merge_duplicate_ids(std::vector<CheckResult>& results) {
             continue;
         }
         CheckResult& first = out[it->second];
+        first.duration += c.duration;
         if (merged[c.id]++ == 0 && first.details.empty())
             first.details.push_back(std::string(status_name(first.status)) + " " + first.message);
         first.details.push_back(std::string(status_name(c.status)) + " " + c.message);

@@ -1,6 +1,7 @@
 // The outcome of one conformance check: what every check produces and every report consumes.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -47,6 +48,8 @@ struct CheckResult {
     std::string seen;      ///< for failures: what the node did (may be empty)
     /// Further lines (every CDI error, every variable of a merged result); may be empty.
     std::vector<std::string> details{};
+    /// How long the check took (a share of its phase when the phase judges several at once).
+    Duration duration{};
 };
 
 /// Merges results that share an ID into one, at the first one's place, so IDs are unique in a
@@ -54,10 +57,23 @@ struct CheckResult {
 /// (saying how many more), expected and seen; every merged message in details.
 void merge_duplicate_ids(std::vector<CheckResult>& results);
 
+/// What the node says it is (its SNIP strings, as sent: untrusted bytes).
+struct NodeIdentity {
+    std::string manufacturer;      ///< SNIP manufacturer name
+    std::string model;             ///< SNIP model name
+    std::string hardware_version;  ///< SNIP hardware version
+    std::string software_version;  ///< SNIP software version
+    std::string user_name;         ///< SNIP user-provided name
+    std::string user_description;  ///< SNIP user-provided description
+};
+
 /// Every check run against one node, in the order they ran.
 struct NodeReport {
     std::string node_id;  ///< dotted hex, e.g. "05.01.01.01.22.00"
     std::string name;     ///< SNIP manufacturer + model + user name, for humans
+    NodeIdentity identity;  ///< the SNIP strings ("" each when SNIP did not answer)
+    std::chrono::system_clock::time_point started{};  ///< when the node's run began
+    Duration elapsed{};                               ///< how long the node's run took
     std::vector<CheckResult> checks;
     std::string restore_summary;  ///< "memory byte-identical to before" or what differs
     /// The windows the run used, from the node's measured latency.

@@ -378,4 +378,10 @@ std::uint8_t CheckRun::data_space() {
     return best.value_or(0xFF);
 }
 
+void CheckRun::share_duration(std::size_t first, Duration spent) {
+    if (first >= out_.size()) return;
+    const auto n = static_cast<long>(out_.size() - first);
+    for (std::size_t i = first; i < out_.size(); ++i) out_[i].duration = spent / n;
+}
+
 }  // namespace olcb::conform

@@ -120,6 +120,10 @@ public:
     void add(CheckResult result);
     /// The results so far, in order.
     std::vector<CheckResult> take() { return std::move(out_); }
+    /// Number of results so far.
+    std::size_t result_count() const { return out_.size(); }
+    /// Shares `spent` among the results from index `first` on (one check's per-space results).
+    void share_duration(std::size_t first, Duration spent);
     /// Where the run started (the quiet window of message.no-unsolicited counts from here).
     std::size_t start_frame() const { return start_frame_; }
     TimePoint started() const { return started_; }

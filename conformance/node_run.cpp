@@ -50,22 +50,53 @@ NodeRun::NodeRun(Session& session, const NodeInfo& node, const RunOptions& optio
 NodeReport NodeRun::run() {
     losses_before_ = session_.link().losses();
     report_.node_id = node_.id.to_string();
-    measure();
-    identify();
-    protocol();
-    if (writes_allowed() && load_layout()) {
-        plan();
-        if (capture_backup() && take_lock()) {
-            encode();
-            follow_event_write();
-            after_incident();
-            restore_and_verify();
-            release_lock();
+    report_.started = std::chrono::system_clock::now();
+    const auto began = wall();
+    timed("measure", &NodeRun::measure);
+    timed("identify", &NodeRun::identify);
+    timed("protocol checks", &NodeRun::protocol);
+    if (writes_allowed() && timed("layout", &NodeRun::load_layout)) {
+        timed("plan", &NodeRun::plan);
+        if (timed("backup", &NodeRun::capture_backup) && timed("lock", &NodeRun::take_lock)) {
+            timed("encoding checks", &NodeRun::encode);
+            timed("event write", &NodeRun::follow_event_write);
+            timed("recovery", &NodeRun::after_incident);
+            timed("restore", &NodeRun::restore_and_verify);
+            timed("unlock", &NodeRun::release_lock);
         }
     }
-    findings();
+    timed("findings", &NodeRun::findings);
     select_results();
+    report_.elapsed = wall() - began;
     return std::move(report_);
+}
+
+void NodeRun::timed(std::string_view name, void (NodeRun::*step)()) {
+    timed(name, [&] {
+        (this->*step)();
+        return true;
+    });
+}
+
+bool NodeRun::timed(std::string_view name, bool (NodeRun::*step)()) {
+    return timed(name, [&] { return (this->*step)(); });
+}
+
+bool NodeRun::timed(std::string_view /*name*/, const std::function<bool()>& step) {
+    const std::size_t first = report_.checks.size();
+    const auto since = wall();
+    const bool ok = step();
+    // Results the phase judged together share its time, so durations add up to the run's.
+    const Duration spent = wall() - since;
+    std::size_t untimed = 0;
+    for (std::size_t i = first; i < report_.checks.size(); ++i)
+        untimed += report_.checks[i].duration == Duration{} ? 1 : 0;
+    if (untimed == 0) return ok;
+    for (std::size_t i = first; i < report_.checks.size(); ++i) {
+        if (report_.checks[i].duration == Duration{})
+            report_.checks[i].duration = spent / static_cast<long>(untimed);
+    }
+    return ok;
 }
 
 void NodeRun::select_results() {
@@ -94,6 +125,8 @@ void NodeRun::measure() {
 void NodeRun::identify() {
     if (auto snip = session_.snip_payload(node_)) {
         memory::Snip s = memory::decode_snip(*snip);
+        report_.identity = {s.manufacturer,     s.model,     s.hardware_version,
+                            s.software_version, s.user_name, s.user_description};
         report_.name = s.manufacturer + " " + s.model;
         if (!s.user_name.empty()) report_.name += " \"" + s.user_name + "\"";
     }

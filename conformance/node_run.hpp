@@ -3,6 +3,7 @@
 // moment it is captured, so every way out of the run puts the node's bytes back.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -29,6 +30,11 @@ public:
     NodeReport run();
 
 private:
+    /// Runs one phase of the run and gives its untimed results their share of its time.
+    void timed(std::string_view name, void (NodeRun::*step)());
+    /// The same for a phase that may stop the run (false: the later phases are not run).
+    bool timed(std::string_view name, bool (NodeRun::*step)());
+    bool timed(std::string_view name, const std::function<bool()>& step);
     void measure();
     void identify();
     void protocol();

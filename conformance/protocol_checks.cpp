@@ -171,7 +171,10 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
             }
         }
         const std::size_t mark = session.frame_mark();
+        const std::size_t first = run.result_count();
+        const auto since = std::chrono::steady_clock::now();
         run.run(spec);
+        run.share_duration(first, std::chrono::steady_clock::now() - since);
         if (!heard_from(run, mark) && !session.ping(node, o.answer_window)) gone = spec.id;
     }
     std::vector<CheckResult> out = run.take();

@@ -6,11 +6,15 @@
 #include <cstddef>
 #include <iosfwd>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "conformance/check_result.hpp"
 
 namespace olcb::conform {
+
+/// Node text made safe for terminals and XML: control bytes become '?'.
+std::string printable(std::string_view text);
 
 /// Totals over every node of a run.
 struct Summary {
@@ -26,6 +30,10 @@ struct Summary {
 struct RunInfo {
     std::string error;                    ///< why the run ended early ("" when it did not)
     std::vector<std::string> late_nodes;  ///< nodes that appeared during the run, not checked
+    std::string connection;  ///< how the run reached the bus, e.g. "tcp 127.0.0.1:12021"
+    std::vector<std::string> arguments;                  ///< the command line, program first
+    std::chrono::system_clock::time_point started{};  ///< when the run began
+    std::chrono::steady_clock::duration elapsed{};    ///< how long it ran
 };
 
 /// The totals of some node reports.

@@ -1,0 +1,68 @@
+// The text report: a line per check for people, colour on a terminal.
+#include <ostream>
+
+#include "conformance/report.hpp"
+
+namespace olcb::conform {
+namespace {
+
+const char* colour_of(Status status) {
+    switch (status) {
+        case Status::kPass:
+            return "\033[32m";
+        case Status::kFail:
+            return "\033[31m";
+        case Status::kWarn:
+            return "\033[33m";
+        case Status::kSkip:
+            return "\033[36m";
+    }
+    return "";
+}
+
+}  // namespace
+
+std::string printable(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (unsigned char c : text) {
+        out.push_back(c < 0x20 || c == 0x7F ? '?' : static_cast<char>(c));
+    }
+    return out;
+}
+
+std::string format_check(const CheckResult& check, bool colour) {
+    std::string line;
+    if (colour) line += colour_of(check.status);
+    line += status_name(check.status);
+    if (colour) line += "\033[0m";
+    line += "  " + check.id;
+    if (!check.message.empty()) line += "  " + printable(check.message);
+    if (check.status == Status::kFail || check.status == Status::kWarn) {
+        if (!check.expected.empty()) line += "\n      expected: " + printable(check.expected);
+        if (!check.seen.empty()) line += "\n      seen:     " + printable(check.seen);
+        if (!check.section.empty()) line += "\n      section:  " + check.section;
+    }
+    // Details (every CDI error, every merged result) under the line, the first few only.
+    constexpr std::size_t kShown = 10;
+    for (std::size_t i = 0; i < check.details.size() && i < kShown; ++i)
+        line += "\n      - " + printable(check.details[i]);
+    if (check.details.size() > kShown)
+        line +=
+            "\n      ... " + std::to_string(check.details.size() - kShown) + " more (see --json)";
+    return line;
+}
+
+void write_text(std::ostream& out, const NodeReport& report, bool colour) {
+    out << "node " << report.node_id;
+    if (!report.name.empty()) out << "  " << printable(report.name);
+    out << '\n';
+    out << "timing: " << report.timing.describe() << '\n';
+    for (const CheckResult& c : report.checks) out << format_check(c, colour) << '\n';
+    if (!report.restore_summary.empty()) out << "restore: " << report.restore_summary << '\n';
+    Summary s = summarize({report});
+    out << s.total() << " checks: " << s.pass << " passed, " << s.fail << " failed, " << s.warn
+        << " warnings, " << s.skip << " skipped\n";
+}
+
+}  // namespace olcb::conform
