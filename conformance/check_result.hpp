@@ -69,8 +69,8 @@ struct NodeIdentity {
 
 /// Every check run against one node, in the order they ran.
 struct NodeReport {
-    std::string node_id;  ///< dotted hex, e.g. "05.01.01.01.22.00"
-    std::string name;     ///< SNIP manufacturer + model + user name, for humans
+    std::string node_id;    ///< dotted hex, e.g. "05.01.01.01.22.00"
+    std::string name;       ///< SNIP manufacturer + model + user name, for humans
     NodeIdentity identity;  ///< the SNIP strings ("" each when SNIP did not answer)
     std::chrono::system_clock::time_point started{};  ///< when the node's run began
     Duration elapsed{};                               ///< how long the node's run took

@@ -31,10 +31,14 @@ struct RunInfo {
     std::string error;                    ///< why the run ended early ("" when it did not)
     std::vector<std::string> late_nodes;  ///< nodes that appeared during the run, not checked
     std::string connection;  ///< how the run reached the bus, e.g. "tcp 127.0.0.1:12021"
-    std::vector<std::string> arguments;                  ///< the command line, program first
+    std::vector<std::string> arguments;               ///< the command line, program first
     std::chrono::system_clock::time_point started{};  ///< when the run began
     std::chrono::steady_clock::duration elapsed{};    ///< how long it ran
+    int exit_code = 0;                                ///< the program's exit status
 };
+
+/// UTC ISO 8601 with milliseconds: "2026-12-01T23:40:05.123Z".
+std::string iso_timestamp(std::chrono::system_clock::time_point t);
 
 /// The totals of some node reports.
 Summary summarize(const std::vector<NodeReport>& reports);
@@ -47,14 +51,15 @@ std::string format_check(const CheckResult& check, bool colour);
 /// totals.
 void write_text(std::ostream& out, const NodeReport& report, bool colour);
 
-/// The JSON report: {"node":{...},"checks":[...],"summary":{...}} for one node; for several nodes
-/// (or none) {"nodes":[<one node object each>],"summary":{...}}; "error" and "late_nodes" are
-/// added when the run has them.
+/// The JSON report of docs/report.schema.json: {"schema_version", "tool", "run", "nodes": [...]}
+/// for any number of nodes.
 std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run = {});
 
-/// The JUnit XML report: one <testsuite> per node, one <testcase> per check (classname = category,
-/// name = id), FAIL as <failure>, SKIP as <skipped>, WARN as a passing case with <system-out>.
-/// A run error is one more testsuite "lcc-conform" whose testcase "run" has an <error>.
+/// The JUnit XML report (tests/support/junit.xsd): one <testsuite> per node named by node ID and
+/// model, with <properties> (node ID, SNIP strings, tool version) and times; one <testcase> per
+/// check (classname = category, name = "<id> on <node ID>": unique in the file); FAIL as
+/// <failure> (a lost link or a dead node as <error>), SKIP as <skipped>, WARN as a passing case
+/// with <system-out>. A run error is one more testsuite "lcc-conform" whose testcase has <error>.
 std::string to_junit(const std::vector<NodeReport>& reports, const RunInfo& run = {});
 
 /// Writes text to path; false with error set when the file cannot be written.

@@ -1,79 +1,113 @@
-// The JSON report (docs/report.schema.json).
+// The JSON report (docs/report.schema.json, schema_version 1): one shape for any number of nodes.
+#include <cmath>
+#include <ctime>
 #include <nlohmann/json.hpp>
 
 #include "conformance/report.hpp"
+#include "olcb_version.hpp"
 
 namespace olcb::conform {
 namespace {
 
-nlohmann::json node_json(const NodeReport& report) {
-    nlohmann::json checks = nlohmann::json::array();
-    for (const CheckResult& c : report.checks) {
-        nlohmann::json j = {{"id", c.id},
-                            {"category", std::string(category_name(c.category))},
-                            {"status", std::string(status_name(c.status))},
-                            {"message", c.message},
-                            {"section", c.section}};
-        if (!c.expected.empty()) j["expected"] = c.expected;
-        if (!c.seen.empty()) j["seen"] = c.seen;
-        if (!c.details.empty()) j["details"] = c.details;
-        checks.push_back(std::move(j));
-    }
-    Summary s = summarize({report});
-    const RunTiming& t = report.timing;
+constexpr int kSchemaVersion = 1;
+
+double seconds(Duration d) {
+    return std::round(std::chrono::duration<double>(d).count() * 1e6) / 1e6;
+}
+
+nlohmann::ordered_json summary_json(const Summary& s) {
+    return {{"pass", s.pass},
+            {"fail", s.fail},
+            {"warn", s.warn},
+            {"skip", s.skip},
+            {"total", s.total()}};
+}
+
+nlohmann::ordered_json check_json(const CheckResult& c) {
+    return {{"id", c.id},
+            {"category", std::string(category_name(c.category))},
+            {"status", std::string(status_name(c.status))},
+            {"message", c.message},
+            {"section", c.section},
+            {"expected", c.expected},
+            {"seen", c.seen},
+            {"details", c.details},
+            {"duration_s", seconds(c.duration)}};
+}
+
+nlohmann::ordered_json timing_json(const RunTiming& t) {
     auto ms = [](Duration d) {
         return std::chrono::duration_cast<std::chrono::milliseconds>(d).count();
     };
-    nlohmann::json timing = {{"silence_ms", ms(t.silence)},
-                             {"answer_ms", ms(t.answer)},
-                             {"reply_ms", ms(t.reply)},
-                             {"quiet_ms", ms(t.quiet)},
-                             {"scale", t.scale}};
+    nlohmann::ordered_json timing = {{"silence_ms", ms(t.silence)},
+                                     {"answer_ms", ms(t.answer)},
+                                     {"reply_ms", ms(t.reply)},
+                                     {"quiet_ms", ms(t.quiet)},
+                                     {"scale", t.scale}};
     if (t.latency) {
         timing["latency_ms"] = ms(*t.latency);
         timing["worst_ms"] = ms(t.worst);
     }
-    return {{"node", {{"id", report.node_id}, {"name", report.name}}},
-            {"timing", std::move(timing)},
+    return timing;
+}
+
+nlohmann::ordered_json node_json(const NodeReport& report) {
+    nlohmann::ordered_json checks = nlohmann::ordered_json::array();
+    for (const CheckResult& c : report.checks) checks.push_back(check_json(c));
+    const NodeIdentity& id = report.identity;
+    return {{"id", report.node_id},
+            {"name", report.name},
+            {"identity",
+             {{"manufacturer", id.manufacturer},
+              {"model", id.model},
+              {"hardware_version", id.hardware_version},
+              {"software_version", id.software_version},
+              {"user_name", id.user_name},
+              {"user_description", id.user_description}}},
+            {"started", iso_timestamp(report.started)},
+            {"elapsed_s", seconds(report.elapsed)},
+            {"incomplete", report.incomplete},
+            {"timing", timing_json(report.timing)},
             {"checks", std::move(checks)},
-            {"summary",
-             {{"pass", s.pass},
-              {"fail", s.fail},
-              {"warn", s.warn},
-              {"skip", s.skip},
-              {"total", s.total()},
-              {"restore", report.restore_summary}}}};
+            {"summary", summary_json(summarize({report}))},
+            {"restore", report.restore_summary}};
 }
 
 // Node names and messages carry the node's own bytes, which may not be UTF-8: they are written
 // with U+FFFD in place of invalid bytes instead of aborting the report (and the run) on them.
-std::string dump_json(const nlohmann::json& root) {
-    return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+std::string dump_json(const nlohmann::ordered_json& root) {
+    return root.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace
 
+std::string iso_timestamp(std::chrono::system_clock::time_point t) {
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(t.time_since_epoch());
+    const std::time_t secs = static_cast<std::time_t>(ms.count() / 1000);
+    std::tm utc{};
+    gmtime_r(&secs, &utc);
+    char buf[40];
+    std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", &utc);
+    char out[48];
+    std::snprintf(out, sizeof out, "%s.%03dZ", buf, static_cast<int>(ms.count() % 1000));
+    return out;
+}
+
 std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run) {
-    auto extras = [&](nlohmann::json& root) {
-        if (!run.error.empty()) root["error"] = printable(run.error);
-        if (!run.late_nodes.empty()) root["late_nodes"] = run.late_nodes;
-    };
-    if (reports.size() == 1) {
-        nlohmann::json root = node_json(reports.front());
-        extras(root);
-        return dump_json(root);
-    }
-    nlohmann::json nodes = nlohmann::json::array();
+    nlohmann::ordered_json nodes = nlohmann::ordered_json::array();
     for (const NodeReport& r : reports) nodes.push_back(node_json(r));
-    Summary s = summarize(reports);
-    nlohmann::json root = {{"nodes", std::move(nodes)},
-                           {"summary",
-                            {{"pass", s.pass},
-                             {"fail", s.fail},
-                             {"warn", s.warn},
-                             {"skip", s.skip},
-                             {"total", s.total()}}}};
-    extras(root);
+    const nlohmann::ordered_json root = {{"schema_version", kSchemaVersion},
+                                         {"tool", {{"name", "lcc-conform"}, {"version", kVersion}}},
+                                         {"run",
+                                          {{"started", iso_timestamp(run.started)},
+                                           {"elapsed_s", seconds(run.elapsed)},
+                                           {"exit_code", run.exit_code},
+                                           {"connection", run.connection},
+                                           {"arguments", run.arguments},
+                                           {"error", printable(run.error)},
+                                           {"late_nodes", run.late_nodes},
+                                           {"summary", summary_json(summarize(reports))}}},
+                                         {"nodes", std::move(nodes)}};
     return dump_json(root);
 }
 

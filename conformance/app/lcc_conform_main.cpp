@@ -176,9 +176,14 @@ Duration seconds(double s) {
 // The reports asked for, written on every way out of a check run (exit 2 included).
 class Reports {
 public:
-    explicit Reports(const po::variables_map& vm) {
+    Reports(const po::variables_map& vm, int argc, char** argv)
+        : started_(std::chrono::system_clock::now()), began_(std::chrono::steady_clock::now()) {
         if (vm.count("json")) json_ = vm["json"].as<std::string>();
         if (vm.count("junit")) junit_ = vm["junit"].as<std::string>();
+        arguments_.assign(argv, argv + argc);
+        for (const char* key : {"connect", "serial", "socketcan"}) {
+            if (vm.count(key)) connection_ = std::string(key) + " " + vm[key].as<std::string>();
+        }
     }
     // Before anything is written to a node: a report path that cannot be written is a usage
     // error now, not a lost report later.
@@ -188,7 +193,12 @@ public:
         }
         return true;
     }
-    int finish(const std::vector<NodeReport>& reports, const RunInfo& run, int code) const {
+    int finish(const std::vector<NodeReport>& reports, RunInfo run, int code) const {
+        run.started = started_;
+        run.elapsed = std::chrono::steady_clock::now() - began_;
+        run.arguments = arguments_;
+        run.connection = connection_;
+        run.exit_code = code;
         std::string error;
         if (!json_.empty() && !write_file(json_, to_json(reports, run), error)) {
             std::cerr << "lcc-conform: " << error << "\n";
@@ -209,6 +219,10 @@ public:
 
 private:
     std::string json_, junit_;
+    std::vector<std::string> arguments_;
+    std::string connection_;
+    std::chrono::system_clock::time_point started_;
+    std::chrono::steady_clock::time_point began_;
 };
 
 std::vector<NodeInfo> find_nodes(Session& session, const po::variables_map& vm,
@@ -417,7 +431,7 @@ int main_checked(int argc, char** argv) {
     if (command == "diff" && args.size() == 3) {
         return run_diff_files(args[1], args[2], std::cout, std::cerr);  // needs no link
     }
-    const Reports reports(vm);
+    const Reports reports(vm, argc, argv);
     std::string error;
     if (command == "check" && !reports.writable(error)) return reports.fail(error);
     const NodeId tool = pick_tool_id(vm, error);

@@ -10,10 +10,12 @@
 #include "conformance/conform_test_util.hpp"
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
+#include "conformance/report.hpp"
 #include "conformance/runner.hpp"
 #include "conformance/session.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
+#include "support/report_schema.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -95,6 +97,9 @@ TEST_P(CorpusRun, OnlyTheCdisOwnFaultsFail) {
     }
     EXPECT_NE(report.restore_summary.find("byte-identical"), std::string::npos)
         << report.restore_summary;
+    // The reports of every corpus CDI's run validate (CDI text reaches messages and details).
+    EXPECT_EQ(test::json_report_errors(to_json({report})), "") << file;
+    EXPECT_EQ(test::junit_report_errors(to_junit({report})), "") << file;
 }
 
 std::vector<std::string> corpus_files() {

@@ -10,6 +10,7 @@
 #include "conformance/run_timing.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/can_defs.hpp"
+#include "support/report_schema.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -115,14 +116,17 @@ TEST(RunReports, TimingIsInTheJsonAndARunErrorInBothReports) {
     RunInfo run;
     run.late_nodes = {"05.01.01.01.22.10"};
     auto j = nlohmann::json::parse(to_json({r}, run));
-    EXPECT_EQ(j["timing"]["latency_ms"], 40);
-    EXPECT_EQ(j["timing"]["silence_ms"], 250);
-    EXPECT_EQ(j["late_nodes"][0], "05.01.01.01.22.10");
+    EXPECT_EQ(test::json_report_errors(to_json({r}, run)), "");
+    EXPECT_EQ(j["nodes"][0]["timing"]["latency_ms"], 40);
+    EXPECT_EQ(j["nodes"][0]["timing"]["silence_ms"], 250);
+    EXPECT_EQ(j["run"]["late_nodes"][0], "05.01.01.01.22.10");
     run.error = "no node answered Verify Node ID";
     j = nlohmann::json::parse(to_json({}, run));
-    EXPECT_EQ(j["error"], run.error);
+    EXPECT_EQ(test::json_report_errors(to_json({}, run)), "");
+    EXPECT_EQ(j["run"]["error"], run.error);
     EXPECT_TRUE(j["nodes"].empty());
     pugi::xml_document doc;
+    EXPECT_EQ(test::junit_report_errors(to_junit({}, run)), "");
     ASSERT_TRUE(doc.load_string(to_junit({}, run).c_str()));
     auto error = doc.select_node("//testsuite[@name='lcc-conform']/testcase/error");
     ASSERT_TRUE(error);

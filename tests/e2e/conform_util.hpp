@@ -12,7 +12,12 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
 #include "e2e/e2e_util.hpp"
+#include "support/report_schema.hpp"
 
 #if defined(LCC_CONFORM_PATH)
 
@@ -26,6 +31,29 @@ inline std::string read_text(const fs::path& p) {
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
+}
+
+/// The JSON report at p, parsed (discarded when it is not JSON); a test failure when it breaks
+/// docs/report.schema.json, so every report a suite reads is validated.
+inline nlohmann::json read_report(const fs::path& p) {
+    const std::string text = read_text(p);
+    const std::string errors = test::json_report_errors(text);
+    EXPECT_EQ(errors, "") << p << " breaks docs/report.schema.json";
+    return nlohmann::json::parse(text, nullptr, false);
+}
+
+/// Every check of every node of a parsed JSON report, in order.
+inline std::vector<nlohmann::json> report_checks(const nlohmann::json& report) {
+    std::vector<nlohmann::json> out;
+    if (!report.is_object() || !report.contains("nodes")) return out;
+    for (const auto& node : report["nodes"])
+        for (const auto& c : node["checks"]) out.push_back(c);
+    return out;
+}
+
+/// A test failure when the JUnit report at p breaks tests/support/junit.xsd.
+inline void expect_valid_junit(const fs::path& p) {
+    EXPECT_EQ(test::junit_report_errors(read_text(p)), "") << p << " breaks junit.xsd";
 }
 
 /// Every image file (except journals) under dir with its contents.

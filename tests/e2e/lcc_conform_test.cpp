@@ -37,16 +37,13 @@ TEST(LccConformE2e, DefaultScenarioPassesWithValidJsonAndJunit) {
     ASSERT_FALSE(lines.empty()) << text;
     for (const auto& [status, id] : lines) EXPECT_NE(status, "FAIL") << id;
 
-    const auto j = nlohmann::json::parse(read_text(json), nullptr, false);
+    const auto j = read_report(json);
     ASSERT_FALSE(j.is_discarded()) << "JSON report does not parse";
-    ASSERT_TRUE(j.contains("checks") && j["checks"].is_array());
-    ASSERT_TRUE(j.contains("summary"));
-    EXPECT_EQ(j["checks"].size(), lines.size());
-    EXPECT_EQ(j["summary"]["fail"], 0);
-    for (const auto& c : j["checks"]) {
-        for (const char* key : {"id", "category", "status", "message", "section"})
-            EXPECT_TRUE(c.contains(key)) << key;
-    }
+    ASSERT_EQ(j["nodes"].size(), 1u);
+    EXPECT_EQ(report_checks(j).size(), lines.size());
+    EXPECT_EQ(j["run"]["summary"]["fail"], 0);
+    EXPECT_EQ(j["run"]["exit_code"], 0);
+    expect_valid_junit(junit);
 
     pugi::xml_document doc;
     const auto parsed = doc.load_file(junit.c_str());
@@ -217,10 +214,12 @@ TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
     ASSERT_NE(sim.port, 0) << "simnode did not start";
     TempDir out("lcc-conform-e2e-out");
     const std::string json = (out.path() / "r.json").string();
+    const std::string junit = (out.path() / "r.xml").string();
     std::vector<std::string> args = {"--connect", sim.connect(),
                                      "--node",    kNode,
                                      "--backup",  (out.path() / "safety.txt").string(),
-                                     "--json",    json};
+                                     "--json",    json,
+                                     "--junit",   junit};
     // What a careful client copes with is also tried across a Reset/Reboot.
     if (fault == "write-not-persisted" || (!cat->second.breaks_rule && !cat->second.warn_only))
         args.push_back("--reboot");
@@ -228,6 +227,9 @@ TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
     const auto before = snapshot_images(sim.images.path());
     // A slow node (latency=200:50) takes ~100 s for the whole run: every exchange waits 2 answers.
     const auto [code, text] = conform(args, milliseconds(180000));
+    // Every fault's reports validate, whatever the node got wrong.
+    expect_valid_junit(junit);
+    EXPECT_EQ(test::json_report_errors(read_text(json)), "") << fault;
     // Whenever lcc-conform says it restored the node byte-identical, the image files agree.
     if (text.find("PASS  encoding.restore") != std::string::npos) {
         EXPECT_EQ(settled_images(sim.images.path(), before), before) << text;
@@ -235,10 +237,10 @@ TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
     if (cat->second.warn_only) {
         // An optional behaviour missing: reported as a WARN in its category, the run passes.
         EXPECT_EQ(code, 0) << text;
-        const auto j = nlohmann::json::parse(read_text(json), nullptr, false);
+        const auto j = read_report(json);
         ASSERT_FALSE(j.is_discarded()) << "no JSON report\n" << text;
         bool warned = false;
-        for (const auto& c : j["checks"])
+        for (const auto& c : report_checks(j))
             warned = warned || (c["status"] == "WARN" && c["category"] == cat->second.category);
         EXPECT_TRUE(warned) << "fault " << fault << ": no WARN in " << cat->second.category << "\n"
                             << text;
@@ -250,11 +252,11 @@ TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
         return;
     }
     EXPECT_EQ(code, 1) << text;
-    const auto j = nlohmann::json::parse(read_text(json), nullptr, false);
+    const auto j = read_report(json);
     ASSERT_FALSE(j.is_discarded()) << "no JSON report\n" << text;
     std::vector<std::string> failing;
     bool found = false;
-    for (const auto& c : j["checks"]) {
+    for (const auto& c : report_checks(j)) {
         if (c["status"] != "FAIL") continue;
         failing.push_back(c["id"].get<std::string>() + " (" + c["category"].get<std::string>() +
                           ")");
