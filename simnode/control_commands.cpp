@@ -22,6 +22,7 @@ constexpr std::string_view kCommandList =
 constexpr std::uint64_t kMaxAddedNodes = 1000;
 // A value quoted back in an error is cut here: the error must stay readable.
 constexpr std::size_t kMaxQuoted = 64;
+constexpr std::size_t kMaxParseMessage = 200;
 constexpr std::uint8_t kAcdiUserSpace = 0xFB;
 constexpr std::uint64_t kMaxAddress = 0xFFFF'FFFFu;
 constexpr std::uint64_t kMaxSpace = 0xFF;
@@ -327,7 +328,10 @@ Json ControlCommands::handle_line(std::string_view line) {
     try {
         request = Json::parse(line);
     } catch (const Json::exception& e) {
-        return refused(std::string("not JSON: ") + e.what());
+        // The parser quotes what it read last, which may be the whole line: cut it.
+        std::string what = e.what();
+        if (what.size() > kMaxParseMessage) what = what.substr(0, kMaxParseMessage) + "...";
+        return refused("not JSON: " + what);
     }
     return handle(request);
 }

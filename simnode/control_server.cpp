@@ -54,9 +54,14 @@ private:
     // a client that never reads its answers stops being read from.
     void answer() {
         std::size_t begin = 0;
+        bool close_after = false;
         for (auto nl = input_.find('\n'); nl != std::string::npos; nl = input_.find('\n', begin)) {
             std::string_view line(input_.data() + begin, nl - begin);
             begin = nl + 1;
+            if (line.size() > kMaxControlLineBytes) {
+                close_after = true;  // complete or not, the limit is the same
+                break;
+            }
             if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
             if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
             output_ += commands_.handle_line(line).dump(-1, ' ', false,
@@ -64,8 +69,7 @@ private:
             output_ += '\n';
         }
         input_.erase(0, begin);
-        bool close_after = false;
-        if (input_.size() > kMaxControlLineBytes) {
+        if (close_after || input_.size() > kMaxControlLineBytes) {
             output_ += refusal_line("request line longer than " +
                                     std::to_string(kMaxControlLineBytes) + " bytes; closing");
             input_.clear();

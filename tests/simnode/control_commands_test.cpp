@@ -109,6 +109,8 @@ TEST_F(ControlCommandsTest, MalformedRequestsGetClearErrors) {
     EXPECT_TRUE(error_of(ask_line("{\"cmd\":")).starts_with("not JSON: "))
         << ask_line("{\"cmd\":").dump();
     EXPECT_TRUE(error_of(ask_line("\xff\xfe")).starts_with("not JSON: "));
+    const std::string junk(10000, 'x');
+    EXPECT_LT(error_of(ask_line(junk)).size(), 300u) << "the parser's quote of the line is cut";
     EXPECT_EQ(error_of(ask_line("[1,2]")), "a request is a JSON object, e.g. {\"cmd\":\"list\"}");
     EXPECT_TRUE(error_of(ask_line("{}")).starts_with("the request needs \"cmd\""));
     EXPECT_TRUE(error_of(ask_line("{\"cmd\":5}")).starts_with("the request needs \"cmd\""));
