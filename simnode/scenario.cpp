@@ -646,6 +646,7 @@ std::optional<HostPort> parse_host_port(std::string_view text, std::string& erro
 std::string help_text() {
     std::ostringstream out;
     out << "usage: simnode [--scenario] [FILE.ini] [OPTIONS]\n"
+           "       simnode ctl HOST:PORT COMMAND [ARGS...]   (live control; simnode ctl --help)\n"
            "Runs simulated OpenLCB nodes. Without a scenario file and without --node-id it runs\n"
            "scenarios/default.ini. Every option is also a key of the .ini file; keys of a\n"
            "[node.NAME] section are given on the command line as --node.NAME.KEY=VALUE.\n"
