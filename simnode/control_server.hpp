@@ -15,7 +15,7 @@
 namespace olcb::simnode {
 
 /// Longest request line taken; a longer one is refused and its connection closed.
-inline constexpr std::size_t kMaxControlLineBytes = 64 * 1024;
+inline constexpr std::size_t kMaxControlLineBytes = std::size_t{64} * 1024;
 /// Control connections open at once; one more is refused with an error line.
 inline constexpr std::size_t kMaxControlClients = 16;
 

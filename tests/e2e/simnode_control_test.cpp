@@ -16,7 +16,7 @@ constexpr NodeId kDefaultNode{0x05'01'01'01'22'00ull};
 constexpr NodeId kAddedNode{0x05'01'01'01'22'10ull};
 constexpr const char* kNode = "05.01.01.01.22.00";
 constexpr const char* kInitComplete = ":X19100343N050101012200;";
-constexpr std::size_t kMaxLine = 64 * 1024;  // simnode's request line limit
+constexpr std::size_t kMaxLine = std::size_t{64} * 1024;  // simnode's request line limit
 
 // Reads what fd has (waiting up to timeout for the first byte) into text; false on EOF.
 bool read_some(int fd, std::string& text, milliseconds timeout) {

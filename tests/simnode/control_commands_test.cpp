@@ -42,7 +42,7 @@ protected:
         c.cdi_file = "default.xml";
         c.image_dir = images_.path() / kNode;
         std::string error;
-        ASSERT_TRUE(registry_.add(std::move(c), error)) << error;
+        ASSERT_TRUE(registry_.add(c, error)) << error;
         registry_.start_all();
         // The bus delivers after the stack sent: wait for the frame, not only the state.
         ASSERT_TRUE(run_until([this] { return initialized(kNodeId) && seen(kInitComplete); }));
@@ -226,7 +226,7 @@ TEST_F(ControlCommandsTest, RebootSendsInitializationCompleteAgain) {
     c.node_id = kNodeId;
     c.cdi = test::default_cdi();
     std::string error;
-    ASSERT_TRUE(registry_.add(std::move(c), error)) << error;
+    ASSERT_TRUE(registry_.add(c, error)) << error;
     EXPECT_EQ(error_of(ask(Json{{"cmd", "reboot"}, {"node", kNode}})),
               "the nodes have not started yet (simnode waits for its hub)");
     registry_.start_all();

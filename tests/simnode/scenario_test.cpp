@@ -13,11 +13,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kScenarios = fs::path(OLCB_SOURCE_DIR) / "scenarios";
+fs::path scenarios_dir() {
+    return fs::path(OLCB_SOURCE_DIR) / "scenarios";
+}
 
 std::optional<Scenario> parse(const std::string& ini, const std::vector<std::string>& overrides,
                               std::string& error) {
-    return parse_scenario_text(ini, kScenarios, overrides, error);
+    return parse_scenario_text(ini, scenarios_dir(), overrides, error);
 }
 
 constexpr const char* kOneNode = "node-id = 05.01.01.01.22.00\ncdi = default.xml\n";
@@ -132,7 +134,7 @@ TEST(ScenarioTest, NodeGroupsAddedLaterFollowTheRunningScenario) {
     ASSERT_TRUE(running) << error;
     EXPECT_EQ(running->image_root, "/tmp/imgs");
     EXPECT_EQ(running->latency, "30");
-    const std::string cdi = (kScenarios / "default.xml").string();
+    const std::string cdi = (scenarios_dir() / "default.xml").string();
     const std::vector<NodeKey> keys{{"node-id", {"05.01.01.01.22.10"}},
                                     {"count", {"2"}},
                                     {"cdi", {cdi}},
