@@ -83,6 +83,13 @@ void NodeStack::go_silent(TimePoint now) {
     silent_ = true;
 }
 
+void NodeStack::release(TimePoint now) {
+    alias_.release();
+    // drop_state() replaces the allocator: take its AMR first.
+    take_frames(alias_);
+    go_silent(now);
+}
+
 void NodeStack::drop_state() {
     if (alias() != 0) previous_alias_ = alias();
     if (config_.new_alias_on_restart) {

@@ -167,6 +167,10 @@ public:
     /// is ignored (no answer, no alias defence) and nothing is sent. Owner timers still run, so
     /// one of them may call restart() later. Frames already in the output stay there.
     void go_silent(TimePoint now);
+    /// Leaves the segment for good, as a node being unplugged cleanly: AMR for the alias when
+    /// Permitted (so others drop their mapping), then silent as go_silent(). The AMR stays in
+    /// the output for the driver to send.
+    void release(TimePoint now);
     /// Sends Initialization Complete again with the same alias (e.g. after SNIP data changed),
     /// abandons partial incoming messages and datagrams, and calls on_initialized. Ignored
     /// unless the node is Initialized.

@@ -53,6 +53,10 @@ void StackDriver::kick() {
     schedule();
 }
 
+void StackDriver::flush() {
+    process();
+}
+
 void StackDriver::mark_dirty(std::size_t index) {
     Slot& s = slots_[index];
     if (s.dirty) return;

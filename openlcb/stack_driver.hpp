@@ -51,6 +51,10 @@ public:
     /// Flushes output and re-arms the timer soon; owners never need it (stacks notify the
     /// driver of new output), but it is harmless.
     void kick();
+    /// Delivers every stack's pending output now (to the transport and the other stacks), so an
+    /// owner can detach a stack right after its last frame (an AMR) went; no effect inside a
+    /// driver callback, where the running batch delivers it.
+    void flush();
     /// Number of attached stacks.
     std::size_t size() const { return count_; }
     /// Counters.

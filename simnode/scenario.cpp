@@ -12,6 +12,7 @@
 
 #include "cdi/parser.hpp"
 #include "cdi/schema_validator.hpp"
+#include "openlcb/asio.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -50,7 +51,9 @@ constexpr std::string_view kProcessKeys[] = {"listen",
                                              "max-clients",
                                              "max-clients-per-address",
                                              "idle-timeout",
-                                             "log-max-bytes"};
+                                             "log-max-bytes",
+                                             "control",
+                                             "control-remote"};
 // A network of this many nodes is already far beyond any real CAN segment.
 constexpr std::uint64_t kMaxCount = 100000;
 // Faster than any UART a USB-CAN adapter uses; above it a typo is more likely than a rate.
@@ -180,8 +183,15 @@ po::options_description cli_options() {
         "start-on-connect", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
         "with listen: every node logs in again (CID..RID, AMD, Initialization Complete) "
         "whenever a TCP client connects");
+    po::options_description control("Live control (top level; docs/control.md)");
+    control.add_options()("control", po::value<std::string>()->value_name("HOST:PORT"),
+                          "take JSON-line control requests (list, faults, memory, reboot, add, "
+                          "remove nodes) on HOST:PORT; a bare PORT binds 127.0.0.1")(
+        "control-remote", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
+        "let control bind an address other machines reach (anyone who connects can change "
+        "every node)");
     po::options_description all;
-    all.add(general).add(node).add(transport).add(testing);
+    all.add(general).add(node).add(transport).add(testing).add(control);
     return all;
 }
 
@@ -456,7 +466,9 @@ public:
             const auto parsed = parse_faults({"latency=" + *v}, why);
             if (!parsed) return fail("latency '" + *v + "' must be MS or MS:JITTER (milliseconds)");
             latency_ = *parsed;
+            scenario_.latency = *v;
         }
+        if (!control(keys)) return false;
         if (const auto* v = single(keys, "bitrate")) {
             const auto n = parse_bytes(*v);
             if (!n || (*n != 0 && (*n < kMinBitrate || *n > kMaxBitrate))) {
@@ -485,6 +497,29 @@ public:
     }
 
 private:
+    // Control changes every node: it listens where other machines reach it only when told so.
+    bool control(const Keys& keys) {
+        if (const auto* v = single(keys, "control-remote")) {
+            const auto on = parse_bool(*v);
+            if (!on) return fail("control-remote '" + *v + "' must be true or false");
+            scenario_.control_remote = *on;
+        }
+        const auto* v = single(keys, "control");
+        if (!v) return true;
+        std::string why;
+        scenario_.control = parse_host_port(*v, why);
+        if (!scenario_.control) return fail("control: " + why);
+        boost::system::error_code ec;
+        const auto ip = boost::asio::ip::make_address(scenario_.control->host, ec);
+        if (ec) return fail("control: '" + scenario_.control->host + "' is not a numeric address");
+        if (!ip.is_loopback() && !scenario_.control_remote) {
+            return fail("control: " + scenario_.control->host +
+                        " is not a loopback address; give control-remote = true "
+                        "(--control-remote) to let other machines change the nodes");
+        }
+        return true;
+    }
+
     bool fail(std::string message) {
         error_ = std::move(message);
         return false;
@@ -542,6 +577,8 @@ std::optional<Scenario> build(const Raw& file, const Raw& cli, const fs::path& s
     if (ec) tmp = "/tmp";
     const fs::path default_root = tmp / "simnode-images" / stem;
 
+    const fs::path top_image_dir = path_of(merged.top, "image-dir");
+    scenario.image_root = top_image_dir.empty() ? default_root : top_image_dir;
     Builder builder(scenario, error);
     if (!builder.process(merged.top)) return std::nullopt;
     if (merged.sections.empty()) {
@@ -609,6 +646,7 @@ std::optional<HostPort> parse_host_port(std::string_view text, std::string& erro
 std::string help_text() {
     std::ostringstream out;
     out << "usage: simnode [--scenario] [FILE.ini] [OPTIONS]\n"
+           "       simnode ctl HOST:PORT COMMAND [ARGS...]   (live control; simnode ctl --help)\n"
            "Runs simulated OpenLCB nodes. Without a scenario file and without --node-id it runs\n"
            "scenarios/default.ini. Every option is also a key of the .ini file; keys of a\n"
            "[node.NAME] section are given on the command line as --node.NAME.KEY=VALUE.\n"
@@ -672,6 +710,28 @@ std::optional<Scenario> parse_scenario_text(std::string_view ini, const fs::path
     auto cl = parse_command_line(overrides, error);
     if (!cl) return std::nullopt;
     return build(*raw, cl->raw, {}, error);
+}
+
+std::optional<std::vector<NodeConfig>> parse_node_group(std::span<const NodeKey> keys,
+                                                        const Scenario& running,
+                                                        std::string& error) {
+    Raw raw;
+    for (const auto& [key, values] : keys) {
+        if (!contains(kNodeKeys, key)) {
+            error = "'" + key + "' is not a node key (see docs/scenarios.md)";
+            return std::nullopt;
+        }
+        if (!add_option(raw, key, values, {}, "node", error)) return std::nullopt;
+    }
+    Scenario out;
+    Builder builder(out, error);
+    if (!running.latency.empty()) {
+        Keys process;
+        process.emplace("latency", Value{{running.latency}, {}});
+        if (!builder.process(process)) return std::nullopt;
+    }
+    if (!builder.group("", raw.top, running.image_root)) return std::nullopt;
+    return std::move(out.nodes);
 }
 
 }  // namespace olcb::simnode

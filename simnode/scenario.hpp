@@ -48,6 +48,12 @@ struct Scenario {
     /// Every TCP client connecting to the hub makes every node log in again (needs listen).
     bool start_on_connect = false;
     std::filesystem::path scenario_file;  ///< the .ini read (empty: everything inline)
+    std::optional<HostPort> control;      ///< take live-control requests here (docs/control.md)
+    bool control_remote = false;          ///< control may bind a non-loopback address
+    /// Where node groups without image-dir keep their images: the top-level image-dir, else
+    /// $TMPDIR/simnode-images/<scenario name>.
+    std::filesystem::path image_root;
+    std::string latency;  ///< the latency key as given ("" = none); added nodes get it too
 };
 
 /// What the command line asks for.
@@ -73,5 +79,15 @@ std::optional<Scenario> parse_scenario_text(std::string_view ini,
                                             const std::filesystem::path& base_dir,
                                             std::span<const std::string> overrides,
                                             std::string& error);
+
+/// One node key and its values, as a [node.NAME] section or the command line gives it.
+using NodeKey = std::pair<std::string, std::vector<std::string>>;
+
+/// The nodes one group of node keys describes ("node-id", "cdi", "fault", ...; relative paths
+/// relative to the working directory) as a node group of the running scenario would be: its
+/// image_root and latency apply. nullopt plus a sentence on an unknown key or a bad value.
+std::optional<std::vector<NodeConfig>> parse_node_group(std::span<const NodeKey> keys,
+                                                        const Scenario& running,
+                                                        std::string& error);
 
 }  // namespace olcb::simnode

@@ -226,6 +226,10 @@ std::vector<std::uint8_t> SimNode::snip_payload() const {
     return memory::encode_snip(snip());
 }
 
+void SimNode::reboot(TimePoint now) {
+    power_up(now);
+}
+
 void SimNode::relogin(TimePoint now) {
     ++boot_generation_;
     answer_delay_.reset();
@@ -467,15 +471,32 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
         power_up(stack_.now());
         return;
     }
-    if (fx.written && fx.written->changed) {
-        if (fx.identification_changed) {
-            stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
-        } else if (!config_.faults.events_stale_after_write) {
-            const auto touched = memory_->events_in(memory::to_u8(fx.written->space),
-                                                    fx.written->address, fx.written->length);
-            advertise(touched.data(), touched.data() + touched.size());
-        }
+    if (fx.written) after_write(*fx.written);
+}
+
+void SimNode::after_write(const memory::WrittenRange& written) {
+    if (!written.changed) return;
+    if (written.space == memory::Space::kAcdiUser) {
+        stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
+    } else if (!config_.faults.events_stale_after_write) {
+        const auto touched =
+            memory_->events_in(memory::to_u8(written.space), written.address, written.length);
+        advertise(touched.data(), touched.data() + touched.size());
     }
+}
+
+memory::WriteStatus SimNode::write_memory(std::uint8_t space, std::uint32_t address,
+                                          std::span<const std::uint8_t> bytes) {
+    memory::MemorySpace* s = memory_->space(space);
+    if (s == nullptr) return memory::WriteStatus::kOutOfBounds;
+    const auto length = static_cast<std::uint32_t>(bytes.size());
+    const std::vector<std::uint8_t> before = memory_->read(space, address, length);
+    const memory::WriteStatus status = s->write(address, bytes);
+    if (status != memory::WriteStatus::kOk) return status;
+    const bool changed =
+        before.size() != bytes.size() || !std::equal(before.begin(), before.end(), bytes.begin());
+    after_write({static_cast<memory::Space>(space), address, length, changed});
+    return status;
 }
 
 memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t> payload) {

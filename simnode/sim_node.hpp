@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -108,6 +109,16 @@ public:
     /// Runs the CAN login again (CID..RID, AMD, Initialization Complete) as a node does when a
     /// TCP client connects to it; memory, lock and images stay, answers still held are dropped.
     void relogin(TimePoint now);
+    /// A power cycle, as a Reset/Reboot command makes (not counted as one): RAM-only state is
+    /// forgotten, the alias reserved again (as new-alias-on-reboot says) and Initialization
+    /// Complete sent; the transport is untouched.
+    void reboot(TimePoint now);
+    /// Stores bytes as a Memory Configuration write of them is stored (the served space with its
+    /// faults, on disk before it returns) and reacts as to one: the written event IDs are
+    /// identified, a changed space 251 sends Initialization Complete again. kOk, or why nothing
+    /// was stored (kOutOfBounds also for a space the node does not serve).
+    memory::WriteStatus write_memory(std::uint8_t space, std::uint32_t address,
+                                     std::span<const std::uint8_t> bytes);
 
 private:
     SimNode(NodeConfig config, NodeStackConfig stack_config, std::unique_ptr<NodeMemory> memory,
@@ -118,6 +129,7 @@ private:
     void answer_late(const Message& msg);
     void on_datagram(const ReceivedDatagram& datagram);
     void answer_datagram(const ReceivedDatagram& datagram);
+    void after_write(const memory::WrittenRange& written);
     memory::Decision decide(std::uint16_t src, std::span<const std::uint8_t> payload);
     std::optional<memory::Decision> command_faults(std::span<const std::uint8_t> payload) const;
     void send_answer(std::uint16_t src, memory::Decision& decision);

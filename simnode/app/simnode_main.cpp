@@ -23,6 +23,10 @@
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/tcp_hub_server.hpp"
 #include "openlcb/traffic_log.hpp"
+#include "simnode/control_client.hpp"
+#include "simnode/control_commands.hpp"
+#include "simnode/control_server.hpp"
+#include "simnode/node_registry.hpp"
 #include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
 #include "simnode/sim_node.hpp"
@@ -235,8 +239,22 @@ int run(const Scenario& scenario) {
 
     StackDriver driver(io, node_port);
     for (auto& node : nodes) driver.attach(node->stack());
+    // Live control (docs/control.md): changes the nodes from the same io_context.
+    NodeRegistry registry(nodes, driver);
+    ControlCommands commands(registry, scenario);
+    commands.set_log_handler(say);
+    ControlServer control(io, commands);
+    control.set_log_handler(say);
+    if (scenario.control) {
+        if (const auto ec = control.listen(scenario.control->host, scenario.control->port)) {
+            std::cerr << "simnode: cannot listen for control on " << scenario.control->to_string()
+                      << ": " << ec.message() << "\n";
+            return kExitRuntime;
+        }
+    }
 
     const auto stop = [&] {
+        control.stop();
         if (hub) hub->stop();
         if (client) client->stop();
         if (can) can->close();
@@ -266,6 +284,9 @@ int run(const Scenario& scenario) {
     } else if (!paced.empty()) {
         say("in-process segment" + paced);
     }
+    if (scenario.control) {
+        say("control on " + HostPort{scenario.control->host, control.port()}.to_string());
+    }
     auto started = Clock::now();
     bool nodes_started = false;
     if (scenario.start_on_connect && hub) {
@@ -292,13 +313,13 @@ int run(const Scenario& scenario) {
             if (nodes_started) return;
             nodes_started = true;
             started = Clock::now();
-            driver.start_all();
+            registry.start_all();
         });
         say("connecting to hub " + where);
         client->start();
     } else {
         nodes_started = true;
-        driver.start_all();
+        registry.start_all();
     }
 
     // One line once every node holds an alias and sent Initialization Complete: start-up time
@@ -332,6 +353,9 @@ int run(const Scenario& scenario) {
 
 static int main_checked(int argc, char** argv) {
     const std::vector<std::string> args(argv + 1, argv + argc);
+    if (!args.empty() && args.front() == "ctl") {
+        return run_ctl(std::span(args).subspan(1), std::cout, std::cerr);
+    }
     const auto defaults = default_scenarios();
     std::string error;
     const auto parsed = parse_arguments(args, defaults, error);

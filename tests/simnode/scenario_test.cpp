@@ -13,11 +13,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kScenarios = fs::path(OLCB_SOURCE_DIR) / "scenarios";
+fs::path scenarios_dir() {
+    return fs::path(OLCB_SOURCE_DIR) / "scenarios";
+}
 
 std::optional<Scenario> parse(const std::string& ini, const std::vector<std::string>& overrides,
                               std::string& error) {
-    return parse_scenario_text(ini, kScenarios, overrides, error);
+    return parse_scenario_text(ini, scenarios_dir(), overrides, error);
 }
 
 constexpr const char* kOneNode = "node-id = 05.01.01.01.22.00\ncdi = default.xml\n";
@@ -100,6 +102,58 @@ TEST(ScenarioTest, CountMakesConsecutiveNodeIds) {
     ASSERT_TRUE(s) << error;
     ASSERT_EQ(s->nodes.size(), 3u);
     EXPECT_EQ(s->nodes[2].node_id.to_string(), "05.01.01.01.22.02");
+}
+
+TEST(ScenarioTest, ControlBindsLoopbackUnlessToldOtherwise) {
+    std::string error;
+    auto s = parse(std::string(kOneNode) + "control = 12022\n", {}, error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_TRUE(s->control);
+    EXPECT_EQ(*s->control, (HostPort{"127.0.0.1", 12022}));
+    EXPECT_FALSE(s->control_remote);
+    s = parse(kOneNode, {"--control", "[::1]:0"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->control->host, "::1");
+    EXPECT_FALSE(parse(kOneNode, {"--control", "0.0.0.0:12022"}, error));
+    EXPECT_EQ(error,
+              "control: 0.0.0.0 is not a loopback address; give control-remote = true "
+              "(--control-remote) to let other machines change the nodes");
+    s = parse(kOneNode, {"--control", "0.0.0.0:12022", "--control-remote"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_TRUE(s->control_remote);
+    EXPECT_FALSE(parse(kOneNode, {"--control", "localhost:1"}, error));
+    EXPECT_EQ(error, "control: 'localhost' is not a numeric address");
+    EXPECT_FALSE(parse(kOneNode, {"--control", "127.0.0.1:1", "--control-remote", "maybe"}, error));
+    EXPECT_EQ(error, "control-remote 'maybe' must be true or false");
+}
+
+TEST(ScenarioTest, NodeGroupsAddedLaterFollowTheRunningScenario) {
+    std::string error;
+    const auto running =
+        parse(std::string(kOneNode) + "image-dir = /tmp/imgs\nlatency = 30\n", {}, error);
+    ASSERT_TRUE(running) << error;
+    EXPECT_EQ(running->image_root, "/tmp/imgs");
+    EXPECT_EQ(running->latency, "30");
+    const std::string cdi = (scenarios_dir() / "default.xml").string();
+    const std::vector<NodeKey> keys{{"node-id", {"05.01.01.01.22.10"}},
+                                    {"count", {"2"}},
+                                    {"cdi", {cdi}},
+                                    {"fault", {"int-byte-order"}},
+                                    {"user-name", {"N{n}"}}};
+    const auto nodes = parse_node_group(keys, *running, error);
+    ASSERT_TRUE(nodes) << error;
+    ASSERT_EQ(nodes->size(), 2u);
+    EXPECT_EQ((*nodes)[1].node_id, NodeId(0x05'01'01'01'22'11ull));
+    EXPECT_EQ((*nodes)[1].image_dir, fs::path("/tmp/imgs/05.01.01.01.22.11"));
+    EXPECT_EQ((*nodes)[1].user_name, "N2");
+    EXPECT_TRUE((*nodes)[0].faults.int_byte_order);
+    EXPECT_EQ((*nodes)[0].faults.latency, std::chrono::milliseconds(30)) << "the process latency";
+    const std::vector<NodeKey> bad{{"listen", {"1"}}};
+    EXPECT_FALSE(parse_node_group(bad, *running, error));
+    EXPECT_EQ(error, "'listen' is not a node key (see docs/scenarios.md)");
+    const std::vector<NodeKey> no_cdi{{"node-id", {"05.01.01.01.22.10"}}};
+    EXPECT_FALSE(parse_node_group(no_cdi, *running, error));
+    EXPECT_EQ(error, "node: cdi is missing");
 }
 
 }  // namespace

@@ -131,5 +131,26 @@ TEST_F(SilentTest, DefaultRestartKeepsTheFirstAlias) {
     EXPECT_EQ(stack_.alias(), 0x343);
 }
 
+TEST_F(SilentTest, ReleaseSendsAmrAndLeavesTheSegment) {
+    boot();
+    stack_.release(net_.now());
+    EXPECT_TRUE(stack_.silent());
+    EXPECT_EQ(stack_.alias(), 0);
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), (Strings{":X10703343N050101012200;"}));
+    inject(":X1949012CN;");
+    EXPECT_TRUE(take().empty()) << "a released node answers nothing";
+}
+
+TEST_F(SilentTest, ReleaseBeforeTheAliasIsPermittedSendsNoAmr) {
+    stack_.start(net_.now());
+    stack_.release(net_.now());
+    net_.run_for(1s);
+    for (const auto& frame : take()) {
+        EXPECT_EQ(frame.find(":X10703"), std::string::npos) << frame;
+    }
+    EXPECT_FALSE(stack_.initialized());
+}
+
 }  // namespace
 }  // namespace olcb

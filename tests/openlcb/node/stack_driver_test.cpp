@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 
@@ -161,6 +162,32 @@ TEST(StackDriver, DetachedStackIsNoLongerDriven) {
         EXPECT_TRUE(node.has_output()) << "nobody pumps a detached stack";
     }
     io.poll();  // posted work of the destroyed driver must be harmless
+}
+
+TEST(StackDriver, FlushDeliversPendingOutputAtOnce) {
+    boost::asio::io_context io;
+    InProcessBus bus(io);
+    std::vector<std::string> outside;
+    bus.add_endpoint([&](const CanFrame& f) { outside.push_back(gridconnect::format(f)); });
+    NodeStack node(test::stack_config(kNodeId));
+    NodeStack runner(test::stack_config(kRunnerId));
+    StackDriver driver(io, bus.add_endpoint());
+    driver.attach(node);
+    driver.attach(runner);
+    driver.start_all();
+    ASSERT_TRUE(run_io_until(
+        io, [&] { return node.initialized() && runner.initialized(); }, 2s));
+    io.poll();
+    ASSERT_EQ(runner.alias_cache().alias_of(kNodeId), 0x343);
+    node.release(Clock::now());
+    driver.flush();
+    EXPECT_FALSE(node.has_output()) << "flush() took the AMR";
+    driver.detach(node);
+    EXPECT_FALSE(runner.alias_cache().alias_of(kNodeId)) << "the other stack saw the AMR";
+    const std::string amr = ":X10703343N050101012200;";
+    EXPECT_TRUE(run_io_until(
+        io, [&] { return std::find(outside.begin(), outside.end(), amr) != outside.end(); }, 2s))
+        << "the transport got the AMR";
 }
 
 }  // namespace

@@ -1,0 +1,49 @@
+// simnode's live-control listener: TCP connections carrying one JSON request per line and one
+// JSON response per line (docs/control.md), answered by ControlCommands on the io_context the
+// nodes run on, so a request never races the node stacks.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "openlcb/asio.hpp"
+#include "simnode/control_commands.hpp"
+
+namespace olcb::simnode {
+
+/// Longest request line taken; a longer one is refused and its connection closed.
+inline constexpr std::size_t kMaxControlLineBytes = std::size_t{64} * 1024;
+/// Control connections open at once; one more is refused with an error line.
+inline constexpr std::size_t kMaxControlClients = 16;
+
+/// Accepts control connections and answers their requests in order, one at a time.
+class ControlServer {
+public:
+    /// Told a line on every refused or failed connection, for simnode's output.
+    using LogHandler = std::function<void(const std::string&)>;
+
+    /// A server answering with commands (which must outlive it) on io.
+    ControlServer(boost::asio::io_context& io, ControlCommands& commands);
+    /// Closes the listener and every connection.
+    ~ControlServer();
+    ControlServer(const ControlServer&) = delete;
+    ControlServer& operator=(const ControlServer&) = delete;
+
+    /// Listens on a numeric address (port 0: any free port); an error when it cannot.
+    boost::system::error_code listen(const std::string& address, std::uint16_t port);
+    /// The port listened on (0 when not listening).
+    std::uint16_t port() const;
+    /// Sets who is told of refused connections.
+    void set_log_handler(LogHandler handler);
+    /// Stops accepting and closes every connection.
+    void stop();
+
+private:
+    struct Impl;
+    std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace olcb::simnode

@@ -1,0 +1,94 @@
+#include "simnode/node_registry.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+#include <utility>
+
+namespace olcb::simnode {
+
+NodeRegistry::NodeRegistry(std::vector<std::unique_ptr<SimNode>>& nodes, StackDriver& driver)
+    : nodes_(nodes), driver_(driver) {}
+
+SimNode* NodeRegistry::find(NodeId id) const {
+    for (const auto& node : nodes_) {
+        if (node->node_id() == id) return node.get();
+    }
+    return nullptr;
+}
+
+void NodeRegistry::start_all() {
+    started_ = true;
+    driver_.start_all();
+}
+
+std::unique_ptr<SimNode> NodeRegistry::create(const NodeConfig& config, std::string& error) const {
+    std::error_code ec;
+    if (!config.image_dir.empty() && !std::filesystem::create_directories(config.image_dir, ec) &&
+        ec) {
+        error = "cannot create image directory " + config.image_dir.string() + ": " + ec.message();
+        return nullptr;
+    }
+    return SimNode::create(config, error);
+}
+
+void NodeRegistry::run(SimNode& node) {
+    driver_.attach(node.stack());
+    // Before start_all() the node waits with the others (a --connect hub not reached yet).
+    if (started_) node.stack().start(Clock::now());
+}
+
+SimNode* NodeRegistry::add(const NodeConfig& config, std::string& error) {
+    if (find(config.node_id) != nullptr) {
+        error = "node " + config.node_id.to_string() + " is already running";
+        return nullptr;
+    }
+    auto node = create(config, error);
+    if (!node) return nullptr;
+    nodes_.push_back(std::move(node));
+    run(*nodes_.back());
+    return nodes_.back().get();
+}
+
+bool NodeRegistry::remove(NodeId id) {
+    const auto it = std::find_if(nodes_.begin(), nodes_.end(),
+                                 [id](const auto& node) { return node->node_id() == id; });
+    if (it == nodes_.end()) return false;
+    NodeStack& stack = (*it)->stack();
+    stack.release(Clock::now());
+    driver_.flush();  // the AMR leaves before the stack does
+    driver_.detach(stack);
+    nodes_.erase(it);
+    return true;
+}
+
+SimNode* NodeRegistry::set_faults(NodeId id, const FaultSet& faults, std::string& error) {
+    const auto it = std::find_if(nodes_.begin(), nodes_.end(),
+                                 [id](const auto& node) { return node->node_id() == id; });
+    if (it == nodes_.end()) {
+        error = "no node " + id.to_string();
+        return nullptr;
+    }
+    const NodeConfig before = (*it)->config();
+    NodeConfig config = before;
+    config.faults = faults;
+    // The old node holds its images locked: it goes first. A restart sends no AMR.
+    driver_.detach((*it)->stack());
+    it->reset();
+    *it = create(config, error);
+    if (!*it) {
+        std::string ignored;
+        *it = create(before, ignored);
+        if (!*it) {
+            nodes_.erase(it);
+            error += "; the node could not be restarted as before either and is gone";
+            return nullptr;
+        }
+        run(**it);
+        return nullptr;
+    }
+    run(**it);
+    return it->get();
+}
+
+}  // namespace olcb::simnode
