@@ -48,6 +48,10 @@ struct Scenario {
     /// Every TCP client connecting to the hub makes every node log in again (needs listen).
     bool start_on_connect = false;
     std::filesystem::path scenario_file;  ///< the .ini read (empty: everything inline)
+    /// The client audit as JSON (empty: none; docs/audit.md).
+    std::filesystem::path audit;
+    /// The client audit as JUnit XML (empty: none).
+    std::filesystem::path audit_junit;
 };
 
 /// What the command line asks for.

@@ -23,6 +23,7 @@
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/tcp_hub_server.hpp"
 #include "openlcb/traffic_log.hpp"
+#include "simnode/audit/audit_tap.hpp"
 #include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
 #include "simnode/sim_node.hpp"
@@ -123,6 +124,19 @@ void describe_nodes(const std::vector<std::unique_ptr<SimNode>>& nodes) {
     std::cout.flush();
 }
 
+// The client audit (--audit, --audit-junit, docs/audit.md); nullptr when none is asked for, or
+// with error set when its files cannot be written.
+std::unique_ptr<audit::AuditTap> open_audit(boost::asio::io_context& io, const Scenario& s,
+                                            const std::vector<std::unique_ptr<SimNode>>& nodes,
+                                            std::string& error) {
+    if (s.audit.empty() && s.audit_junit.empty()) return nullptr;
+    auto tap = audit::AuditTap::open(io, {s.audit, s.audit_junit}, error);
+    if (tap) {
+        for (const auto& node : nodes) tap->add_node(*node);
+    }
+    return tap;
+}
+
 int run(const Scenario& scenario) {
     boost::asio::io_context io;
 
@@ -177,6 +191,12 @@ int run(const Scenario& scenario) {
         if (scenario.bitrate > 0) bus->enable_timing(scenario.bitrate);
     }
     Transport& node_port = add_port({});
+    std::string audit_error;
+    const auto audit = open_audit(io, scenario, nodes, audit_error);
+    if (!audit_error.empty()) {
+        std::cerr << "simnode: audit: " << audit_error << "\n";
+        return kExitRuntime;
+    }
 
     TrafficTap tap;
     std::string error;
@@ -233,10 +253,19 @@ int run(const Scenario& scenario) {
         say("serial " + scenario.serial + " open at " + std::to_string(scenario.baud) + " baud");
     }
 
-    StackDriver driver(io, node_port);
+    StackDriver driver(io, audit ? audit->attach(node_port, hub.get()) : node_port);
     for (auto& node : nodes) driver.attach(node->stack());
 
+    // Before the hub closes its clients: what they left open is judged as at the end of the run.
+    const auto finish_audit = [&] {
+        if (!audit) return;
+        std::string failed = audit->finish();  // "" also once it has finished
+        if (failed.empty()) return;
+        std::cerr << "simnode: audit: " << failed << std::endl;
+        audit_error = std::move(failed);
+    };
     const auto stop = [&] {
+        finish_audit();
         if (hub) hub->stop();
         if (client) client->stop();
         if (can) can->close();
@@ -324,8 +353,9 @@ int run(const Scenario& scenario) {
     startup_timer.async_wait(check_startup);
 
     io.run();
+    finish_audit();
     say("stopped");
-    return 0;
+    return audit_error.empty() ? 0 : kExitRuntime;
 }
 
 }  // namespace
