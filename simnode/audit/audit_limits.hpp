@@ -18,8 +18,8 @@ inline constexpr Duration kAnswerDue = std::chrono::milliseconds(750);
 /// The least wait between the last CID frame and RID (CanFrameTransferS §6.2.1).
 inline constexpr Duration kReservationWait = std::chrono::milliseconds(200);
 /// A retry storm: more than kStormResends resends of one datagram within kStormWindow. The
-/// standards set no bound; a client that pauses for a busy node never comes close (OpenMRN
-/// and this project's sender resend at most 3 times, 100 ms apart).
+/// standards set no bound; a client that pauses for a busy node never comes close (this
+/// project's own sender resends at most 3 times, 100 ms apart).
 inline constexpr std::size_t kStormResends = 5;
 /// The window of kStormResends.
 inline constexpr Duration kStormWindow = std::chrono::seconds(1);
