@@ -188,6 +188,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     }
 
     void relay_one(SourceKey source, const CanFrame& frame) {
+        if (on_frame) on_frame(frame, FrameSource{source, remote_of_key(source)});
         line.clear();
         gridconnect::format_to(frame, line);
         line.push_back('\n');
@@ -212,6 +213,15 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         for (std::size_t i = 0; i < locals.size() && !stopped; ++i) {
             if (locals[i]->key() != source) locals[i]->receive(frame);
         }
+    }
+
+    // A client still listed (a frame may wait for the bus after its client left); "" for a local
+    // endpoint or a client already swept away.
+    std::string_view remote_of_key(SourceKey key) const {
+        for (const auto& client : clients) {
+            if (client->key == key) return client->remote;
+        }
+        return {};
     }
 
     BusPacer::Duration bus_now() const {
@@ -360,6 +370,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     void close(Client& client) {
         if (client.closed) return;
         client.closed = true;
+        if (on_disconnect) on_disconnect(client.key, client.remote);
         stats.queued_bytes -= client.pending.size() + client.writing.size();
         // Free the memory now; a write in flight keeps its buffer until its handler runs.
         std::string().swap(client.pending);
@@ -400,6 +411,8 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     std::string line;
     ConnectionHandler on_connect;
     LogHandler on_log;
+    FrameObserver on_frame;
+    DisconnectHandler on_disconnect;
     bool relaying = false;
     bool stopped = false;
 };
@@ -455,6 +468,21 @@ void TcpHubServer::set_connection_handler(ConnectionHandler handler) {
 
 void TcpHubServer::set_log_handler(LogHandler handler) {
     impl_->on_log = std::move(handler);
+}
+
+void TcpHubServer::set_frame_observer(FrameObserver observer) {
+    impl_->on_frame = std::move(observer);
+}
+
+void TcpHubServer::set_disconnect_handler(DisconnectHandler handler) {
+    impl_->on_disconnect = std::move(handler);
+}
+
+std::optional<std::uint64_t> TcpHubServer::connection_of(const Transport& endpoint) const {
+    for (const auto& local : impl_->locals) {
+        if (local.get() == &endpoint) return local->key();
+    }
+    return std::nullopt;
 }
 
 void TcpHubServer::stop() {

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "openlcb/asio.hpp"
 #include "openlcb/transport.hpp"
@@ -84,6 +86,18 @@ public:
 
     /// Called after a client was accepted, with its remote address as "HOST:PORT".
     using ConnectionHandler = std::function<void(const std::string& remote)>;
+    /// Who put a frame on the segment.
+    struct FrameSource {
+        /// The sender's number (clients and local endpoints share one count, never reused).
+        std::uint64_t connection = 0;
+        /// A client's "HOST:PORT"; empty for a local endpoint.
+        std::string_view remote;
+    };
+    /// Sees every frame the hub relays, with its sender, before any port receives it.
+    using FrameObserver = std::function<void(const CanFrame& frame, const FrameSource& source)>;
+    /// Called when a client's connection has ended, with its number and "HOST:PORT".
+    using DisconnectHandler =
+        std::function<void(std::uint64_t connection, const std::string& remote)>;
     /// Receives one line per refused or dropped client (without a trailing newline).
     using LogHandler = std::function<void(const std::string& line)>;
 
@@ -104,6 +118,14 @@ public:
     void set_connection_handler(ConnectionHandler handler);
     /// Sets the handler of the hub's log lines (replaces any previous one).
     void set_log_handler(LogHandler handler);
+    /// Sets the observer of every relayed frame (replaces any previous one; empty = none).
+    void set_frame_observer(FrameObserver observer);
+    /// Sets the handler called for every client whose connection ended (replaces any previous
+    /// one).
+    void set_disconnect_handler(DisconnectHandler handler);
+    /// The FrameSource::connection of frames sent through `endpoint`, a local endpoint of this
+    /// hub; nullopt for any other transport.
+    std::optional<std::uint64_t> connection_of(const Transport& endpoint) const;
     /// Closes the listener and every client; local endpoints stop receiving.
     void stop();
     /// Number of connected clients.

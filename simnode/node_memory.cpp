@@ -515,6 +515,11 @@ memory::MemorySpace* NodeMemory::space(std::uint8_t number) const {
     return s != nullptr && s->served ? s->top : nullptr;
 }
 
+const memory::MemorySpace* NodeMemory::base_space(std::uint8_t number) const {
+    const Slot* s = slot(number);
+    return s != nullptr && s->served ? &s->base() : nullptr;
+}
+
 std::vector<std::uint8_t> NodeMemory::served_spaces() const {
     std::vector<std::uint8_t> out;
     for (const auto& s : slots_) {

@@ -75,6 +75,9 @@ public:
     void serve(memory::MemoryConfigServer& server) const;
     /// The space served as number (faults included), or null.
     memory::MemorySpace* space(std::uint8_t number) const;
+    /// The served space as built, without the fault wrappers: its real size and read-only flag,
+    /// which a client's requests are judged by (simnode/audit); null when not served.
+    const memory::MemorySpace* base_space(std::uint8_t number) const;
     /// Numbers of the served spaces, ascending.
     std::vector<std::uint8_t> served_spaces() const;
     /// Up to length bytes of a space read as a client would (empty when not there).

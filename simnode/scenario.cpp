@@ -53,7 +53,9 @@ constexpr std::string_view kProcessKeys[] = {"listen",
                                              "idle-timeout",
                                              "log-max-bytes",
                                              "control",
-                                             "control-remote"};
+                                             "control-remote",
+                                             "audit",  // the client audit (docs/audit.md)
+                                             "audit-junit"};
 // A network of this many nodes is already far beyond any real CAN segment.
 constexpr std::uint64_t kMaxCount = 100000;
 // Faster than any UART a USB-CAN adapter uses; above it a typo is more likely than a rate.
@@ -173,6 +175,11 @@ po::options_description cli_options() {
         "log-max-bytes", po::value<std::string>()->value_name("N"),
         "rotate the trace and candump files to FILE.1 before they grow past N bytes "
         "(default 0 = never)");
+    po::options_description audit("Client audit (top level, docs/audit.md)");
+    audit.add_options()("audit", po::value<std::string>()->value_name("FILE"),
+                        "record every protocol violation of the tools talking to the nodes in "
+                        "FILE (JSON)")("audit-junit", po::value<std::string>()->value_name("FILE"),
+                                       "the same as JUnit XML, one testcase per rule");
     po::options_description testing("Test hooks (top level)");
     testing.add_options()("latency", po::value<std::string>()->value_name("MS[:JITTER]"),
                           "every node answers MS ms (plus 0..JITTER ms) late, as the fault "
@@ -191,7 +198,7 @@ po::options_description cli_options() {
         "let control bind an address other machines reach (anyone who connects can change "
         "every node)");
     po::options_description all;
-    all.add(general).add(node).add(transport).add(testing).add(control);
+    all.add(general).add(node).add(transport).add(audit).add(testing).add(control);
     return all;
 }
 
@@ -483,6 +490,8 @@ public:
         }
         scenario_.trace = path_of(keys, "trace");
         scenario_.candump = path_of(keys, "candump");
+        scenario_.audit = path_of(keys, "audit");
+        scenario_.audit_junit = path_of(keys, "audit-junit");
         if (const auto* v = single(keys, "log-max-bytes")) {
             const auto n = parse_bytes(*v);
             if (!n) return fail("log-max-bytes '" + *v + "' must be a whole number of bytes >= 0");

@@ -54,6 +54,10 @@ struct Scenario {
     /// $TMPDIR/simnode-images/<scenario name>.
     std::filesystem::path image_root;
     std::string latency;  ///< the latency key as given ("" = none); added nodes get it too
+    /// The client audit as JSON (empty: none; docs/audit.md).
+    std::filesystem::path audit;
+    /// The client audit as JUnit XML (empty: none).
+    std::filesystem::path audit_junit;
 };
 
 /// What the command line asks for.

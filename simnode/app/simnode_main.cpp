@@ -27,6 +27,7 @@
 #include "simnode/control_commands.hpp"
 #include "simnode/control_server.hpp"
 #include "simnode/node_registry.hpp"
+#include "simnode/audit/audit_tap.hpp"
 #include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
 #include "simnode/sim_node.hpp"
@@ -127,6 +128,19 @@ void describe_nodes(const std::vector<std::unique_ptr<SimNode>>& nodes) {
     std::cout.flush();
 }
 
+// The client audit (--audit, --audit-junit, docs/audit.md); nullptr when none is asked for, or
+// with error set when its files cannot be written.
+std::unique_ptr<audit::AuditTap> open_audit(boost::asio::io_context& io, const Scenario& s,
+                                            const std::vector<std::unique_ptr<SimNode>>& nodes,
+                                            std::string& error) {
+    if (s.audit.empty() && s.audit_junit.empty()) return nullptr;
+    auto tap = audit::AuditTap::open(io, {s.audit, s.audit_junit}, error);
+    if (tap) {
+        for (const auto& node : nodes) tap->add_node(*node);
+    }
+    return tap;
+}
+
 int run(const Scenario& scenario) {
     boost::asio::io_context io;
 
@@ -181,6 +195,12 @@ int run(const Scenario& scenario) {
         if (scenario.bitrate > 0) bus->enable_timing(scenario.bitrate);
     }
     Transport& node_port = add_port({});
+    std::string audit_error;
+    const auto audit = open_audit(io, scenario, nodes, audit_error);
+    if (!audit_error.empty()) {
+        std::cerr << "simnode: audit: " << audit_error << "\n";
+        return kExitRuntime;
+    }
 
     TrafficTap tap;
     std::string error;
@@ -237,7 +257,7 @@ int run(const Scenario& scenario) {
         say("serial " + scenario.serial + " open at " + std::to_string(scenario.baud) + " baud");
     }
 
-    StackDriver driver(io, node_port);
+    StackDriver driver(io, audit ? audit->attach(node_port, hub.get()) : node_port);
     for (auto& node : nodes) driver.attach(node->stack());
     // Live control (docs/control.md): changes the nodes from the same io_context.
     NodeRegistry registry(nodes, driver);
@@ -253,8 +273,17 @@ int run(const Scenario& scenario) {
         }
     }
 
+    // Before the hub closes its clients: what they left open is judged as at the end of the run.
+    const auto finish_audit = [&] {
+        if (!audit) return;
+        std::string failed = audit->finish();  // "" also once it has finished
+        if (failed.empty()) return;
+        std::cerr << "simnode: audit: " << failed << std::endl;
+        audit_error = std::move(failed);
+    };
     const auto stop = [&] {
         control.stop();
+        finish_audit();
         if (hub) hub->stop();
         if (client) client->stop();
         if (can) can->close();
@@ -345,8 +374,9 @@ int run(const Scenario& scenario) {
     startup_timer.async_wait(check_startup);
 
     io.run();
+    finish_audit();
     say("stopped");
-    return 0;
+    return audit_error.empty() ? 0 : kExitRuntime;
 }
 
 }  // namespace

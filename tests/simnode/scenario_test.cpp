@@ -71,6 +71,22 @@ TEST(ScenarioTest, LogMaxBytesAndWatchVariableFromFileAndCommandLine) {
     EXPECT_NE(error.find("log-max-bytes"), std::string::npos) << error;
 }
 
+TEST(ScenarioTest, AuditFilesFromFileRelativeToItAndFromTheCommandLine) {
+    std::string error;
+    auto s = parse(std::string(kOneNode) + "audit = out/audit.json\naudit-junit = audit.xml\n", {},
+                   error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->audit, kScenarios / "out/audit.json");
+    EXPECT_EQ(s->audit_junit, kScenarios / "audit.xml");
+    s = parse(kOneNode, {"--audit", "/tmp/a.json"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->audit, fs::path("/tmp/a.json"));
+    EXPECT_TRUE(s->audit_junit.empty());
+    s = parse(kOneNode, {}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_TRUE(s->audit.empty());  // no audit unless asked for
+}
+
 TEST(ScenarioTest, ConnectTakesAHostName) {
     std::string error;
     const auto s = parse(kOneNode, {"--connect", "jmri.local:12021"}, error);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "openlcb/gridconnect.hpp"
+#include "openlcb/in_process_bus.hpp"
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/transport/tcp_test_util.hpp"
 
@@ -132,6 +133,34 @@ TEST_F(TcpHubTest, LocalEndpointRepliesFromItsHandlerReachTheClients) {
     }));
     EXPECT_EQ(seen_by_observer, 20);  // the requests and the replies
     EXPECT_EQ(inbox_a.from[2].back(), 9u);
+}
+
+TEST_F(TcpHubTest, TheFrameObserverNamesEachSenderAndEndedConnectionsAreReported) {
+    std::vector<std::pair<std::uint64_t, std::string>> seen;
+    hub->set_frame_observer([&](const CanFrame&, const TcpHubServer::FrameSource& source) {
+        seen.emplace_back(source.connection, std::string(source.remote));
+    });
+    std::vector<std::uint64_t> ended;
+    hub->set_disconnect_handler(
+        [&](std::uint64_t connection, const std::string&) { ended.push_back(connection); });
+    Transport& local = hub->add_local_endpoint();
+    const auto local_connection = hub->connection_of(local);
+    ASSERT_TRUE(local_connection);
+    {
+        RawClient raw(io, hub->port());
+        ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 1; }));
+        boost::asio::write(raw.socket, boost::asio::buffer(std::string(":X19490123N;\n")));
+        ASSERT_TRUE(run_until(io, [&] { return seen.size() == 1; }));
+        EXPECT_NE(seen[0].first, *local_connection);
+        EXPECT_TRUE(seen[0].second.starts_with("127.0.0.1:")) << seen[0].second;
+        local.send(numbered_frame(0x100, 1));
+        ASSERT_EQ(seen.size(), 2u);
+        EXPECT_EQ(seen[1], std::make_pair(*local_connection, std::string()));
+    }
+    ASSERT_TRUE(run_until(io, [&] { return ended.size() == 1; }));
+    EXPECT_EQ(ended[0], seen[0].first);
+    InProcessBus other;
+    EXPECT_FALSE(hub->connection_of(other.add_endpoint()));
 }
 
 TEST_F(TcpHubTest, LowercaseAndShortIdFramesAreRelayedReformatted) {
