@@ -12,7 +12,8 @@
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/render.hpp"
-#include "cdi/validator.hpp"
+#include "cdi/rule_finding.hpp"
+#include "cdi/string_codec.hpp"
 
 namespace olcb::cdi::tool {
 
@@ -39,6 +40,24 @@ bool parse_args(const std::vector<std::string>& args, po::options_description& o
 std::vector<std::string> files_of(const po::variables_map& vm) {
     return vm.count("file") != 0 ? vm["file"].as<std::vector<std::string>>()
                                  : std::vector<std::string>{};
+}
+
+// A CDI's bytes as a terminal line shows them: each invalid UTF-8 sequence as U+FFFD, control
+// characters (a name's newline or tab would break a line or a column) as '?'.
+std::string display(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    while (!text.empty()) {
+        const std::size_t bad = find_invalid_utf8(text).value_or(text.size());
+        for (const char c : text.substr(0, bad)) {
+            const auto u = static_cast<unsigned char>(c);
+            out.push_back(u < 0x20 || u == 0x7F ? '?' : c);
+        }
+        if (bad == text.size()) break;
+        out += "\xEF\xBF\xBD";
+        text.remove_prefix(bad + 1);
+    }
+    return out;
 }
 
 // Reads, parses and lays out one CDI; prints every finding to stderr and returns nullopt on
@@ -141,9 +160,21 @@ std::optional<std::string> read_file(const std::string& path, std::string& error
     return std::move(buffer).str();
 }
 
+// One finding the way lcc-conform's text report shows the check: "FILE:LINE: FAIL id: message",
+// expected and seen under it; cdi.valid's diagnostics follow as FILE:LINE: error|warning lines.
+void print_finding(const std::string& path, const RuleFinding& f) {
+    std::cout << display(path);
+    if (f.line != 0) std::cout << ":" << f.line;
+    std::cout << ": " << rule_status_name(f.status) << " " << f.check_id << ": "
+              << display(f.message) << "\n";
+    if (!f.expected.empty()) std::cout << "      expected: " << display(f.expected) << "\n";
+    if (!f.seen.empty()) std::cout << "      seen:     " << display(f.seen) << "\n";
+    for (const auto& d : f.diagnostics) std::cout << display(format_diagnostic(path, d)) << "\n";
+}
+
 int run_validate(const std::vector<std::string>& args) {
     po::options_description options("lcc-cdi validate options");
-    options.add_options()("quiet,q", "print only errors and warnings, no 'ok' lines");
+    options.add_options()("quiet,q", "print only FAIL and WARN findings, no 'ok' lines");
     po::variables_map vm;
     if (parse_args(args, options, "lcc-cdi validate [--quiet] FILE...", vm)) return kExitOk;
     const auto files = files_of(vm);
@@ -153,16 +184,20 @@ int run_validate(const std::vector<std::string>& args) {
         std::string error;
         auto bytes = read_file(path, error);
         if (!bytes) {
-            std::cout << path << ": error: " << error << "\n";
+            std::cout << display(path) << ": error: " << error << "\n";
             status = kExitErrors;
             continue;
         }
-        ValidationReport report = validate(*bytes);
-        for (const auto& d : report.diagnostics) std::cout << format_diagnostic(path, d) << "\n";
-        if (!report.ok()) {
+        bool failed = false;
+        for (const RuleFinding& f : check_rules(*bytes)) {
+            if (f.status != RuleStatus::kFail && f.status != RuleStatus::kWarn) continue;
+            print_finding(path, f);
+            failed = failed || f.status == RuleStatus::kFail;
+        }
+        if (failed) {
             status = kExitErrors;
         } else if (vm.count("quiet") == 0) {
-            std::cout << path << ": ok\n";
+            std::cout << display(path) << ": ok\n";
         }
     }
     return status;
