@@ -1,5 +1,6 @@
 #include "cdi/tool/commands.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <iostream>
@@ -74,14 +75,22 @@ std::optional<Loaded> load(const std::string& path) {
         std::cerr << path << ": error: " << error << "\n";
         return std::nullopt;
     }
+    if (const auto bad = find_invalid_utf8(*bytes)) {
+        const std::string_view before = std::string_view(*bytes).substr(0, *bad);
+        const auto line = 1 + std::count(before.begin(), before.end(), '\n');
+        std::cerr << display(path) << ":" << line << ": warning: invalid UTF-8 at offset " << *bad
+                  << " (see lcc-cdi validate)\n";
+    }
     ParseResult parsed = parse(*bytes);
     if (!parsed.document) {
-        for (const auto& d : parsed.diagnostics) std::cerr << format_diagnostic(path, d) << "\n";
+        for (const auto& d : parsed.diagnostics)
+            std::cerr << display(format_diagnostic(path, d)) << "\n";
         return std::nullopt;
     }
     auto document = std::make_unique<Document>(std::move(*parsed.document));
     LayoutResult result = build_layout(*document);
-    for (const auto& d : result.diagnostics) std::cerr << format_diagnostic(path, d) << "\n";
+    for (const auto& d : result.diagnostics)
+        std::cerr << display(format_diagnostic(path, d)) << "\n";
     if (!result.layout) return std::nullopt;
     return Loaded{std::move(document), std::move(*result.layout)};
 }
@@ -229,12 +238,16 @@ int run_layout(const std::vector<std::string>& args) {
                 {"address", c.address()},
                 {"size", c.size()}};
             add_details(e, v);
-            out << (first ? "\n" : ",\n") << v.dump();
+            // The CDI's names are untrusted bytes: invalid UTF-8 becomes U+FFFD, never an
+            // exception half-way through the array.
+            out << (first ? "\n" : ",\n")
+                << v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         } else {
-            out << c.path() << "\t" << (e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind))
+            out << display(c.path()) << "\t"
+                << display(e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind))
                 << "\tspace " << c.space() << "\taddress " << c.address() << "\tsize " << c.size();
             std::string details = details_text(e);
-            if (!details.empty()) out << "\t" << details;
+            if (!details.empty()) out << "\t" << display(details);
             out << "\n";
         }
         first = false;

@@ -193,12 +193,36 @@ TEST(LccCdi, EveryScenarioCdiValidatesWithoutAFinding) {
     EXPECT_GE(files, 3);
 }
 
-// A <name> holding bytes that are not UTF-8 (0xFF 0xFE).
+// A <name> holding bytes that are not UTF-8 (0xFF 0xFE): still a layout, as valid JSON.
 std::string cdi_with_invalid_utf8() {
     std::string text = default_with_first_line("<?xml version=\"1.0\"?>");
     const std::size_t name = text.find("<name>", text.find("<segment")) + 6;
     text.insert(name, "\xFF\xFE");
     return text;
+}
+
+TEST(LccCdi, LayoutJsonReplacesInvalidUtf8AndStaysValid) {
+    const std::string bad = temp_file("invalid_utf8.xml", cdi_with_invalid_utf8());
+    RunResult r = lcc_cdi("layout --json " + bad);
+    EXPECT_EQ(r.status, 0) << r.out;
+    const auto json = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_FALSE(json.is_discarded()) << r.out;
+    ASSERT_EQ(json.at("variables").size(), 28U);
+    EXPECT_NE(json.dump().find("\xEF\xBF\xBD"), std::string::npos) << r.out;  // U+FFFD
+
+    RunResult warned = lcc_cdi("layout --json " + bad, true);
+    EXPECT_NE(warned.out.find(bad + ":"), std::string::npos) << warned.out;
+    EXPECT_NE(warned.out.find("warning: invalid UTF-8 at offset"), std::string::npos) << warned.out;
+    EXPECT_EQ(warned.out.find("exception"), std::string::npos) << warned.out;
+
+    RunResult text = lcc_cdi("layout " + bad);
+    EXPECT_EQ(text.status, 0);
+    EXPECT_EQ(std::count(text.out.begin(), text.out.end(), '\n'), 28) << text.out;
+    EXPECT_EQ(text.out.find('\xFF'), std::string::npos);
+
+    RunResult validated = lcc_cdi("validate " + bad);
+    EXPECT_EQ(validated.status, 1);
+    EXPECT_EQ(validate_findings(validated.out).at("cdi.utf8"), "FAIL") << validated.out;
 }
 
 #if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
