@@ -17,4 +17,9 @@ std::string format_diagnostic(const std::string& file, const Diagnostic& diagnos
     return out;
 }
 
+std::string located(const Diagnostic& diagnostic) {
+    if (diagnostic.line == 0) return diagnostic.message;
+    return "line " + std::to_string(diagnostic.line) + ": " + diagnostic.message;
+}
+
 }  // namespace olcb::cdi

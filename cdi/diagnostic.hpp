@@ -26,4 +26,7 @@ bool has_errors(const Diagnostics& diagnostics);
 /// "FILE:LINE: error: message" (or "FILE: error: message" when the line is 0).
 std::string format_diagnostic(const std::string& file, const Diagnostic& diagnostic);
 
+/// "line 4: message" ("message" when the line is 0): a diagnostic quoted inside another report.
+std::string located(const Diagnostic& diagnostic);
+
 }  // namespace olcb::cdi

@@ -36,7 +36,12 @@ void sort_and_dedupe(Diagnostics& diagnostics) {
 }  // namespace
 
 ValidationReport validate(std::string_view bytes) {
-    ValidationReport report;
+    return validate_model(bytes).report;
+}
+
+ValidatedCdi validate_model(std::string_view bytes) {
+    ValidatedCdi out;
+    ValidationReport& report = out.report;
     append(report.diagnostics, validate_schema(bytes, &report.schema));
 
     ParseResult parsed = parse(bytes);
@@ -50,11 +55,14 @@ ValidationReport validate(std::string_view bytes) {
 
     if (parsed.document) {
         report.parsed = true;
-        append(report.diagnostics, check_semantics(*parsed.document));
-        append(report.diagnostics, build_layout(*parsed.document).diagnostics);
+        out.document = std::make_unique<Document>(std::move(*parsed.document));
+        append(report.diagnostics, check_semantics(*out.document));
+        LayoutResult laid = build_layout(*out.document);
+        append(report.diagnostics, std::move(laid.diagnostics));
+        out.layout = std::move(laid.layout);
     }
     sort_and_dedupe(report.diagnostics);
-    return report;
+    return out;
 }
 
 }  // namespace olcb::cdi

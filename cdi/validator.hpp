@@ -2,9 +2,13 @@
 // Schema (libxml2), the typed model (parser), the semantic rules and the address layout.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string_view>
 
 #include "cdi/diagnostic.hpp"
+#include "cdi/document.hpp"
+#include "cdi/layout.hpp"
 #include "cdi/schema_validator.hpp"
 
 namespace olcb::cdi {
@@ -22,5 +26,16 @@ struct ValidationReport {
 /// Parses and checks CDI bytes (trailing NULs ignored): schema, parse, semantic and layout
 /// diagnostics merged into one list.
 ValidationReport validate(std::string_view bytes);
+
+/// validate()'s report with the model it checked, for rules judged on the model. The document
+/// is on the heap because the layout points into it.
+struct ValidatedCdi {
+    ValidationReport report;
+    std::unique_ptr<Document> document;  ///< when the model parser produced one
+    std::optional<Layout> layout;        ///< when the layout has no errors
+};
+
+/// validate() keeping the parsed document and its layout.
+ValidatedCdi validate_model(std::string_view bytes);
 
 }  // namespace olcb::cdi

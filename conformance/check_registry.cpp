@@ -57,15 +57,21 @@ constexpr CheckSpec kEarlyChecks[] = {
     {"cdi.nul-at-highest", C::kCdi, "MemoryConfigurationS §4.14", "",
      "(CDI download) offset of the NUL == Space Info highest address", k::cdi_nul_at_highest},
     {"cdi.no-bom", C::kCdi, "CDI §5", "", "no UTF-8 byte-order mark", k::cdi_no_bom},
-    {"cdi.utf8", C::kCdi, "CDI §5", "", "the CDI is valid UTF-8", k::cdi_utf8},
+    {"cdi.utf8", C::kCdi, "CDI §5", "",
+     "the CDI is valid UTF-8 (FAIL: offset, line and bytes of the first invalid sequence)",
+     k::cdi_utf8},
     {"cdi.xml-declaration", C::kCdi, "CDI §5", "cd10",
-     "the first line starts with exactly <?xml version=\"1.0\"?> (another declaration: WARN "
-     "quoting it; none: FAIL quoting at most 80 bytes)",
+     "the first line (after a BOM, which is cdi.no-bom's) starts with exactly <?xml "
+     "version=\"1.0\"?> (another declaration of XML 1.0 in UTF-8, e.g. encoding=\"utf-8\": "
+     "WARN quoting it; another version or encoding, or none: FAIL quoting at most 80 bytes)",
      k::cdi_xml_declaration},
-    {"cdi.well-formed", C::kCdi, "CDI §5", "cd10", "libxml2 parses it", k::cdi_well_formed},
+    {"cdi.well-formed", C::kCdi, "CDI §5", "cd10",
+     "libxml2 parses it (FAIL quotes the first parse error and lists all; stopped at the "
+     "invalid UTF-8: SKIP depends on cdi.utf8)",
+     k::cdi_well_formed},
     {"cdi.valid", C::kCdi, "CDI §5; declared schema + semantic rules", "cd10",
      "cdi::validate: FAIL with every error (details), WARN with every warning, PASS when "
-     "none",
+     "none (not well-formed: SKIP depends on cdi.well-formed)",
      k::cdi_valid},
     {"cdi.schema-location", C::kCdi, "CDI §5", "",
      "xsi:noNamespaceSchemaLocation names http(s)://openlcb.org/schema/cdi/...xsd (absent: "

@@ -314,13 +314,13 @@ const CdiDownload& CheckRun::cdi() {
     return *cdi_;
 }
 
-const cdi::ValidationReport& CheckRun::validation() {
-    if (!validation_) {
+const std::vector<cdi::RuleFinding>& CheckRun::rules() {
+    if (!rules_) {
         cdi();
         const auto& b = ctx_.cdi_bytes;
-        validation_ = cdi::validate({reinterpret_cast<const char*>(b.data()), b.size()});
+        rules_ = cdi::check_rules({reinterpret_cast<const char*>(b.data()), b.size()});
     }
-    return *validation_;
+    return *rules_;
 }
 
 const FormProbe& CheckRun::form_probe() {

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "cdi/validator.hpp"
+#include "cdi/rule_finding.hpp"
 #include "conformance/check_context.hpp"
 #include "conformance/check_registry.hpp"
 #include "conformance/check_result.hpp"
@@ -150,8 +150,8 @@ public:
     const SpaceInfo& space_info(std::uint8_t space);
     /// Space 0xFF downloaded, parsed and laid out into ctx().
     const CdiDownload& cdi();
-    /// cdi::validate() of the downloaded CDI text.
-    const cdi::ValidationReport& validation();
+    /// cdi::check_rules() of the downloaded CDI text: the verdicts of the text-only cdi.* checks.
+    const std::vector<cdi::RuleFinding>& rules();
     /// Spaces 252/251 read field by field into ctx() (only with <acdi/>): true when read.
     bool acdi_blocks();
     /// The outcome of reading 252 (after acdi_blocks()).
@@ -197,7 +197,7 @@ private:
     std::optional<MemResult> options_result_;
     std::optional<CdiDownload> cdi_;
     std::optional<bool> acdi_read_;
-    std::optional<cdi::ValidationReport> validation_;
+    std::optional<std::vector<cdi::RuleFinding>> rules_;
     std::optional<FormProbe> form_probe_;
     std::map<std::string, std::any> memos_;
     MemResult acdi_manufacturer_result_, acdi_user_result_;

@@ -1,5 +1,6 @@
 #include "cdi/tool/commands.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <iostream>
@@ -12,7 +13,8 @@
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/render.hpp"
-#include "cdi/validator.hpp"
+#include "cdi/rule_finding.hpp"
+#include "cdi/string_codec.hpp"
 
 namespace olcb::cdi::tool {
 
@@ -41,6 +43,24 @@ std::vector<std::string> files_of(const po::variables_map& vm) {
                                  : std::vector<std::string>{};
 }
 
+// A CDI's bytes as a terminal line shows them: each invalid UTF-8 sequence as U+FFFD, control
+// characters (a name's newline or tab would break a line or a column) as '?'.
+std::string display(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    while (!text.empty()) {
+        const std::size_t bad = find_invalid_utf8(text).value_or(text.size());
+        for (const char c : text.substr(0, bad)) {
+            const auto u = static_cast<unsigned char>(c);
+            out.push_back(u < 0x20 || u == 0x7F ? '?' : c);
+        }
+        if (bad == text.size()) break;
+        out += "\xEF\xBF\xBD";
+        text.remove_prefix(bad + 1);
+    }
+    return out;
+}
+
 // Reads, parses and lays out one CDI; prints every finding to stderr and returns nullopt on
 // errors. The document is on the heap because the layout points into it.
 struct Loaded {
@@ -55,14 +75,22 @@ std::optional<Loaded> load(const std::string& path) {
         std::cerr << path << ": error: " << error << "\n";
         return std::nullopt;
     }
+    if (const auto bad = find_invalid_utf8(*bytes)) {
+        const std::string_view before = std::string_view(*bytes).substr(0, *bad);
+        const auto line = 1 + std::count(before.begin(), before.end(), '\n');
+        std::cerr << display(path) << ":" << line << ": warning: invalid UTF-8 at offset " << *bad
+                  << " (see lcc-cdi validate)\n";
+    }
     ParseResult parsed = parse(*bytes);
     if (!parsed.document) {
-        for (const auto& d : parsed.diagnostics) std::cerr << format_diagnostic(path, d) << "\n";
+        for (const auto& d : parsed.diagnostics)
+            std::cerr << display(format_diagnostic(path, d)) << "\n";
         return std::nullopt;
     }
     auto document = std::make_unique<Document>(std::move(*parsed.document));
     LayoutResult result = build_layout(*document);
-    for (const auto& d : result.diagnostics) std::cerr << format_diagnostic(path, d) << "\n";
+    for (const auto& d : result.diagnostics)
+        std::cerr << display(format_diagnostic(path, d)) << "\n";
     if (!result.layout) return std::nullopt;
     return Loaded{std::move(document), std::move(*result.layout)};
 }
@@ -141,9 +169,21 @@ std::optional<std::string> read_file(const std::string& path, std::string& error
     return std::move(buffer).str();
 }
 
+// One finding the way lcc-conform's text report shows the check: "FILE:LINE: FAIL id: message",
+// expected and seen under it; cdi.valid's diagnostics follow as FILE:LINE: error|warning lines.
+void print_finding(const std::string& path, const RuleFinding& f) {
+    std::cout << display(path);
+    if (f.line != 0) std::cout << ":" << f.line;
+    std::cout << ": " << rule_status_name(f.status) << " " << f.check_id << ": "
+              << display(f.message) << "\n";
+    if (!f.expected.empty()) std::cout << "      expected: " << display(f.expected) << "\n";
+    if (!f.seen.empty()) std::cout << "      seen:     " << display(f.seen) << "\n";
+    for (const auto& d : f.diagnostics) std::cout << display(format_diagnostic(path, d)) << "\n";
+}
+
 int run_validate(const std::vector<std::string>& args) {
     po::options_description options("lcc-cdi validate options");
-    options.add_options()("quiet,q", "print only errors and warnings, no 'ok' lines");
+    options.add_options()("quiet,q", "print only FAIL and WARN findings, no 'ok' lines");
     po::variables_map vm;
     if (parse_args(args, options, "lcc-cdi validate [--quiet] FILE...", vm)) return kExitOk;
     const auto files = files_of(vm);
@@ -153,16 +193,20 @@ int run_validate(const std::vector<std::string>& args) {
         std::string error;
         auto bytes = read_file(path, error);
         if (!bytes) {
-            std::cout << path << ": error: " << error << "\n";
+            std::cout << display(path) << ": error: " << error << "\n";
             status = kExitErrors;
             continue;
         }
-        ValidationReport report = validate(*bytes);
-        for (const auto& d : report.diagnostics) std::cout << format_diagnostic(path, d) << "\n";
-        if (!report.ok()) {
+        bool failed = false;
+        for (const RuleFinding& f : check_rules(*bytes)) {
+            if (f.status != RuleStatus::kFail && f.status != RuleStatus::kWarn) continue;
+            print_finding(path, f);
+            failed = failed || f.status == RuleStatus::kFail;
+        }
+        if (failed) {
             status = kExitErrors;
         } else if (vm.count("quiet") == 0) {
-            std::cout << path << ": ok\n";
+            std::cout << display(path) << ": ok\n";
         }
     }
     return status;
@@ -194,12 +238,16 @@ int run_layout(const std::vector<std::string>& args) {
                 {"address", c.address()},
                 {"size", c.size()}};
             add_details(e, v);
-            out << (first ? "\n" : ",\n") << v.dump();
+            // The CDI's names are untrusted bytes: invalid UTF-8 becomes U+FFFD, never an
+            // exception half-way through the array.
+            out << (first ? "\n" : ",\n")
+                << v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
         } else {
-            out << c.path() << "\t" << (e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind))
+            out << display(c.path()) << "\t"
+                << display(e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind))
                 << "\tspace " << c.space() << "\taddress " << c.address() << "\tsize " << c.size();
             std::string details = details_text(e);
-            if (!details.empty()) out << "\t" << details;
+            if (!details.empty()) out << "\t" << display(details);
             out << "\n";
         }
         first = false;

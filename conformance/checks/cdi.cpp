@@ -1,21 +1,44 @@
 // The CDI as served in space 0xFF: Space Info, the download, its termination, its text and its
 // validity, and whether its segments leave the ACDI blocks alone.
-#include "cdi/validator.hpp"
+#include "cdi/rule_finding.hpp"
 #include "conformance/checks/checks.hpp"
 
 namespace olcb::conform::checks {
 namespace {
-
-std::string_view cdi_text(CheckRun& run) {
-    const auto& b = run.ctx().cdi_bytes;
-    return {reinterpret_cast<const char*>(b.data()), b.size()};
-}
 
 // The download's checks judge nothing when it failed: say what they depend on instead.
 bool downloaded(CheckRun& run) {
     if (run.cdi().read_ok) return true;
     run.out().skip("depends on cdi.read: space 0xFF returned no data");
     return false;
+}
+
+Status status_of(cdi::RuleStatus status) {
+    switch (status) {
+        case cdi::RuleStatus::kPass:
+            return Status::kPass;
+        case cdi::RuleStatus::kFail:
+            return Status::kFail;
+        case cdi::RuleStatus::kWarn:
+            return Status::kWarn;
+        case cdi::RuleStatus::kSkip:
+            return Status::kSkip;
+    }
+    return Status::kFail;
+}
+
+// Reports check_rules()' finding for `id` as it stands; the details are cdi.valid's diagnostics.
+void text_rule(CheckRun& run, std::string_view id) {
+    if (!downloaded(run)) return;
+    for (const cdi::RuleFinding& f : run.rules()) {
+        if (f.check_id != id) continue;
+        std::vector<std::string> details;
+        details.reserve(f.diagnostics.size());
+        for (const cdi::Diagnostic& d : f.diagnostics) details.push_back(cdi::located(d));
+        return run.out().add(status_of(f.status), f.message, f.expected, f.seen,
+                             std::move(details));
+    }
+    run.out().fail("cdi::check_rules() has no rule for this check", std::string(id), "none");
 }
 
 }  // namespace
@@ -51,107 +74,38 @@ void cdi_nul_at_highest(CheckRun& run) {
                     hex(ff.highest_address, 8));
 }
 
+// The text-only checks: their verdicts are cdi::check_rules()', so `lcc-cdi validate` on a file
+// reports what these report for the same text served by a node.
 void cdi_no_bom(CheckRun& run) {
-    if (!downloaded(run)) return;
-    const bool bom = cdi_text(run).starts_with("\xEF\xBB\xBF");
-    run.out().judge(!bom, "no byte-order mark", "no BOM", "EF BB BF at offset 0");
+    text_rule(run, "cdi.no-bom");
 }
 
 void cdi_utf8(CheckRun& run) {
-    if (!downloaded(run)) return;
-    run.out().judge(is_valid_utf8(run.ctx().cdi_bytes), "valid UTF-8", "UTF-8",
-                    "invalid byte sequence");
+    text_rule(run, "cdi.utf8");
 }
 
-// Judges the first line only: a one-line CDI goes on with <cdi ...> after the declaration.
 void cdi_xml_declaration(CheckRun& run) {
-    if (!downloaded(run)) return;
-    static constexpr std::string_view kDeclaration = "<?xml version=\"1.0\"?>";
-    const std::string_view text = cdi_text(run);
-    const std::string_view first = text.substr(0, text.find('\n'));
-    if (first.starts_with(kDeclaration))
-        return run.out().pass("first line starts with the XML declaration <?xml version=\"1.0\"?>");
-    const bool declaration =
-        first.starts_with("<?xml") &&
-        (first.size() == 5 || std::string_view(" \t\r?").find(first[5]) != std::string_view::npos);
-    if (declaration) {
-        const std::size_t end = first.find("?>");
-        const std::string_view decl =
-            end == std::string_view::npos ? first : first.substr(0, end + 2);
-        return run.out().warn(
-            "first line is an XML declaration other than <?xml version=\"1.0\"?>: " + clip(decl));
-    }
-    std::string_view line = first;
-    if (line.ends_with('\r')) line.remove_suffix(1);
-    run.out().fail("first line is not the XML declaration <?xml version=\"1.0\"?>",
-                   std::string(kDeclaration), quoted(line));
+    text_rule(run, "cdi.xml-declaration");
 }
 
 void cdi_well_formed(CheckRun& run) {
-    if (!downloaded(run)) return;
-    const cdi::ValidationReport& report = run.validation();
-    run.out().judge(report.schema.well_formed, "well-formed XML", "well-formed", "not well-formed");
+    text_rule(run, "cdi.well-formed");
 }
 
 void cdi_valid(CheckRun& run) {
-    if (!downloaded(run)) return;
-    const cdi::ValidationReport& report = run.validation();
-    std::vector<std::string> errors, warnings;
-    for (const auto& d : report.diagnostics) {
-        const std::string where = d.line ? "line " + std::to_string(d.line) + ": " : "";
-        (d.severity == cdi::Severity::kError ? errors : warnings).push_back(where + d.message);
-    }
-    if (!errors.empty()) {
-        std::vector<std::string> details = errors;
-        details.insert(details.end(), warnings.begin(), warnings.end());
-        return run.out().add(Status::kFail,
-                             std::to_string(errors.size()) + " error(s), " +
-                                 std::to_string(warnings.size()) +
-                                 " warning(s); first: " + errors.front(),
-                             "no error", errors.front(), std::move(details));
-    }
-    if (!warnings.empty())
-        return run.out().warn(
-            std::to_string(warnings.size()) + " warning(s); first: " + warnings.front(), warnings);
-    run.out().pass("valid against the declared schema and the semantic rules");
+    text_rule(run, "cdi.valid");
 }
 
 void cdi_schema_location(CheckRun& run) {
-    if (!downloaded(run)) return;
-    if (!run.ctx().document) return run.out().skip("depends on cdi.well-formed: no document");
-    const std::string& loc = run.ctx().document->schema_location;
-    if (loc.empty()) return run.out().warn("no xsi:noNamespaceSchemaLocation");
-    const bool sane = (loc.starts_with("http://openlcb.org/schema/cdi/") ||
-                       loc.starts_with("https://openlcb.org/schema/cdi/")) &&
-                      loc.ends_with(".xsd");
-    run.out().judge(sane, "schema location names an openlcb.org CDI schema",
-                    "http://openlcb.org/schema/cdi/.../cdi.xsd", clip(loc));
+    text_rule(run, "cdi.schema-location");
 }
 
 void cdi_acdi_spaces(CheckRun& run) {
-    if (!downloaded(run)) return;
-    const CheckContext& ctx = run.ctx();
-    if (!ctx.document || !ctx.document->acdi) return run.out().skip("the CDI has no <acdi/>");
-    const std::string conflict = acdi_conflict(ctx);
-    run.out().judge(conflict.empty(),
-                    "CDI segments leave the ACDI blocks of spaces 252/251 to <acdi/>",
-                    "no variable in 252; 251 variables within 1..127", conflict);
+    text_rule(run, "cdi.acdi-spaces");
 }
 
-// A CDI that lays its own variables over the ACDI blocks (some real devices put configuration
-// in space 252) makes the node disagree with ACDI whatever it does: that is the CDI's fault.
 std::string acdi_conflict(const CheckContext& ctx) {
-    std::string conflict;
-    if (!ctx.layout) return conflict;
-    for (const auto& ext : ctx.layout->extents()) {
-        if (ext.begin == ext.end) continue;
-        if (ext.space == 0xFC || (ext.space == 0xFB && (ext.begin < 1 || ext.end > 128))) {
-            conflict += (conflict.empty() ? "" : ", ") + std::string("space ") +
-                        std::to_string(ext.space) + " bytes " + std::to_string(ext.begin) + ".." +
-                        std::to_string(ext.end - 1);
-        }
-    }
-    return conflict;
+    return ctx.layout ? cdi::acdi_block_conflict(*ctx.layout) : std::string();
 }
 
 }  // namespace olcb::conform::checks

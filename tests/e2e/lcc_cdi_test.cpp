@@ -8,9 +8,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "e2e/conform_util.hpp"
 
 namespace {
 
@@ -129,5 +134,136 @@ TEST(LccCdi, LayoutRefusesBrokenXml) {
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.out.find(bad + ":"), std::string::npos) << r.out;
 }
+
+// The default CDI with its first line replaced by `first` ("": no declaration at all).
+std::string default_with_first_line(const std::string& first) {
+    std::ifstream in(kDefault, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string rest = text.str().substr(text.str().find('\n') + 1);
+    return first.empty() ? rest : first + "\n" + rest;
+}
+
+// The FAIL and WARN findings of `lcc-cdi validate` ("FILE[:LINE]: STATUS ID: message"), by ID.
+std::map<std::string, std::string> validate_findings(const std::string& out) {
+    static const std::regex finding_line(R"(^.*?(?::\d+)?: (FAIL|WARN) (cdi\.[a-z0-9.-]+): )");
+    std::map<std::string, std::string> found;
+    std::istringstream in(out);
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (std::regex_search(line, m, finding_line)) found[m[2]] = m[1];
+    }
+    return found;
+}
+
+TEST(LccCdi, ValidateSaysWhatLccConformsCdiChecksSay) {
+    const std::string none = temp_file("no_declaration.xml", default_with_first_line(""));
+    RunResult r = lcc_cdi("validate " + none);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_EQ(validate_findings(r.out),
+              (std::map<std::string, std::string>{{"cdi.xml-declaration", "FAIL"}}))
+        << r.out;
+    EXPECT_NE(r.out.find(none + ":1: FAIL cdi.xml-declaration: first line is not the XML "
+                                "declaration <?xml version=\"1.0\"?>\n      expected: <?xml "
+                                "version=\"1.0\"?>\n      seen:     \"<cdi "),
+              std::string::npos)
+        << r.out;
+
+    const std::string utf8 =
+        temp_file("utf8_declaration.xml",
+                  default_with_first_line("<?xml version=\"1.0\" encoding=\"utf-8\"?>"));
+    r = lcc_cdi("validate " + utf8);
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(validate_findings(r.out),
+              (std::map<std::string, std::string>{{"cdi.xml-declaration", "WARN"}}))
+        << r.out;
+    EXPECT_NE(r.out.find(utf8 + ": ok\n"), std::string::npos) << r.out;
+}
+
+TEST(LccCdi, EveryScenarioCdiValidatesWithoutAFinding) {
+    int files = 0;
+    for (const auto& e :
+         std::filesystem::directory_iterator(std::string(OLCB_SOURCE_DIR) + "/scenarios")) {
+        if (e.path().extension() != ".xml") continue;
+        ++files;
+        RunResult r = lcc_cdi("validate " + e.path().string());
+        EXPECT_EQ(r.status, 0) << r.out;
+        EXPECT_EQ(r.out, e.path().string() + ": ok\n");
+    }
+    EXPECT_GE(files, 3);
+}
+
+// A <name> holding bytes that are not UTF-8 (0xFF 0xFE): still a layout, as valid JSON.
+std::string cdi_with_invalid_utf8() {
+    std::string text = default_with_first_line("<?xml version=\"1.0\"?>");
+    const std::size_t name = text.find("<name>", text.find("<segment")) + 6;
+    text.insert(name, "\xFF\xFE");
+    return text;
+}
+
+TEST(LccCdi, LayoutJsonReplacesInvalidUtf8AndStaysValid) {
+    const std::string bad = temp_file("invalid_utf8.xml", cdi_with_invalid_utf8());
+    RunResult r = lcc_cdi("layout --json " + bad);
+    EXPECT_EQ(r.status, 0) << r.out;
+    const auto json = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_FALSE(json.is_discarded()) << r.out;
+    ASSERT_EQ(json.at("variables").size(), 28U);
+    EXPECT_NE(json.dump().find("\xEF\xBF\xBD"), std::string::npos) << r.out;  // U+FFFD
+
+    RunResult warned = lcc_cdi("layout --json " + bad, true);
+    EXPECT_NE(warned.out.find(bad + ":"), std::string::npos) << warned.out;
+    EXPECT_NE(warned.out.find("warning: invalid UTF-8 at offset"), std::string::npos) << warned.out;
+    EXPECT_EQ(warned.out.find("exception"), std::string::npos) << warned.out;
+
+    RunResult text = lcc_cdi("layout " + bad);
+    EXPECT_EQ(text.status, 0);
+    EXPECT_EQ(std::count(text.out.begin(), text.out.end(), '\n'), 28) << text.out;
+    EXPECT_EQ(text.out.find('\xFF'), std::string::npos);
+
+    RunResult validated = lcc_cdi("validate " + bad);
+    EXPECT_EQ(validated.status, 1);
+    EXPECT_EQ(validate_findings(validated.out).at("cdi.utf8"), "FAIL") << validated.out;
+}
+
+#if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
+
+// lcc-conform --only 'cdi.*' against simnode serving `cdi`: its FAIL and WARN checks by ID.
+std::map<std::string, std::string> conform_findings(const std::string& cdi, int& code) {
+    olcb::e2e::TempDir dir("lcc-cdi-e2e");
+    const auto ini = dir.path() / "node.ini";
+    std::ofstream(ini) << "node-id = 05.01.01.01.22.00\ncdi = " << cdi << "\n";
+    olcb::e2e::Simnode sim(ini);
+    if (sim.port == 0) {
+        ADD_FAILURE() << "simnode did not start for " << cdi;
+        return {};
+    }
+    std::string out;
+    std::tie(code, out) = olcb::e2e::conform(
+        {"--connect", sim.connect(), "--node", "05.01.01.01.22.00", "--only", "cdi.*"});
+    std::map<std::string, std::string> found;
+    for (const auto& [status, id] : olcb::e2e::check_lines(out))
+        if (status == "FAIL" || status == "WARN") found[id] = status;
+    EXPECT_FALSE(olcb::e2e::check_lines(out).empty()) << out;
+    return found;
+}
+
+TEST(LccCdiAndLccConform, SameIdsAndVerdictsForTheSameText) {
+    const std::vector<std::string> files = {
+        temp_file("same_none.xml", default_with_first_line("")),
+        temp_file("same_utf8.xml",
+                  default_with_first_line("<?xml version=\"1.0\" encoding=\"utf-8\"?>")),
+        temp_file("same_clean.xml", default_with_first_line("<?xml version=\"1.0\"?>")),
+        temp_file("same_invalid_utf8.xml", cdi_with_invalid_utf8())};
+    for (const std::string& file : files) {
+        SCOPED_TRACE(file);
+        const RunResult validated = lcc_cdi("validate " + file);
+        int code = -1;
+        const auto conformed = conform_findings(file, code);
+        EXPECT_EQ(validate_findings(validated.out), conformed) << validated.out;
+        EXPECT_EQ(validated.status, code);
+    }
+}
+
+#endif
 
 }  // namespace

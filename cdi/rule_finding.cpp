@@ -1,0 +1,290 @@
+#include "cdi/rule_finding.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+#include <optional>
+#include <utility>
+
+#include "cdi/string_codec.hpp"
+#include "cdi/validator.hpp"
+
+namespace olcb::cdi {
+namespace {
+
+constexpr std::string_view kBom = "\xEF\xBB\xBF";
+constexpr std::string_view kDeclaration = "<?xml version=\"1.0\"?>";
+/// Longest quote of the text in a finding: a first line can be a whole one-line CDI.
+constexpr std::size_t kMaxQuote = 80;
+/// Bytes shown from the first invalid UTF-8 sequence on.
+constexpr std::size_t kShownBytes = 4;
+
+RuleFinding finding(std::string_view id, RuleStatus status, std::string message,
+                    std::string expected = {}, std::string seen = {}, std::uint32_t line = 0) {
+    RuleFinding f;
+    f.check_id = std::string(id);
+    f.status = status;
+    f.message = std::move(message);
+    f.expected = std::move(expected);
+    f.seen = std::move(seen);
+    f.line = line;
+    return f;
+}
+
+std::string clip(std::string_view text) {
+    if (text.size() <= kMaxQuote) return std::string(text);
+    return std::string(truncate_utf8(text, kMaxQuote)) + "...";
+}
+
+std::string quoted(std::string_view text) {
+    return "\"" + clip(text) + "\"";
+}
+
+std::uint32_t line_at(std::string_view text, std::size_t offset) {
+    return 1 + static_cast<std::uint32_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+}
+
+std::string hex_bytes(std::string_view bytes) {
+    std::string out;
+    for (unsigned char c : bytes) {
+        char buf[4];
+        std::snprintf(buf, sizeof buf, "%s%02X", out.empty() ? "" : " ", c);
+        out += buf;
+    }
+    return out;
+}
+
+// CDI standard §5: "There is no byte-order mark (BOM) at the start of the string."
+RuleFinding no_bom(std::string_view text) {
+    if (!text.starts_with(kBom))
+        return finding("cdi.no-bom", RuleStatus::kPass, "no byte-order mark");
+    return finding("cdi.no-bom", RuleStatus::kFail, "byte-order mark at the start", "no BOM",
+                   "EF BB BF at offset 0", 1);
+}
+
+// CDI standard §5: "The bytes encode UTF-8 characters."
+RuleFinding utf8(std::string_view text) {
+    const std::optional<std::size_t> bad = find_invalid_utf8(text);
+    if (!bad) return finding("cdi.utf8", RuleStatus::kPass, "valid UTF-8");
+    const std::uint32_t line = line_at(text, *bad);
+    return finding(
+        "cdi.utf8", RuleStatus::kFail,
+        "invalid UTF-8 at offset " + std::to_string(*bad) + " (line " + std::to_string(line) + ")",
+        "UTF-8", hex_bytes(text.substr(*bad, kShownBytes)) + " at offset " + std::to_string(*bad),
+        line);
+}
+
+/// The pseudo-attributes of an XML declaration ("version", "encoding", "standalone"), as far as
+/// they read as name="value" or name='value'; a malformed rest is left to cdi.well-formed.
+std::vector<std::pair<std::string_view, std::string_view>> pseudo_attributes(
+    std::string_view decl) {
+    std::vector<std::pair<std::string_view, std::string_view>> out;
+    constexpr std::string_view kSpace = " \t\r\n";
+    std::string_view rest = decl.substr(std::string_view("<?xml").size());
+    for (;;) {
+        rest.remove_prefix(std::min(rest.size(), rest.find_first_not_of(kSpace)));
+        const std::size_t eq = rest.find('=');
+        if (rest.empty() || rest.starts_with("?>") || eq == std::string_view::npos) break;
+        std::string_view name = rest.substr(0, eq);
+        name.remove_suffix(name.size() - std::min(name.size(), name.find_last_not_of(kSpace) + 1));
+        rest.remove_prefix(eq + 1);
+        rest.remove_prefix(std::min(rest.size(), rest.find_first_not_of(kSpace)));
+        if (rest.empty() || (rest.front() != '"' && rest.front() != '\'')) break;
+        const std::size_t close = rest.find(rest.front(), 1);
+        if (close == std::string_view::npos) break;
+        out.emplace_back(name, rest.substr(1, close - 1));
+        rest.remove_prefix(close + 1);
+    }
+    return out;
+}
+
+bool iequals(std::string_view a, std::string_view b) {
+    return std::equal(a.begin(), a.end(), b.begin(), b.end(), [](char x, char y) {
+        return (x >= 'A' && x <= 'Z' ? x + 32 : x) == (y >= 'A' && y <= 'Z' ? y + 32 : y);
+    });
+}
+
+// CDI standard §5: "The first line of the CDI is: <?xml version="1.0"?> to define the XML version
+// of the content." Another version breaks "XML 1.0 format ... No extensions to XML 1.0 are
+// permitted", another encoding "The bytes encode UTF-8 characters": FAIL. A declaration that
+// still says XML 1.0 in UTF-8 (single quotes, encoding="utf-8", standalone) defines what the
+// standard's line defines, only not in its words: WARN. A BOM is cdi.no-bom's finding, so the
+// line is judged after it rather than failed a second time for it.
+RuleFinding xml_declaration(std::string_view text) {
+    static constexpr std::string_view kId = "cdi.xml-declaration";
+    if (text.starts_with(kBom)) text.remove_prefix(kBom.size());
+    std::string_view first = text.substr(0, text.find('\n'));
+    if (first.starts_with(kDeclaration))
+        return finding(kId, RuleStatus::kPass,
+                       "first line starts with the XML declaration <?xml version=\"1.0\"?>");
+    if (first.ends_with('\r')) first.remove_suffix(1);
+    const bool declaration =
+        first.starts_with("<?xml") &&
+        (first.size() == 5 || std::string_view(" \t\r?").find(first[5]) != std::string_view::npos);
+    if (!declaration)
+        return finding(kId, RuleStatus::kFail,
+                       "first line is not the XML declaration <?xml version=\"1.0\"?>",
+                       std::string(kDeclaration), quoted(first), 1);
+    const std::size_t end = first.find("?>");
+    const std::string_view decl = end == std::string_view::npos ? first : first.substr(0, end + 2);
+    std::optional<std::string_view> version, encoding;
+    for (const auto& [name, value] : pseudo_attributes(decl)) {
+        if (name == "version") version = value;
+        if (name == "encoding") encoding = value;
+    }
+    if (version != "1.0")
+        return finding(
+            kId, RuleStatus::kFail,
+            version ? "the XML declaration names XML " + clip(*version) + "; a CDI is XML 1.0"
+                    : "the XML declaration names no XML version; a CDI is XML 1.0",
+            std::string(kDeclaration), quoted(decl), 1);
+    if (encoding && !iequals(*encoding, "UTF-8"))
+        return finding(
+            kId, RuleStatus::kFail,
+            "the XML declaration names encoding " + clip(*encoding) + "; a CDI's bytes are UTF-8",
+            std::string(kDeclaration), quoted(decl), 1);
+    return finding(
+        kId, RuleStatus::kWarn,
+        "first line is an XML declaration other than <?xml version=\"1.0\"?>: " + clip(decl),
+        std::string(kDeclaration), quoted(decl), 1);
+}
+
+// Errors first, then warnings, each in line order: how a finding lists its diagnostics.
+Diagnostics errors_then_warnings(const Diagnostics& all) {
+    Diagnostics out;
+    out.reserve(all.size());
+    for (const Severity severity : {Severity::kError, Severity::kWarning})
+        std::copy_if(all.begin(), all.end(), std::back_inserter(out),
+                     [severity](const Diagnostic& d) { return d.severity == severity; });
+    return out;
+}
+
+// Text that is not XML has no validity to judge: its parse errors are this finding's, and
+// cdi.valid says it depends on it instead of failing a second time for the same cause.
+RuleFinding well_formed(const ValidationReport& report) {
+    static constexpr std::string_view kId = "cdi.well-formed";
+    if (report.schema.well_formed) return finding(kId, RuleStatus::kPass, "well-formed XML");
+    RuleFinding f =
+        finding(kId, RuleStatus::kFail, "not well-formed XML", "well-formed", "not well-formed");
+    f.diagnostics = errors_then_warnings(report.diagnostics);
+    if (!f.diagnostics.empty() && f.diagnostics.front().severity == Severity::kError) {
+        f.seen = clip(located(f.diagnostics.front()));
+        f.line = f.diagnostics.front().line;
+    }
+    return f;
+}
+
+// CDI standard §5: "The CDI content shall pass validation against its referenced schema." The
+// semantic rules and the layout add what no schema can express (docs/validation.md).
+RuleFinding valid(const ValidationReport& report) {
+    static constexpr std::string_view kId = "cdi.valid";
+    if (!report.schema.well_formed)
+        return finding(kId, RuleStatus::kSkip, "depends on cdi.well-formed: the text is not XML");
+    Diagnostics all = errors_then_warnings(report.diagnostics);
+    if (all.empty())
+        return finding(kId, RuleStatus::kPass,
+                       "valid against the declared schema and the semantic rules");
+    const auto errors =
+        static_cast<std::size_t>(std::count_if(all.begin(), all.end(), [](const Diagnostic& d) {
+            return d.severity == Severity::kError;
+        }));
+    const std::size_t warnings = all.size() - errors;
+    const std::string first = located(all.front());
+    RuleFinding f = errors == 0
+                        ? finding(kId, RuleStatus::kWarn,
+                                  std::to_string(warnings) + " warning(s); first: " + first)
+                        : finding(kId, RuleStatus::kFail,
+                                  std::to_string(errors) + " error(s), " +
+                                      std::to_string(warnings) + " warning(s); first: " + first,
+                                  "no error", first);
+    f.line = all.front().line;
+    f.diagnostics = std::move(all);
+    return f;
+}
+
+RuleFinding schema_location(const Document* document) {
+    static constexpr std::string_view kId = "cdi.schema-location";
+    if (!document)
+        return finding(kId, RuleStatus::kSkip, "depends on cdi.well-formed: no document");
+    const std::string& loc = document->schema_location;
+    if (loc.empty()) return finding(kId, RuleStatus::kWarn, "no xsi:noNamespaceSchemaLocation");
+    const bool sane = (loc.starts_with("http://openlcb.org/schema/cdi/") ||
+                       loc.starts_with("https://openlcb.org/schema/cdi/")) &&
+                      loc.ends_with(".xsd");
+    if (sane)
+        return finding(kId, RuleStatus::kPass, "schema location names an openlcb.org CDI schema");
+    return finding(kId, RuleStatus::kFail, "schema location names an openlcb.org CDI schema",
+                   "http://openlcb.org/schema/cdi/.../cdi.xsd", clip(loc));
+}
+
+// A CDI that lays its own variables over the ACDI blocks (some real devices put configuration
+// in space 252) makes the node disagree with ACDI whatever it does: that is the CDI's fault.
+RuleFinding acdi_spaces(const ValidatedCdi& cdi) {
+    static constexpr std::string_view kId = "cdi.acdi-spaces";
+    if (!cdi.document)
+        return finding(kId, RuleStatus::kSkip, "depends on cdi.well-formed: no document");
+    if (!cdi.document->acdi) return finding(kId, RuleStatus::kSkip, "the CDI has no <acdi/>");
+    const std::string conflict = cdi.layout ? acdi_block_conflict(*cdi.layout) : std::string();
+    static constexpr const char* kMessage =
+        "CDI segments leave the ACDI blocks of spaces 252/251 to <acdi/>";
+    if (conflict.empty()) return finding(kId, RuleStatus::kPass, kMessage);
+    return finding(kId, RuleStatus::kFail, kMessage,
+                   "no variable in 252; 251 variables within 1..127", conflict);
+}
+
+}  // namespace
+
+std::string_view rule_status_name(RuleStatus status) {
+    switch (status) {
+        case RuleStatus::kPass:
+            return "PASS";
+        case RuleStatus::kFail:
+            return "FAIL";
+        case RuleStatus::kWarn:
+            return "WARN";
+        case RuleStatus::kSkip:
+            return "SKIP";
+    }
+    return "?";
+}
+
+std::vector<RuleFinding> check_rules(std::string_view text) {
+    while (text.ends_with('\0')) text.remove_suffix(1);
+    const ValidatedCdi cdi = validate_model(text);
+    std::vector<RuleFinding> out;
+    out.reserve(kRuleCheckIds.size());
+    out.push_back(no_bom(text));
+    out.push_back(utf8(text));
+    const bool utf8_failed = out.back().status == RuleStatus::kFail;
+    const std::uint32_t utf8_line = out.back().line;
+    out.push_back(xml_declaration(text));
+    RuleFinding xml = well_formed(cdi.report);
+    if (utf8_failed && xml.status == RuleStatus::kFail && xml.line >= utf8_line) {
+        // libxml2 stops where the text leaves its declared encoding: the cause is cdi.utf8's
+        // (a parse error before that line is a cause of its own and stays a FAIL).
+        xml.status = RuleStatus::kSkip;
+        xml.message = "depends on cdi.utf8: libxml2 refused the text (" + xml.seen + ")";
+        xml.expected.clear();
+        xml.seen.clear();
+    }
+    out.push_back(std::move(xml));
+    out.push_back(valid(cdi.report));
+    out.push_back(schema_location(cdi.document.get()));
+    out.push_back(acdi_spaces(cdi));
+    return out;
+}
+
+std::string acdi_block_conflict(const Layout& layout) {
+    std::string conflict;
+    for (const auto& ext : layout.extents()) {
+        if (ext.begin == ext.end) continue;
+        if (ext.space == 0xFC || (ext.space == 0xFB && (ext.begin < 1 || ext.end > 128))) {
+            conflict += (conflict.empty() ? "" : ", ") + std::string("space ") +
+                        std::to_string(ext.space) + " bytes " + std::to_string(ext.begin) + ".." +
+                        std::to_string(ext.end - 1);
+        }
+    }
+    return conflict;
+}
+
+}  // namespace olcb::cdi
