@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "conformance/memory_map.hpp"
 #include "conformance/run_timing.hpp"
 
 namespace olcb::conform {
@@ -81,6 +82,9 @@ struct NodeReport {
     /// The run could not finish: the node never came back (its backup file is kept) or the
     /// node was gone before anything could be checked; the exit status is then 2.
     bool incomplete = false;
+    /// Every space of the node's CDI layout with each listed variable's verdict (empty when the
+    /// CDI gave no layout).
+    std::vector<MemoryMapSpace> memory_map;
 
     /// Number of checks with this status.
     std::size_t count(Status status) const;

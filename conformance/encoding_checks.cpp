@@ -197,7 +197,8 @@ EncodingPlan plan_encoding(const cdi::Layout& layout, const EncodingOptions& opt
                 c.path(),
                 key,
                 boundary_values(e, options.blob),
-                protection};
+                protection,
+                c.ordinal()};
         if (p.values.empty() && !blob_testable(e, options.blob)) continue;
         if (auto why = selection_reason(options.protection, key); !why.empty()) {
             leave_alone(plan, std::move(key), std::move(why), false);

@@ -15,6 +15,7 @@
 #include "cdi/value.hpp"
 #include "conformance/backup.hpp"
 #include "conformance/check_result.hpp"
+#include "conformance/memory_map.hpp"
 #include "conformance/protection.hpp"
 
 namespace olcb::conform {
@@ -44,6 +45,7 @@ struct Probe {
     /// Why the variable is protected ("" when it is not); probed only with --write-protected
     /// and never given a test value across a Reset/Reboot.
     std::string protection;
+    std::uint64_t ordinal = 0;  ///< Cursor::ordinal(): the variable in the layout's memory map
 };
 
 /// A sampled variable the run does not write, and why.
@@ -104,6 +106,8 @@ struct EncodingOutcome {
     std::vector<InFlight> in_flight;  ///< variables to put back first (node died mid-cycle)
     bool node_died = false;           ///< after_access reported the node gone or restarted
     bool restore_failed = false;      ///< an original did not read back: writing stopped
+    /// Every probe the checks reached, with its verdict and values (the node's memory map).
+    std::vector<TestedVariable> variables;
 };
 
 /// The boundary values the standard allows for a variable (check_value accepts each); empty for

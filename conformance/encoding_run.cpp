@@ -85,6 +85,16 @@ std::string describe_value(const cdi::Element& e, const Value& v) {
     return text;
 }
 
+// What bytes of a variable decode to, for people ("" when they do not decode).
+std::string decoded_text(const cdi::Element& e, std::span<const std::uint8_t> bytes) {
+    auto v = cdi::decode(e, bytes, cdi::CodecMode::kLenient);
+    return v ? describe_value(e, *v) : std::string();
+}
+
+// Bound on the bytes shown per value and on the values kept per variable for the memory map.
+constexpr std::size_t kHexShown = 32;
+constexpr std::size_t kValuesKept = 32;
+
 // (label, bytes) of every test value of a probe, in order.
 std::vector<std::pair<std::string, Bytes>> test_writes(const Probe& p) {
     std::vector<std::pair<std::string, Bytes>> writes;
@@ -126,6 +136,7 @@ public:
         out.in_flight = in_flight_;
         out.node_died = stop_ == Stop::kNodeDied;
         out.restore_failed = stop_ == Stop::kRestoreFailed;
+        out.variables = std::move(variables_);
         return out;
     }
 
@@ -186,41 +197,73 @@ private:
         }
     }
 
-    // Write, read back, compare one test value; false when the node died.
-    bool try_value(const Probe& p, Tally& t, const std::string& label, const Bytes& bytes) {
+    // Write, read back, compare one test value, noted in the variable's verdict; false when the
+    // node died.
+    bool try_value(const Probe& p, Tally& t, const std::string& label, const Bytes& bytes,
+                   VariableVerdict& verdict) {
         ++t.values;
         last_label_ = label;
         last_bytes_ = bytes;
+        TestedValue tried{label, hex_bytes(bytes, kHexShown), "", "", "", false};
+        auto fail = [&](std::string message, std::string want, std::string got) {
+            if (verdict.verdict != MapVerdict::kFailed) verdict.reason = message;
+            verdict.verdict = MapVerdict::kFailed;
+            t.fail(std::move(message), std::move(want), std::move(got));
+        };
         AccessResult w = memory_.write(p.space, p.address, bytes);
         if (!step("writing", p.key, w)) return false;
+        AccessResult r;
         if (!w.ok) {
-            t.fail(p.key + ": write of " + label + " refused (" + code_text(w) + ")",
-                   "write accepted", "error " + code_text(w));
-            return true;
+            tried.error = "write refused (" + code_text(w) + ")";
+            fail(p.key + ": write of " + label + " refused (" + code_text(w) + ")",
+                 "write accepted", "error " + code_text(w));
+        } else {
+            r = memory_.read(p.space, p.address, p.size);
+            if (!step("reading back", p.key, r)) return false;
+            if (!r.ok) {
+                tried.error = "read back failed (" + code_text(r) + ")";
+                fail(
+                    p.key + ": read back after writing " + label + " failed (" + code_text(r) + ")",
+                    hex_bytes(bytes), "error " + code_text(r));
+            } else if (r.data != bytes) {
+                fail(p.key + ": " + label + " reads back as " + hex_bytes(r.data), hex_bytes(bytes),
+                     hex_bytes(r.data));
+            }
         }
-        AccessResult r = memory_.read(p.space, p.address, p.size);
-        if (!step("reading back", p.key, r)) return false;
-        if (!r.ok) {
-            t.fail(p.key + ": read back after writing " + label + " failed (" + code_text(r) + ")",
-                   hex_bytes(bytes), "error " + code_text(r));
-        } else if (r.data != bytes) {
-            t.fail(p.key + ": " + label + " reads back as " + hex_bytes(r.data), hex_bytes(bytes),
-                   hex_bytes(r.data));
+        if (r.ok) {
+            tried.read = hex_bytes(r.data, kHexShown);
+            tried.read_value = r.data.size() == p.size ? decoded_text(*p.element, r.data) : "";
+            tried.ok = r.data == bytes;
         }
+        if (verdict.values.size() < kValuesKept) verdict.values.push_back(std::move(tried));
         return true;
     }
 
     void probe(const Probe& p) {
         if (asked_to_stop()) return;
         Tally& t = tallies_[check_id(p.element->kind)];
+        VariableVerdict& verdict = variables_.emplace_back(TestedVariable{p.ordinal, {}}).verdict;
         auto original = read_original(p.space, p.address, p.size, p.key);
-        if (!original) return;
+        if (!original) {
+            verdict.reason = stop_ == Stop::kNone
+                                 ? "original could not be saved: " + unreadable_.back()
+                                 : not_run_reason();
+            return;
+        }
         ++t.variables;
+        verdict.original_value = decoded_text(*p.element, *original);
+        verdict.original_bytes = hex_bytes(*original, kHexShown);
         if (p.element->kind == ElementKind::kString) check_stored_string(p, *original);
         in_flight_ = {InFlight{p.space, p.address, *original, p.key}};
-        for (const auto& [label, bytes] : test_writes(p)) {
+        const auto writes = test_writes(p);
+        std::size_t tried = 0;
+        for (const auto& [label, bytes] : writes) {
             if (asked_to_stop()) break;
-            if (!try_value(p, t, label, bytes)) return;  // the runner restores in_flight_
+            if (!try_value(p, t, label, bytes, verdict)) {  // the runner restores in_flight_
+                conclude(verdict, tried, writes.size());
+                return;
+            }
+            ++tried;
             if (hooks_.progress) hooks_.progress(++done_, planned_);
         }
         const Stop asked = stop_;
@@ -228,8 +271,27 @@ private:
         if (put_back(in_flight_.front())) {
             in_flight_.clear();
             stop_ = asked;
+        } else if (stop_ == Stop::kRestoreFailed) {
+            // The first wrong value is the cause; the original not reading back its consequence.
+            verdict.reason +=
+                (verdict.verdict == MapVerdict::kFailed ? "; then " : "") + restore_problem_;
+            verdict.verdict = MapVerdict::kFailed;
         }
+        conclude(verdict, tried, writes.size());
         if (stop_ == Stop::kNone) tested_.push_back({&p, *original});
+    }
+
+    // Verified when every value was tried and read back (a failure stays a failure).
+    void conclude(VariableVerdict& verdict, std::size_t tried, std::size_t planned) const {
+        if (verdict.verdict == MapVerdict::kFailed) return;
+        if (tried == planned && stop_ != Stop::kNodeDied) {
+            verdict.verdict = MapVerdict::kVerified;
+            return;
+        }
+        verdict.verdict = MapVerdict::kSkipped;
+        const std::string why = not_run_reason();
+        verdict.reason = "stopped after " + std::to_string(tried) + " of " +
+                         std::to_string(planned) + " values" + (why.empty() ? "" : ": " + why);
     }
 
     void add_stored_result(std::vector<CheckResult>& out) const;
@@ -253,6 +315,7 @@ private:
     std::string last_label_;
     Bytes last_bytes_;
     std::vector<std::pair<const Probe*, Bytes>> tested_;  // probes cycled, with their originals
+    std::vector<TestedVariable> variables_;               // each probe reached, with its verdict
 };
 
 std::string EncodingRun::not_run_reason() const {

@@ -65,6 +65,7 @@ NodeReport NodeRun::run() {
             timed("unlock", &NodeRun::release_lock);
         }
     }
+    timed("memory map", &NodeRun::map_memory);
     timed("findings", &NodeRun::findings);
     select_results();
     report_.elapsed = wall() - began;
@@ -145,6 +146,7 @@ void NodeRun::protocol() {
 void NodeRun::skip_writes(const std::string& reason, const std::string& summary) {
     for (auto& c : skipped_encoding_checks(reason)) report_.checks.push_back(c);
     report_.restore_summary = summary;
+    evidence_.not_written = reason;
 }
 
 bool NodeRun::writes_allowed() {
@@ -209,6 +211,7 @@ void NodeRun::plan() {
         return p.space == 0xFF || p.space == 0xFC || (p.space == 0xFB && p.address == 0);
     });
     read_only_skipped_ = planned - plan_.probes.size();
+    for (const Probe& p : plan_.probes) evidence_.planned.push_back(p.ordinal);
 }
 
 bool NodeRun::capture_backup() {
@@ -266,6 +269,9 @@ bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
             {"encoding.unreadable", Category::kEncoding, Status::kSkip,
              unreadable->key + ": " + why + "; not tested (its original could not be saved)",
              "lcc-conform safety rule", "", ""});
+        VariableVerdict unsaved;
+        unsaved.reason = "original could not be saved: " + why;
+        evidence_.tested.push_back({unreadable->ordinal, std::move(unsaved)});
         plan_.probes.erase(unreadable);
     }
     return saved;
@@ -361,6 +367,7 @@ void NodeRun::encode() {
         report_.checks.push_back(std::move(c));
     }
     for (auto& c : out.results) report_.checks.push_back(std::move(c));
+    for (auto& v : out.variables) evidence_.tested.push_back(std::move(v));
     if (read_only_skipped_ != 0) {
         report_.checks.push_back(CheckResult{
             "encoding.read-only-spaces", Category::kEncoding, Status::kSkip,
@@ -441,6 +448,7 @@ void NodeRun::wait_for_link() {
 void NodeRun::restore_and_verify() {
     if (report_.incomplete) return;  // the backup is kept for the user
     if (link_lost()) {
+        evidence_.not_judged = "not judged: the link went down mid-run";
         // What ran after the loss measured the link, not the node.
         for (CheckResult& c : report_.checks) {
             if (c.category == Category::kEncoding || c.id == "snip.follows-acdi-user-write") {
@@ -474,6 +482,16 @@ void NodeRun::restore_and_verify() {
                             " " + path;
     }
     report_.checks.push_back(std::move(restored));
+}
+
+void NodeRun::map_memory() {
+    // Whatever the run did, the map shows the layout; its verdicts say how far the run got.
+    if (!ctx_.layout) return;
+    evidence_.sample = options_.sample;
+    evidence_.blob = options_.blob;
+    evidence_.max_variables = eo_.max_variables;
+    evidence_.protection = options_.protection;
+    report_.memory_map = node_memory_map(*ctx_.layout, evidence_);
 }
 
 void NodeRun::note_slow_node() {

@@ -13,6 +13,7 @@
 #include "conformance/backup.hpp"
 #include "conformance/check_context.hpp"
 #include "conformance/encoding_checks.hpp"
+#include "conformance/memory_map.hpp"
 #include "conformance/node_watch.hpp"
 #include "conformance/report.hpp"
 #include "conformance/runner.hpp"
@@ -53,6 +54,7 @@ private:
     void findings();
     void select_results();
     void note_slow_node();
+    void map_memory();
 
     void skip_writes(const std::string& reason, const std::string& summary);
     EncodingHooks hooks();
@@ -80,6 +82,7 @@ private:
     bool locked_ = false;
     std::optional<NodeIncident> incident_;
     std::vector<InFlight> in_flight_;
+    MapEvidence evidence_;  // what the memory map's verdicts rest on
 };
 
 }  // namespace olcb::conform

@@ -13,8 +13,10 @@
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/render.hpp"
+#include "cdi/render_html.hpp"
 #include "cdi/rule_finding.hpp"
 #include "cdi/string_codec.hpp"
+#include "cdi/validator.hpp"
 
 namespace olcb::cdi::tool {
 
@@ -258,13 +260,20 @@ int run_layout(const std::vector<std::string>& args) {
 
 int run_render(const std::vector<std::string>& args) {
     po::options_description options("lcc-cdi render options");
+    options.add_options()("html",
+                          "print one self-contained HTML page instead: segments as tabs, groups, "
+                          "replications, hints, and each space's memory map");
     po::variables_map vm;
-    if (parse_args(args, options, "lcc-cdi render FILE", vm)) return kExitOk;
+    if (parse_args(args, options, "lcc-cdi render [--html] FILE", vm)) return kExitOk;
     const auto files = files_of(vm);
     if (files.size() != 1) throw po::error("render takes exactly one FILE");
     auto loaded = load(files.front());
     if (!loaded) return kExitErrors;
-    render(loaded->layout, std::cout);
+    if (vm.count("html") != 0) {
+        std::cout << render_html(loaded->layout, files.front());
+    } else {
+        render(loaded->layout, std::cout);
+    }
     return kExitOk;
 }
 

@@ -18,7 +18,7 @@ constexpr int kExitUsage = 2;
 int run_validate(const std::vector<std::string>& args);
 /// `lcc-cdi layout FILE [--json]`.
 int run_layout(const std::vector<std::string>& args);
-/// `lcc-cdi render FILE`.
+/// `lcc-cdi render [--html] FILE`.
 int run_render(const std::vector<std::string>& args);
 
 /// The whole content of a file, or nullopt with `error` set.

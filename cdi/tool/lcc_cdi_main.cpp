@@ -20,6 +20,7 @@ constexpr const char* kUsage =
     "  validate FILE...      check each CDI against its schema and the standard's rules\n"
     "  layout FILE [--json]  list every variable with its space, address and size\n"
     "  render FILE           print the CDI as an indented, human-readable tree\n"
+    "  render --html FILE    print it as one HTML page, as a configuration tool shows it\n"
     "\n"
     "Run 'lcc-cdi COMMAND --help' for the options of a command.\n";
 

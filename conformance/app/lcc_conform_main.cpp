@@ -15,6 +15,7 @@
 #include "conformance/link.hpp"
 #include "conformance/protocol_checks.hpp"
 #include "conformance/report.hpp"
+#include "conformance/report_html.hpp"
 #include "conformance/runner.hpp"
 #include "conformance/session.hpp"
 #include "memory/snip.hpp"
@@ -142,6 +143,8 @@ po::options_description check_options() {
         "safety backup file (default ./lcc-conform-backup-<node>.txt)")(
         "json", po::value<std::string>(), "write the JSON report to FILE (on every exit)")(
         "junit", po::value<std::string>(), "write the JUnit XML report to FILE (on every exit)")(
+        "html", po::value<std::string>(),
+        "write one self-contained HTML page to FILE: checks, memory map (on every exit)")(
         "no-color", "no colour even on a terminal")(
         "csv", "backup: write CSV rows (key,value,type,space,address,size)")(
         "dry-run", "restore: print what would change (key, node value, file value), write nothing")(
@@ -180,6 +183,7 @@ public:
         : started_(std::chrono::system_clock::now()), began_(std::chrono::steady_clock::now()) {
         if (vm.count("json")) json_ = vm["json"].as<std::string>();
         if (vm.count("junit")) junit_ = vm["junit"].as<std::string>();
+        if (vm.count("html")) html_ = vm["html"].as<std::string>();
         arguments_.assign(argv, argv + argc);
         for (const char* key : {"connect", "serial", "socketcan"}) {
             if (vm.count(key)) connection_ = std::string(key) + " " + vm[key].as<std::string>();
@@ -188,7 +192,7 @@ public:
     // Before anything is written to a node: a report path that cannot be written is a usage
     // error now, not a lost report later.
     bool writable(std::string& error) const {
-        for (const std::string& p : {json_, junit_}) {
+        for (const std::string& p : {json_, junit_, html_}) {
             if (!p.empty() && !write_file(p, "", error)) return false;
         }
         return true;
@@ -208,6 +212,10 @@ public:
             std::cerr << "lcc-conform: " << error << "\n";
             return kUsage;
         }
+        if (!html_.empty() && !write_file(html_, to_html(reports, run), error)) {
+            std::cerr << "lcc-conform: " << error << "\n";
+            return kUsage;
+        }
         return code;
     }
     int fail(const std::string& why) const {
@@ -218,7 +226,7 @@ public:
     }
 
 private:
-    std::string json_, junit_;
+    std::string json_, junit_, html_;
     std::vector<std::string> arguments_;
     std::string connection_;
     std::chrono::system_clock::time_point started_;

@@ -1,0 +1,25 @@
+// The HTML report of a conformance run (lcc-conform --html FILE): one self-contained page with
+// the run summary, every node's checks (filterable by status) and its memory map with each
+// variable's verdict. The page is cdi/html_page.hpp's, shared with lcc-cdi render --html.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "conformance/check_result.hpp"
+#include "conformance/report.hpp"
+
+namespace olcb::conform {
+
+/// The data cdi/html/conform.js renders: {"tool": {"name", "version"}, "run": {"started",
+/// "elapsed_ms", "connection", "arguments", "error", "late_nodes"}, "summary", "nodes": [{"id",
+/// "name", "identity", "started", "elapsed_ms", "restore", "incomplete", "summary", "checks",
+/// "memory_map"}]}.
+nlohmann::json html_report_json(const std::vector<NodeReport>& reports, const RunInfo& run);
+
+/// The whole page.
+std::string to_html(const std::vector<NodeReport>& reports, const RunInfo& run = {});
+
+}  // namespace olcb::conform
