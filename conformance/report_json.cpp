@@ -3,6 +3,7 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
+#include "conformance/memory_map.hpp"
 #include "conformance/report.hpp"
 #include "olcb_version.hpp"
 
@@ -51,6 +52,14 @@ nlohmann::ordered_json timing_json(const RunTiming& t) {
     return timing;
 }
 
+// The map is built as nlohmann::json (cdi/ and memory_map own its shape); the report keeps its
+// fields in order, so it is carried over as text, CDI paths' invalid UTF-8 replaced on the way.
+nlohmann::ordered_json map_json(const std::vector<MemoryMapSpace>& map) {
+    const std::string text =
+        memory_map_json(map).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    return nlohmann::ordered_json::parse(text);
+}
+
 nlohmann::ordered_json node_json(const NodeReport& report) {
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
     for (const CheckResult& c : report.checks) checks.push_back(check_json(c));
@@ -70,7 +79,8 @@ nlohmann::ordered_json node_json(const NodeReport& report) {
             {"timing", timing_json(report.timing)},
             {"checks", std::move(checks)},
             {"summary", summary_json(summarize({report}))},
-            {"restore", report.restore_summary}};
+            {"restore", report.restore_summary},
+            {"memory_map", map_json(report.memory_map)}};
 }
 
 // Node names and messages carry the node's own bytes, which may not be UTF-8: they are written

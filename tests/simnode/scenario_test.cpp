@@ -76,8 +76,8 @@ TEST(ScenarioTest, AuditFilesFromFileRelativeToItAndFromTheCommandLine) {
     auto s = parse(std::string(kOneNode) + "audit = out/audit.json\naudit-junit = audit.xml\n", {},
                    error);
     ASSERT_TRUE(s) << error;
-    EXPECT_EQ(s->audit, kScenarios / "out/audit.json");
-    EXPECT_EQ(s->audit_junit, kScenarios / "audit.xml");
+    EXPECT_EQ(s->audit, scenarios_dir() / "out/audit.json");
+    EXPECT_EQ(s->audit_junit, scenarios_dir() / "audit.xml");
     s = parse(kOneNode, {"--audit", "/tmp/a.json"}, error);
     ASSERT_TRUE(s) << error;
     EXPECT_EQ(s->audit, fs::path("/tmp/a.json"));
