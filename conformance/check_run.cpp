@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "cdi/parser.hpp"
+#include "conformance/report.hpp"
 #include "memory/acdi.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/can_defs.hpp"
@@ -63,14 +64,11 @@ std::string hex(unsigned value, int width) {
 }
 
 std::string clip(std::string_view text) {
-    if (text.size() <= kMaxQuote) return std::string(text);
-    std::size_t n = kMaxQuote;
-    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
-    return std::string(text.substr(0, n)) + "...";
+    return show_node_text(text, false, kMaxQuote);
 }
 
 std::string quoted(std::string_view text) {
-    return "\"" + clip(text) + "\"";
+    return show_node_text(text, true, kMaxQuote);
 }
 
 std::string describe(const MemResult& r) {

@@ -61,7 +61,8 @@ struct Refusal {
 
 /// "0x1082" (width hex digits).
 std::string hex(unsigned value, int width = 4);
-/// At most 80 bytes of node-supplied text, cut on a UTF-8 boundary.
+/// At most 80 bytes of node-supplied text, cut on a UTF-8 boundary, made printable, with the raw
+/// bytes in hex after it when it is not clean UTF-8 (show_node_text()).
 std::string clip(std::string_view text);
 /// clip() in double quotes.
 std::string quoted(std::string_view text);

@@ -387,7 +387,8 @@ void NodeRun::after_incident() {
     if (!incident_) return;
     const CheckResult failed = incident_result(*incident_);
     report_.checks.push_back(failed);
-    progress_ << "lcc-conform: " << failed.message << "; waiting up to "
+    // The message names the node's own variable names: untrusted bytes.
+    progress_ << "lcc-conform: " << printable(failed.message) << "; waiting up to "
               << options_.node_wait.count() << " s for it to come back" << std::endl;
     if (!watch_.wait_for_return(options_.node_wait)) {
         keep_backup("the node did not come back within " +

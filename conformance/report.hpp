@@ -13,8 +13,15 @@
 
 namespace olcb::conform {
 
-/// Node text made safe for terminals and XML: control bytes become '?'.
+/// Node text made safe for terminals, JSON and XML: every byte that is not part of valid UTF-8
+/// becomes U+FFFD, control characters (C0, DEL, C1) become '?', and the non-characters U+FFFE
+/// and U+FFFF (not allowed in XML) become U+FFFD.
 std::string printable(std::string_view text);
+
+/// Node-supplied bytes for a message: at most max_bytes of them (cut on a UTF-8 boundary, "..."
+/// marking the cut), printable(), in double quotes when quote is set, then " (bytes 62 61 FF)"
+/// with the raw bytes in hex whenever printable() had to change any of them.
+std::string show_node_text(std::string_view text, bool quote = true, std::size_t max_bytes = 80);
 
 /// Totals over every node of a run.
 struct Summary {
@@ -31,7 +38,7 @@ struct RunInfo {
     std::string error;                    ///< why the run ended early ("" when it did not)
     std::vector<std::string> late_nodes;  ///< nodes that appeared during the run, not checked
     std::string connection;  ///< how the run reached the bus, e.g. "tcp 127.0.0.1:12021"
-    std::vector<std::string> arguments;                  ///< the command line, program first
+    std::vector<std::string> arguments;               ///< the command line, program first
     std::chrono::system_clock::time_point started{};  ///< when the run began
     std::chrono::steady_clock::duration elapsed{};    ///< how long it ran
 };

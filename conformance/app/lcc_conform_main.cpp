@@ -235,10 +235,14 @@ std::vector<NodeInfo> find_nodes(Session& session, const po::variables_map& vm,
 void print_node_line(Session& session, const NodeInfo& n) {
     std::cout << n.id.to_string();
     if (auto p = session.snip_payload(n)) {
-        memory::Snip s = memory::decode_snip(*p);
-        std::cout << "  " << s.manufacturer << " | " << s.model << " | " << s.hardware_version
-                  << " | " << s.software_version << " | " << s.user_name << " | "
-                  << s.user_description;
+        // The node's own bytes: never raw to a terminal.
+        const memory::Snip s = memory::decode_snip(*p);
+        const auto shown = [](const std::string& text) {
+            return show_node_text(text, false, text.size());
+        };
+        std::cout << "  " << shown(s.manufacturer) << " | " << shown(s.model) << " | "
+                  << shown(s.hardware_version) << " | " << shown(s.software_version) << " | "
+                  << shown(s.user_name) << " | " << shown(s.user_description);
     }
     std::cout << "\n";
 }

@@ -126,7 +126,8 @@ INSTANTIATE_TEST_SUITE_P(Faults, FaultTest,
                                            FaultCase{"alias-conflict-ignored", Category::kFrame},
                                            FaultCase{"unsolicited-traffic", Category::kMessage},
                                            FaultCase{"unknown-space-0x1041", Category::kMemory},
-                                           FaultCase{"readonly-0x1041", Category::kMemory}),
+                                           FaultCase{"readonly-0x1041", Category::kMemory},
+                                           FaultCase{"snip-invalid-utf8", Category::kSnip}),
                          [](const auto& info) {
                              std::string n = info.param.fault;
                              for (char& c : n)
