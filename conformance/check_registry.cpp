@@ -47,7 +47,9 @@ constexpr CheckSpec kEarlyChecks[] = {
      "`20 84 FF`: present (0x87) and read-only", k::cdi_space_info},
     {"cdi.read", C::kCdi, "MemoryConfigurationS §4.4", "cd20",
      "reads of up to 64 bytes of 0xFF, each going on where the previous reply's data ended, up "
-     "to Space Info's highest address, a NUL or 0x1082: data returned",
+     "to Space Info's highest address, a NUL or 0x1082 (at the highest address without a NUL it "
+     "reads on: a CDI cut short by a too-small highest address is judged whole, the address by "
+     "cdi.nul-at-highest): data returned",
      k::cdi_read},
     {"datagram.ok-before-reply", C::kDatagram, "DatagramTransportS §6.2", "",
      "(every CDI read) Datagram Received OK arrives before each read reply",
@@ -121,9 +123,11 @@ constexpr CheckSpec kEarlyChecks[] = {
      "the same read in the short form (0xFD-0xFF): Read Reply OK", k::memory_read_short_form},
     {"memory.reply-form", C::kMemory, "MemoryConfigurationS §4.4", "mc30",
      "(those reads and the CDI reads) every reply uses the request's form", k::memory_reply_form},
-    {"memory.read-short-at-end", C::kMemory, "MemoryConfigurationS §4.4", "",
-     "read 8 at highest-3 of 0xFF: OK with 4 bytes", k::memory_read_short_at_end},
-    {"memory.unknown-space", C::kMemory, "MemoryConfigurationS §4.4", "",
+    {"memory.read-short-at-end", C::kMemory, "MemoryConfigurationS §4.5", "",
+     "read 8 at highest-3 of 0xFF: OK with 4 bytes (SKIP \"depends on\" the check that found "
+     "the highest address too small)",
+     k::memory_read_short_at_end},
+    {"memory.unknown-space", C::kMemory, "MemoryConfigurationS §4.3", "",
      "read of an unused space (0x50 up): rejected or failed with exactly 0x1081",
      k::memory_unknown_space},
 };

@@ -9,6 +9,7 @@
 #include "cdi/string_codec.hpp"
 #include "cdi/value_codec.hpp"
 #include "conformance/encoding_checks.hpp"
+#include "conformance/report.hpp"
 #include "memory/acdi.hpp"
 
 namespace olcb::conform {
@@ -168,8 +169,12 @@ private:
             memory_.read(f.space, f.address, static_cast<std::uint32_t>(f.original.size()));
         if (!step("reading back the original of", f.key, r)) return false;
         if (w.ok && r.ok && r.data == f.original) return true;
-        restore_problem_ = f.key + ": original " + hex_bytes(f.original) + " did not read back (" +
-                           (r.ok ? hex_bytes(r.data) : code_text(r)) + ")";
+        restore_seen_ = !w.ok  ? "write refused (" + code_text(w) + ")"
+                        : r.ok ? hex_bytes(r.data)
+                               : "read failed (" + code_text(r) + ")";
+        restore_expected_ = hex_bytes(f.original);
+        restore_problem_ = f.key + ": original " + restore_expected_ + " did not read back (" +
+                           restore_seen_ + ")";
         stop_ = Stop::kRestoreFailed;
         return false;
     }
@@ -249,7 +254,7 @@ private:
     std::size_t planned_ = 0, done_ = 0;
     Stop stop_ = Stop::kNone;
     std::vector<InFlight> in_flight_;
-    std::string restore_problem_;
+    std::string restore_problem_, restore_expected_, restore_seen_;
     std::string last_label_;
     Bytes last_bytes_;
     std::vector<std::pair<const Probe*, Bytes>> tested_;  // probes cycled, with their originals
@@ -295,8 +300,8 @@ void EncodingRun::add_problem_results(std::vector<CheckResult>& out) const {
     }
     if (!restore_problem_.empty()) {
         out.push_back({"encoding.original-restored", Category::kEncoding, Status::kFail,
-                       restore_problem_ + "; no further variable was written",
-                       "lcc-conform safety rule", "the original bytes", "other bytes"});
+                       restore_problem_ + "; no further variable was written", "",
+                       restore_expected_, restore_seen_});
     }
 }
 
@@ -368,13 +373,15 @@ CheckResult EncodingRun::snip_follows() {
     if (!w.ok) {
         c.status = Status::kFail;
         c.message = "write of the user name to space 251 refused (" + code_text(w) + ")";
+        c.expected = "the write accepted";
+        c.seen = "refused with " + code_text(w);
     } else {
         // The variable's own read-back: SNIP reports the user name from space 251.
         auto name = hooks_.snip_user_name();
         const AccessResult unanswered{false, 0x2010, {}};
         if (!name && !step("asking SNIP for", key, unanswered)) return c;
-        c.expected = kSnipTestName;
-        c.seen = name ? *name : "no SNIP reply";
+        c.expected = show_node_text(kSnipTestName);
+        c.seen = name ? show_node_text(*name, true, name->size()) : "no SNIP reply";
         c.status = name && *name == kSnipTestName ? Status::kPass : Status::kFail;
         c.message = c.status == Status::kPass ? "SNIP user name follows a write to space 251"
                     : name                    ? "SNIP user name does not follow space 251"
@@ -435,6 +442,8 @@ CheckResult EncodingRun::persistence() {
     } else if (!rb.back) {
         c.status = Status::kFail;
         c.message = "no Initialization Complete after Reset/Reboot";
+        c.expected = "Initialization Complete after 20 A9";
+        c.seen = "none while lcc-conform waited";
     } else {
         Tally t;
         for (const auto& [p, bytes] : set) {

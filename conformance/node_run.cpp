@@ -409,7 +409,7 @@ void NodeRun::keep_backup(const std::string& why) {
         {"encoding.restore", Category::kEncoding, Status::kFail,
          "not restored: " + why + "; backup kept in " + path +
              "; when the node is reachable again run: " + options_.restore_command + " " + path,
-         "lcc-conform safety rule", "", ""});
+         "", "every saved byte written back and read again", "not restored: " + why});
 }
 
 bool NodeRun::link_lost() const {
@@ -469,6 +469,8 @@ void NodeRun::restore_and_verify() {
     if (outcome.identical) {
         backup_->remove_file();
     } else {
+        restored.expected = "memory byte-identical to before the run";
+        restored.seen = outcome.summary();
         const std::string path = std::filesystem::absolute(backup_->path()).string();
         restored.message += "; backup kept in " + path +
                             "; when the node is reachable again run: " + options_.restore_command +
@@ -503,8 +505,9 @@ void NodeRun::findings() {
     std::string message = "the link went down during the run";
     if (!link.loss_reason().empty()) message += ": " + link.loss_reason();
     message += link.up() ? " (it came back)" : " (still down)";
-    report_.checks.push_back(
-        CheckResult{"link.lost", Category::kLink, Status::kFail, message, "", "", ""});
+    report_.checks.push_back(CheckResult{
+        "link.lost", Category::kLink, Status::kFail, message, "", "the link up for the whole run",
+        link.loss_reason().empty() ? "the link went down" : link.loss_reason()});
 }
 
 }  // namespace olcb::conform

@@ -582,7 +582,7 @@ struct FollowRun {
         out.push_back({"encoding.original-restored", Category::kEncoding, Status::kFail,
                        v.key + ": original " + event_text(*v.value) +
                            " did not read back after events.follow-write (reads " + seen + ")",
-                       "lcc-conform safety rule", "the original bytes", seen});
+                       "", event_text(*v.value), seen});
     }
     void run(const EventVar& v, const EventAnswers& a, std::uint64_t id);
 };
