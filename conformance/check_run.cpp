@@ -157,9 +157,10 @@ void CheckRun::run(const CheckSpec& spec) {
 }
 
 void CheckRun::add(CheckResult result) {
+    // The registry is the one source of categories and citations.
     if (const CheckSpec* spec = find_check(result.id)) {
         result.category = spec->category;
-        if (result.section.empty()) result.section = std::string(spec->section);
+        result.section = std::string(spec->section);
     }
     out_.push_back(std::move(result));
 }

@@ -49,14 +49,6 @@ std::string check_id(ElementKind kind) {
     }
 }
 
-std::string section_of(const std::string& id) {
-    if (id == "encoding.int") return "CDI S 5.1.4.2";
-    if (id == "encoding.string") return "CDI S 5.1.4.3";
-    if (id == "encoding.eventid") return "CDI S 5.1.4.4";
-    if (id == "encoding.float") return "CDI S 5.1.4.5";
-    return "CDI S 5.1.4.7";
-}
-
 std::string code_text(const AccessResult& r) {
     if (r.error == 0) return r.ok ? "no data" : "no error code";
     char buf[16];
@@ -275,8 +267,7 @@ std::string EncodingRun::not_run_reason() const {
 }
 
 void EncodingRun::add_stored_result(std::vector<CheckResult>& out) const {
-    CheckResult c{
-        "encoding.stored-strings", Category::kEncoding, Status::kPass, "", "CDI S 5.1.4.3", "", ""};
+    CheckResult c{"encoding.stored-strings", Category::kEncoding, Status::kPass, "", "", "", ""};
     if (stored_.values == 0) {
         c.status = Status::kSkip;
         c.message = "no string variable read";
@@ -295,8 +286,7 @@ void EncodingRun::add_stored_result(std::vector<CheckResult>& out) const {
 void EncodingRun::add_problem_results(std::vector<CheckResult>& out) const {
     for (const std::string& u : unreadable_) {
         out.push_back({"encoding.unreadable", Category::kEncoding, Status::kSkip,
-                       u + "; not tested (its original could not be saved)",
-                       "lcc-conform safety rule", "", ""});
+                       u + "; not tested (its original could not be saved)", "", "", ""});
     }
     if (!restore_problem_.empty()) {
         out.push_back({"encoding.original-restored", Category::kEncoding, Status::kFail,
@@ -307,7 +297,7 @@ void EncodingRun::add_problem_results(std::vector<CheckResult>& out) const {
 
 void EncodingRun::add_tally_results(std::vector<CheckResult>& out) const {
     for (const auto& [id, t] : tallies_) {
-        CheckResult c{id, Category::kEncoding, Status::kPass, "", section_of(id), "", ""};
+        CheckResult c{id, Category::kEncoding, Status::kPass, "", "", "", ""};
         const std::string cut = not_run_reason();
         if (t.failures) {
             c.status = Status::kFail;
@@ -337,13 +327,7 @@ bool EncodingRun::put_back_all() {
 }
 
 CheckResult EncodingRun::snip_follows() {
-    CheckResult c{"snip.follows-acdi-user-write",
-                  Category::kSnip,
-                  Status::kSkip,
-                  "",
-                  "SNIP S 5.1 / CDI S 5.1.2 (ACDI)",
-                  "",
-                  ""};
+    CheckResult c{"snip.follows-acdi-user-write", Category::kSnip, Status::kSkip, "", "", "", ""};
     if (!options_.acdi_user) {
         c.message = options_.acdi_user_skipped.empty() ? "node has no ACDI user space (251)"
                                                        : options_.acdi_user_skipped;
@@ -393,13 +377,8 @@ CheckResult EncodingRun::snip_follows() {
 }
 
 CheckResult EncodingRun::persistence() {
-    CheckResult c{"encoding.persist-after-reboot",
-                  Category::kEncoding,
-                  Status::kSkip,
-                  "",
-                  "MemoryConfigurationS 4.23 (Reset/Reboot)",
-                  "",
-                  ""};
+    CheckResult c{
+        "encoding.persist-after-reboot", Category::kEncoding, Status::kSkip, "", "", "", ""};
     if (!options_.reboot) {
         c.message = "not asked (--reboot)";
         return c;

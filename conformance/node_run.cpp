@@ -101,8 +101,14 @@ bool NodeRun::timed(std::string_view /*name*/, const std::function<bool()>& step
 
 void NodeRun::select_results() {
     // One result per ID (per-variable SKIPs and the like become one, with details), and only
-    // what --only / --skip asked for.
+    // what --only / --skip asked for; the registry is the one source of every citation.
     merge_duplicate_ids(report_.checks);
+    for (CheckResult& c : report_.checks) {
+        if (const CheckSpec* spec = find_check(c.id)) {
+            c.category = spec->category;
+            c.section = std::string(spec->section);
+        }
+    }
     std::erase_if(report_.checks,
                   [&](const CheckResult& c) { return !options_.selection.wants_id(c.id); });
 }
@@ -264,8 +270,8 @@ bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
         if (unreadable == plan_.probes.end()) continue;
         report_.checks.push_back(
             {"encoding.unreadable", Category::kEncoding, Status::kSkip,
-             unreadable->key + ": " + why + "; not tested (its original could not be saved)",
-             "lcc-conform safety rule", "", ""});
+             unreadable->key + ": " + why + "; not tested (its original could not be saved)", "",
+             "", ""});
         plan_.probes.erase(unreadable);
     }
     return saved;
@@ -300,8 +306,8 @@ bool NodeRun::take_lock() {
     }
     report_.checks.push_back(
         {"encoding.lock", Category::kEncoding, Status::kWarn,
-         "Lock/Reserve " + how + ": a second tool writing at the same time cannot be excluded",
-         "MemoryConfigurationS 4.15", "", ""});
+         "Lock/Reserve " + how + ": a second tool writing at the same time cannot be excluded", "",
+         "", ""});
     return true;
 }
 
@@ -347,7 +353,7 @@ RebootOutcome NodeRun::reboot() {
     }
     watch_.rebase();
     if (locked_) {
-        // A reset clears the lock (MemoryConfigurationS 4.15): take it again.
+        // A reset clears the lock (MemoryConfigurationS §4.17): take it again.
         session_.command(node_, memory::encode(memory::Lock{session_.tool_id().value()}));
     }
     return {true, 0, false};
@@ -367,7 +373,7 @@ void NodeRun::encode() {
             std::to_string(read_only_skipped_) +
                 " variables in the read-only spaces 252/255 or on the ACDI version byte (251 @0) "
                 "not written (see cdi.acdi-spaces)",
-            "MemoryConfigurationS 4.2", "", ""});
+            "", "", ""});
     }
     in_flight_ = std::move(out.in_flight);
 }
@@ -463,7 +469,7 @@ void NodeRun::restore_and_verify() {
                          Category::kEncoding,
                          outcome.identical ? Status::kPass : Status::kFail,
                          outcome.summary(),
-                         "lcc-conform safety rule",
+                         "",
                          "",
                          ""};
     if (outcome.identical) {
