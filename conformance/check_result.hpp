@@ -69,8 +69,8 @@ struct NodeIdentity {
 
 /// Every check run against one node, in the order they ran.
 struct NodeReport {
-    std::string node_id;  ///< dotted hex, e.g. "05.01.01.01.22.00"
-    std::string name;     ///< SNIP manufacturer + model + user name, for humans
+    std::string node_id;    ///< dotted hex, e.g. "05.01.01.01.22.00"
+    std::string name;       ///< SNIP manufacturer + model + user name, for humans
     NodeIdentity identity;  ///< the SNIP strings ("" each when SNIP did not answer)
     std::chrono::system_clock::time_point started{};  ///< when the node's run began
     Duration elapsed{};                               ///< how long the node's run took
@@ -81,6 +81,9 @@ struct NodeReport {
     /// The run could not finish: the node never came back (its backup file is kept) or the
     /// node was gone before anything could be checked; the exit status is then 2.
     bool incomplete = false;
+    /// What the run's options left untested, each with the option that tests it, e.g.
+    /// "persistence not tested (values surviving Reset/Reboot): add --reboot".
+    std::vector<std::string> not_tested;
 
     /// Number of checks with this status.
     std::size_t count(Status status) const;

@@ -104,6 +104,19 @@ public:
         if (options.blob) tallies_["encoding.blob"];
     }
 
+    // Only reads: the original of every string probe judged, nothing written.
+    CheckResult stored_strings(const std::vector<Probe>& probes) {
+        for (const Probe& p : probes) {
+            if (p.element->kind != ElementKind::kString || asked_to_stop()) continue;
+            auto original = read_original(p.space, p.address, p.size, p.key);
+            if (stop_ != Stop::kNone) break;  // the node died: the runner reports it
+            if (original) check_stored_string(p, *original);
+        }
+        std::vector<CheckResult> out;
+        add_stored_result(out);
+        return std::move(out.front());
+    }
+
     EncodingOutcome run(const std::vector<Probe>& probes) {
         for (const Probe& p : probes) planned_ += p.values.empty() ? 2 : p.values.size();
         for (const Probe& p : probes) {
@@ -451,6 +464,12 @@ CheckResult EncodingRun::persistence() {
 EncodingOutcome run_encoding_checks(const std::vector<Probe>& probes, MemoryAccess& memory,
                                     const EncodingOptions& options, const EncodingHooks& hooks) {
     return EncodingRun(memory, options, hooks).run(probes);
+}
+
+CheckResult check_stored_strings(const std::vector<Probe>& probes, MemoryAccess& memory,
+                                 const EncodingHooks& hooks) {
+    const EncodingOptions options;
+    return EncodingRun(memory, options, hooks).stored_strings(probes);
 }
 
 }  // namespace olcb::conform

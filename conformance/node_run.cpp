@@ -23,6 +23,19 @@ constexpr Duration kLatencyTimeout = std::chrono::seconds(2);
 constexpr Duration kSlowNode = std::chrono::milliseconds(100);
 // Longest wait for the Initialization Complete after a deliberate Reset/Reboot.
 constexpr std::chrono::seconds kRebootWait{10};
+// Without a terminal, the longest a phase stays silent on stderr before a progress line.
+constexpr Duration kHeartbeat = std::chrono::seconds(5);
+// Phases that may take long on a slow node: announced when they start, not only when done.
+constexpr std::string_view kLongPhases[] = {"measure",     "protocol checks", "stored strings",
+                                            "layout",      "backup",          "encoding checks",
+                                            "event write", "recovery",        "restore"};
+
+// "1.4 s": elapsed time for the phase lines.
+std::string elapsed_text(Duration d) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f s", std::chrono::duration<double>(d).count());
+    return b;
+}
 
 auto wall() {
     return std::chrono::steady_clock::now();
@@ -55,7 +68,9 @@ NodeReport NodeRun::run() {
     timed("measure", &NodeRun::measure);
     timed("identify", &NodeRun::identify);
     timed("protocol checks", &NodeRun::protocol);
-    if (writes_allowed() && timed("layout", &NodeRun::load_layout)) {
+    if (!writes_allowed()) {
+        if (options_.read_only) timed("stored strings", &NodeRun::read_stored_strings);
+    } else if (timed("layout", &NodeRun::load_layout)) {
         timed("plan", &NodeRun::plan);
         if (timed("backup", &NodeRun::capture_backup) && timed("lock", &NodeRun::take_lock)) {
             timed("encoding checks", &NodeRun::encode);
@@ -67,8 +82,33 @@ NodeReport NodeRun::run() {
     }
     timed("findings", &NodeRun::findings);
     select_results();
+    note_not_tested();
     report_.elapsed = wall() - began;
+    say("done in " + elapsed_text(report_.elapsed));
     return std::move(report_);
+}
+
+void NodeRun::say(const std::string& text) {
+    // On a terminal the bars show progress; in a log one line at a time does.
+    if (options_.progress) return;
+    progress_ << "lcc-conform: " << report_.node_id << " " << text << std::endl;
+    last_line_ = wall();
+}
+
+void NodeRun::heartbeat(const std::string& text) {
+    if (wall() - last_line_ >= kHeartbeat) say(text);
+}
+
+void NodeRun::begin_task(std::string label) {
+    bar_.start(label, 0, wall());
+    task_ = std::move(label);
+}
+
+void NodeRun::tick(std::size_t done, std::string_view unit) {
+    if (options_.progress)
+        bar_.update(done, wall());
+    else
+        heartbeat(task_ + ": " + std::to_string(done) + " " + std::string(unit));
 }
 
 void NodeRun::timed(std::string_view name, void (NodeRun::*step)()) {
@@ -82,12 +122,16 @@ bool NodeRun::timed(std::string_view name, bool (NodeRun::*step)()) {
     return timed(name, [&] { return (this->*step)(); });
 }
 
-bool NodeRun::timed(std::string_view /*name*/, const std::function<bool()>& step) {
+bool NodeRun::timed(std::string_view name, const std::function<bool()>& step) {
     const std::size_t first = report_.checks.size();
     const auto since = wall();
+    const bool long_phase =
+        std::find(std::begin(kLongPhases), std::end(kLongPhases), name) != std::end(kLongPhases);
+    if (long_phase) say(std::string(name) + "...");
     const bool ok = step();
     // Results the phase judged together share its time, so durations add up to the run's.
     const Duration spent = wall() - since;
+    say(std::string(name) + " done in " + elapsed_text(spent));
     std::size_t untimed = 0;
     for (std::size_t i = first; i < report_.checks.size(); ++i)
         untimed += report_.checks[i].duration == Duration{} ? 1 : 0;
@@ -140,8 +184,11 @@ void NodeRun::identify() {
 
 void NodeRun::protocol() {
     if (!protocol_checks_) return;
-    ctx_.cdi_progress = [this](std::size_t n) { bar_.update(n, wall()); };
-    bar_.start("protocol checks, reading CDI", 0, wall());
+    ctx_.cdi_progress = [this](std::size_t n) { tick(n, "bytes of the CDI"); };
+    ctx_.check_started = [this](std::string_view id) {
+        if (!options_.progress) heartbeat("protocol checks: at " + std::string(id));
+    };
+    begin_task("protocol checks, reading CDI");
     report_.checks = protocol_checks_(session_, node_, ctx_);
     bar_.finish();
     // Nothing has been written yet; a node that died meanwhile gets no write at all.
@@ -178,12 +225,44 @@ bool NodeRun::writes_allowed() {
 }
 
 bool NodeRun::load_layout() {
+    if (ensure_layout()) return true;
+    skip_writes("no usable CDI layout (see the cdi checks)", "nothing written");
+    return false;
+}
+
+void NodeRun::read_stored_strings() {
+    // The one encoding check that only reads: --read-only runs it too.
+    if (incident_ || stop_requested() || link_lost() ||
+        !options_.selection.wants_id("encoding.stored-strings"))
+        return;
+    const auto skipped =
+        std::find_if(report_.checks.begin(), report_.checks.end(),
+                     [](const CheckResult& c) { return c.id == "encoding.stored-strings"; });
+    if (skipped == report_.checks.end()) return;
+    if (!ensure_layout()) {
+        skipped->message = "no usable CDI layout (see the cdi checks)";
+        return;
+    }
+    EncodingOptions all = eo_;
+    all.sample = options_.sample;
+    all.protection = options_.protection;
+    all.protection.write_protected = true;  // reading a protected setting is harmless
+    all.protection.exclude.clear();         // --exclude keeps writes away, not reads
+    all.protection.only.clear();
+    const EncodingPlan read_plan = plan_encoding(*ctx_.layout, all);
+    begin_task("stored strings");
+    *skipped = check_stored_strings(read_plan.probes, memory_, hooks());
+    bar_.finish();
+    if (incident_) report_.checks.push_back(incident_result(*incident_));
+}
+
+bool NodeRun::ensure_layout() {
     // Without the protocol checks' layout (none ran, or their read stopped at a wrong highest
     // address), the CDI is read here up to its NUL.
     if (!ctx_.document || !ctx_.layout) {
-        bar_.start("reading CDI", 0, wall());
+        begin_task("reading CDI");
         MemResult cdi_bytes = session_.read_range(node_, memory::Space::kCdi, 0, kMaxCdi, true,
-                                                  [&](std::size_t n) { bar_.update(n, wall()); });
+                                                  [&](std::size_t n) { tick(n, "bytes"); });
         bar_.finish();
         std::string xml(cdi_bytes.data.begin(), cdi_bytes.data.end());
         if (auto nul = xml.find('\0'); nul != std::string::npos) xml.resize(nul);
@@ -195,9 +274,7 @@ bool NodeRun::load_layout() {
             ctx_.layout = cdi::build_layout(*ctx_.document).layout;
         }
     }
-    if (ctx_.document && ctx_.layout) return true;
-    skip_writes("no usable CDI layout (see the cdi checks)", "nothing written");
-    return false;
+    return ctx_.document && ctx_.layout;
 }
 
 void NodeRun::plan() {
@@ -330,7 +407,7 @@ EncodingHooks NodeRun::hooks() {
         if (!payload) return std::nullopt;
         return memory::decode_snip(*payload).user_name;
     };
-    h.progress = [this](std::size_t done, std::size_t) { bar_.update(done, wall()); };
+    h.progress = [this](std::size_t done, std::size_t) { tick(done, "values"); };
     return h;
 }
 
@@ -360,7 +437,7 @@ RebootOutcome NodeRun::reboot() {
 }
 
 void NodeRun::encode() {
-    bar_.start("encoding checks", 0, wall());
+    begin_task("encoding checks");
     EncodingOutcome out = run_encoding_checks(plan_.probes, memory_, eo_, hooks());
     bar_.finish();
     for (auto& c : unwritten_checks(plan_.unwritten, eo_.protection.write_protected)) {
@@ -499,6 +576,46 @@ void NodeRun::note_slow_node() {
         c.message += " (a slow node: its Verify round trip took up to " + std::to_string(ms) +
                      " ms at the start; --timeout-scale widens every window)";
     }
+}
+
+void NodeRun::note_not_tested() {
+    // What this run left out and the option that tests it: a clean report must not read as
+    // "everything is fine" when whole rules were never looked at.
+    std::vector<std::string>& out = report_.not_tested;
+    const CheckSelection& sel = options_.selection;
+    if (options_.read_only && sel.wants_writes())
+        out.push_back(
+            "writes not tested (encoding checks, write refusals, persistence): run "
+            "without --read-only");
+    if (!options_.reboot && !options_.read_only && sel.wants_id("encoding.persist-after-reboot"))
+        out.push_back("persistence not tested (values surviving Reset/Reboot): add --reboot");
+    if (!options_.reboot && sel.wants_id("frame.startup-sequence"))
+        out.push_back(
+            "start-up sequence not tested (CID..RID, AMD, Initialization Complete "
+            "after Reset/Reboot): add --reboot");
+    if (!options_.blob && !options_.read_only && ctx_.layout) {
+        std::size_t blobs = 0;
+        ctx_.layout->visit([&](const cdi::Cursor& c) {
+            blobs +=
+                c.element().kind == cdi::ElementKind::kBlob && c.element().blob_mode == "readwrite";
+            return true;
+        });
+        if (blobs != 0)
+            out.push_back(std::to_string(blobs) +
+                          " writable <blob> variables not written: add "
+                          "--blob");
+    }
+    CheckSelection with_thorough = sel;
+    with_thorough.thorough = true;
+    std::string thorough;
+    std::size_t count = 0;
+    for (const CheckSpec& spec : check_registry()) {
+        if (!spec.thorough || sel.thorough || !with_thorough.wants(spec)) continue;
+        thorough += (count++ == 0 ? "" : ", ") + std::string(spec.id);
+    }
+    if (count != 0)
+        out.push_back(std::to_string(count) + " thorough-only checks not run (" + thorough +
+                      "): add --thorough");
 }
 
 void NodeRun::findings() {

@@ -164,6 +164,7 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
                 continue;
             }
         }
+        if (ctx.check_started) ctx.check_started(spec.id);
         const std::size_t mark = session.frame_mark();
         const std::size_t first = run.result_count();
         const auto since = std::chrono::steady_clock::now();

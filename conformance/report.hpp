@@ -50,8 +50,8 @@ Summary summarize(const std::vector<NodeReport>& reports);
 /// ANSI colour on the status word when colour is true. No trailing newline.
 std::string format_check(const CheckResult& check, bool colour);
 
-/// The whole text report of one node: a header, one line per check, the restore outcome and the
-/// totals.
+/// The whole text report of one node: a header, one line per check, the restore outcome, the
+/// totals, then one line per thing not tested naming the option that tests it.
 void write_text(std::ostream& out, const NodeReport& report, bool colour);
 
 /// The JSON report: {"node":{...},"checks":[...],"summary":{...}} for one node; for several nodes

@@ -121,6 +121,7 @@ void write_text(std::ostream& out, const NodeReport& report, bool colour) {
     Summary s = summarize({report});
     out << s.total() << " checks: " << s.pass << " passed, " << s.fail << " failed, " << s.warn
         << " warnings, " << s.skip << " skipped\n";
+    for (const std::string& what : report.not_tested) out << what << '\n';
 }
 
 }  // namespace olcb::conform
