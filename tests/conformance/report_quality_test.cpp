@@ -25,7 +25,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kFaults = fs::path(OLCB_SOURCE_DIR) / "scenarios" / "faults";
+fs::path faults_dir() {
+    return fs::path(OLCB_SOURCE_DIR) / "scenarios" / "faults";
+}
 
 // The options a scenario's "# lcc-conform: ARGS" line asks for that change what runs.
 bool wants_thorough(const std::string& ini) {
@@ -101,15 +103,19 @@ std::string dump(const NodeReport& r) {
 
 std::vector<std::string> fault_scenarios() {
     std::vector<std::string> out;
-    for (const auto& e : fs::directory_iterator(kFaults))
+    for (const auto& e : fs::directory_iterator(faults_dir()))
         if (e.path().extension() == ".ini") out.push_back(e.path().stem().string());
     std::sort(out.begin(), out.end());
     return out;
 }
 
 // "MemoryConfigurationS §4.16", "CanFrameTransferS §4, §6.2.3; MessageNetworkS §3.7".
-const std::regex kCitation(R"(^[A-Za-z]+(S|TN) §[0-9]+(\.[0-9]+)*(, §[0-9]+(\.[0-9]+)*)*)"
-                           R"((; [A-Za-z]+(S|TN) §[0-9]+(\.[0-9]+)*(, §[0-9]+(\.[0-9]+)*)*)*$)");
+const std::regex& citation() {
+    static const std::regex one_style(
+        R"(^[A-Za-z]+(S|TN) §[0-9]+(\.[0-9]+)*(, §[0-9]+(\.[0-9]+)*)*)"
+        R"((; [A-Za-z]+(S|TN) §[0-9]+(\.[0-9]+)*(, §[0-9]+(\.[0-9]+)*)*)*$)");
+    return one_style;
+}
 
 void expect_one_citation_style(const NodeReport& r, const std::string& what) {
     for (const CheckResult& c : r.checks) {
@@ -118,7 +124,7 @@ void expect_one_citation_style(const NodeReport& r, const std::string& what) {
         ASSERT_NE(spec, nullptr) << what << ": " << c.id << " is not in the registry";
         EXPECT_EQ(c.section, spec->section) << what << ": " << c.id;
         if (!c.section.empty()) {
-            EXPECT_TRUE(std::regex_match(c.section, kCitation))
+            EXPECT_TRUE(std::regex_match(c.section, citation()))
                 << what << ": " << c.id << " cites \"" << c.section << "\"";
         }
     }
@@ -129,7 +135,7 @@ class FaultScenarioReport : public ::testing::TestWithParam<std::string> {};
 TEST_P(FaultScenarioReport, EveryFailSaysWhatWasExpectedAndSeen) {
     RunOptions options;
     options.reboot = true;
-    const NodeReport r = run_scenario(kFaults / (GetParam() + ".ini"), options);
+    const NodeReport r = run_scenario(faults_dir() / (GetParam() + ".ini"), options);
     ASSERT_FALSE(r.checks.empty());
     for (const CheckResult& c : r.checks) {
         if (c.status != Status::kFail) continue;
@@ -149,7 +155,7 @@ INSTANTIATE_TEST_SUITE_P(Scenarios, FaultScenarioReport, ::testing::ValuesIn(fau
 TEST(ReportQuality, EveryRegistrySectionHasTheOneCitationStyle) {
     for (const CheckSpec& s : check_registry()) {
         if (s.section.empty()) continue;
-        EXPECT_TRUE(std::regex_match(std::string(s.section), kCitation))
+        EXPECT_TRUE(std::regex_match(std::string(s.section), citation()))
             << s.id << " cites \"" << s.section << "\"";
     }
 }
@@ -163,7 +169,7 @@ TEST(ReportQuality, ADefaultRunCitesInOneStyle) {
 }
 
 TEST(ReportQuality, SpaceInfoShortLeadsWithItsCause) {
-    const NodeReport r = run_scenario(kFaults / "space-info-short.ini", RunOptions{});
+    const NodeReport r = run_scenario(faults_dir() / "space-info-short.ini", RunOptions{});
     const auto first = std::find_if(r.checks.begin(), r.checks.end(),
                                     [](const CheckResult& c) { return c.status == Status::kFail; });
     ASSERT_NE(first, r.checks.end()) << dump(r);
@@ -207,7 +213,8 @@ TEST(ReportQuality, ReadOnlyStillJudgesTheStoredStringsAndWritesNothing) {
     EXPECT_EQ(find(good, "encoding.string")->status, Status::kSkip) << dump(good);
     EXPECT_TRUE(unchanged);
 
-    const NodeReport bad = run_scenario(kFaults / "string-unterminated.ini", options, &unchanged);
+    const NodeReport bad =
+        run_scenario(faults_dir() / "string-unterminated.ini", options, &unchanged);
     const CheckResult* c = find(bad, "encoding.stored-strings");
     ASSERT_NE(c, nullptr) << dump(bad);
     EXPECT_EQ(c->status, Status::kFail) << dump(bad);
@@ -221,7 +228,7 @@ TEST(ReportQuality, TheSummaryNamesWhatWasNotTestedAndTheOption) {
                            [&](const std::string& s) { return s.find(part) != std::string::npos; });
     };
     // A node that forgets writes at a reset passes a run without --reboot: the summary says so.
-    const NodeReport quiet = run_scenario(kFaults / "write-not-persisted.ini", RunOptions{});
+    const NodeReport quiet = run_scenario(faults_dir() / "write-not-persisted.ini", RunOptions{});
     for (const CheckResult& c : quiet.checks) EXPECT_NE(c.status, Status::kFail) << dump(quiet);
     EXPECT_TRUE(has(quiet, "persistence not tested (values surviving Reset/Reboot): add --reboot"));
     EXPECT_TRUE(has(quiet, "thorough-only checks not run (")) << quiet.not_tested.size();
@@ -233,14 +240,14 @@ TEST(ReportQuality, TheSummaryNamesWhatWasNotTestedAndTheOption) {
 
     RunOptions reboot;
     reboot.reboot = true;
-    const NodeReport caught = run_scenario(kFaults / "write-not-persisted.ini", reboot);
+    const NodeReport caught = run_scenario(faults_dir() / "write-not-persisted.ini", reboot);
     ASSERT_NE(find(caught, "encoding.persist-after-reboot"), nullptr);
     EXPECT_EQ(find(caught, "encoding.persist-after-reboot")->status, Status::kFail) << dump(caught);
     EXPECT_FALSE(has(caught, "persistence not tested"));
 
     RunOptions read_only;
     read_only.read_only = true;
-    const NodeReport ro = run_scenario(kFaults / "write-not-persisted.ini", read_only);
+    const NodeReport ro = run_scenario(faults_dir() / "write-not-persisted.ini", read_only);
     EXPECT_TRUE(has(ro, "writes not tested")) << text.str();
     EXPECT_FALSE(has(ro, "persistence not tested"));
 }
