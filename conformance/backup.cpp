@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -134,23 +136,27 @@ bool SafetyBackup::save(std::string& error) const {
     std::string text = to_text();
     int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
-        error = "cannot create backup file " + tmp;
+        error = "cannot create backup file " + tmp + ": " + std::strerror(errno);
         return false;
     }
     std::size_t done = 0;
     while (done < text.size()) {
         ssize_t n = ::write(fd, text.data() + done, text.size() - done);
         if (n <= 0) {
+            error = "cannot write backup file " + tmp + ": " + std::strerror(n < 0 ? errno : EIO);
             ::close(fd);
-            error = "cannot write backup file " + tmp;
             return false;
         }
         done += static_cast<std::size_t>(n);
     }
-    bool synced = ::fsync(fd) == 0;
+    if (::fsync(fd) != 0) {
+        error = "cannot sync backup file " + tmp + " to disk: " + std::strerror(errno);
+        ::close(fd);
+        return false;
+    }
     ::close(fd);
-    if (!synced || std::rename(tmp.c_str(), path_.c_str()) != 0) {
-        error = "cannot store backup file " + path_;
+    if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
+        error = "cannot store backup file " + path_ + ": " + std::strerror(errno);
         return false;
     }
     return true;
@@ -163,7 +169,7 @@ bool SafetyBackup::is_safety_backup(const std::string& text) {
 std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::string& error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        error = "cannot open " + path;
+        error = "cannot open " + path + ": " + std::strerror(errno);
         return std::nullopt;
     }
     std::string line;

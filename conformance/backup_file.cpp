@@ -1,5 +1,7 @@
 #include "conformance/backup_file.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -53,7 +55,7 @@ BackupFile parse_backup_file(std::string_view text) {
 bool load_backup_file(const std::string& path, BackupFile& file, std::string& error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        error = "cannot read " + path;
+        error = "cannot read " + path + ": " + std::strerror(errno);
         return false;
     }
     std::ostringstream buf;

@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cdi/document.hpp"
@@ -44,6 +45,8 @@ struct CheckContext {
     std::optional<RunTiming> timing;
     /// Called with the bytes read so far while the CDI downloads (progress display).
     std::function<void(std::size_t)> cdi_progress;
+    /// Called with each protocol check's ID as it starts (progress display).
+    std::function<void(std::string_view)> check_started;
 };
 
 }  // namespace olcb::conform

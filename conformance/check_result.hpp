@@ -85,6 +85,9 @@ struct NodeReport {
     /// Every space of the node's CDI layout with each listed variable's verdict (empty when the
     /// CDI gave no layout).
     std::vector<MemoryMapSpace> memory_map;
+    /// What the run's options left untested, each with the option that tests it, e.g.
+    /// "persistence not tested (values surviving Reset/Reboot): add --reboot".
+    std::vector<std::string> not_tested;
 
     /// Number of checks with this status.
     std::size_t count(Status status) const;

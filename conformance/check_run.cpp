@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "cdi/parser.hpp"
+#include "conformance/report.hpp"
 #include "memory/acdi.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/can_defs.hpp"
@@ -63,14 +64,11 @@ std::string hex(unsigned value, int width) {
 }
 
 std::string clip(std::string_view text) {
-    if (text.size() <= kMaxQuote) return std::string(text);
-    std::size_t n = kMaxQuote;
-    while (n > 0 && (static_cast<unsigned char>(text[n]) & 0xC0) == 0x80) --n;
-    return std::string(text.substr(0, n)) + "...";
+    return show_node_text(text, false, kMaxQuote);
 }
 
 std::string quoted(std::string_view text) {
-    return "\"" + clip(text) + "\"";
+    return show_node_text(text, true, kMaxQuote);
 }
 
 std::string describe(const MemResult& r) {
@@ -159,9 +157,10 @@ void CheckRun::run(const CheckSpec& spec) {
 }
 
 void CheckRun::add(CheckResult result) {
+    // The registry is the one source of categories and citations.
     if (const CheckSpec* spec = find_check(result.id)) {
         result.category = spec->category;
-        if (result.section.empty()) result.section = std::string(spec->section);
+        result.section = std::string(spec->section);
     }
     out_.push_back(std::move(result));
 }
@@ -265,6 +264,7 @@ const MemResult& CheckRun::config_options() {
         MemResult r = s_.command(node_, memory::encode(memory::GetConfigOptions{}), &reply);
         tally(r);
         if (auto* p = std::get_if<memory::ConfigOptionsReply>(&reply); r.ok && p) ctx_.options = *p;
+        options_reply_ = r.ok ? memory::describe(memory::encode(reply)) : describe(r);
         options_result_ = std::move(r);
     }
     return *options_result_;
@@ -296,6 +296,7 @@ const CdiDownload& CheckRun::cdi() {
     CdiDownload d;
     d.result = s_.read_range(node_, Space::kCdi, 0, len, true, ctx_.cdi_progress);
     tally(d.result);
+    if (ff.present && len < o_.max_cdi_bytes) read_past_highest(d, len);
     d.read_ok = d.result.ok && !d.result.data.empty();
     ctx_.cdi_nul_found = !d.result.data.empty() && d.result.data.back() == 0;
     ctx_.cdi_bytes = d.result.data;
@@ -312,6 +313,58 @@ const CdiDownload& CheckRun::cdi() {
     }
     cdi_ = std::move(d);
     return *cdi_;
+}
+
+void CheckRun::read_past_highest(CdiDownload& d, std::uint32_t len) {
+    // A highest address below the CDI's end would cut the text short, and every CDI check would
+    // fail for one wrong number: read on past it, so the CDI is judged whole and the highest
+    // address once (cdi.nul-at-highest).
+    MemResult& r = d.result;
+    if (!r.ok || r.data.size() != len || (!r.data.empty() && r.data.back() == 0)) return;
+    std::function<void(std::size_t)> progress;
+    if (ctx_.cdi_progress) progress = [this, len](std::size_t n) { ctx_.cdi_progress(len + n); };
+    MemResult more = s_.read_range(node_, Space::kCdi, len, o_.max_cdi_bytes - len, true, progress);
+    tally(more);
+    if (!more.ok || more.data.empty()) return;
+    d.beyond_highest = static_cast<std::uint32_t>(more.data.size());
+    r.data.insert(r.data.end(), more.data.begin(), more.data.end());
+    r.datagram_ok_seen = r.datagram_ok_seen && more.datagram_ok_seen;
+    r.reply_pending = r.reply_pending && more.reply_pending;
+    r.reply_in_request_form = r.reply_in_request_form && more.reply_in_request_form;
+    r.reply_latency = std::max(r.reply_latency, more.reply_latency);
+    r.temporary_rejects += more.temporary_rejects;
+}
+
+std::string CheckRun::highest_too_small(std::uint8_t space) {
+    const SpaceInfo info = space_info(space);
+    if (!info.present) return {};
+    const std::string highest = "Space Info's highest address " + hex(info.highest_address, 8);
+    if (space == 0xFF && cdi().beyond_highest != 0) {
+        return std::string("depends on ") +
+               (ctx_.cdi_nul_found ? "cdi.nul-at-highest" : "cdi.nul-terminated") +
+               ": the CDI goes on " + std::to_string(cdi_->beyond_highest) + " bytes past " +
+               highest;
+    }
+    cdi();
+    if (ctx_.layout) {
+        for (const auto& e : ctx_.layout->extents()) {
+            if (e.space != space || e.end == 0 || info.highest_address + std::uint64_t{1} >= e.end)
+                continue;
+            return "depends on memory.space-info-layout." + space_suffix(space) +
+                   ": the CDI lays out bytes up to " + hex(static_cast<unsigned>(e.end - 1), 8) +
+                   ", past " + highest;
+        }
+    }
+    using namespace memory::acdi;
+    const bool acdi = ctx_.document && ctx_.document->acdi;
+    const std::size_t block = space == memory::to_u8(kUserSpace)           ? kUserBlockSize
+                              : space == memory::to_u8(kManufacturerSpace) ? kManufacturerBlockSize
+                                                                           : 0;
+    if (acdi && block != 0 && info.highest_address + std::uint64_t{1} < block) {
+        return "depends on acdi.space-info: the ACDI block has " + std::to_string(block) +
+               " bytes, past " + highest;
+    }
+    return {};
 }
 
 const std::vector<cdi::RuleFinding>& CheckRun::rules() {
@@ -333,10 +386,6 @@ const FormProbe& CheckRun::form_probe() {
         p.short_form = note(s_.read(node_, space, 0, 8, memory::SpaceForm::kShort));
     form_probe_ = std::move(p);
     return *form_probe_;
-}
-
-bool CheckRun::cdi_forms_ok() {
-    return cdi().result.reply_in_request_form;
 }
 
 bool CheckRun::acdi_blocks() {

@@ -50,6 +50,8 @@ struct FormProbe {
 struct CdiDownload {
     MemResult result;      ///< the read_range() outcome
     bool read_ok = false;  ///< data came
+    /// Bytes that came from past Space Info's highest address (it is too small when not 0).
+    std::uint32_t beyond_highest = 0;
 };
 
 /// Judges one request the standard refuses with a given code.
@@ -61,7 +63,8 @@ struct Refusal {
 
 /// "0x1082" (width hex digits).
 std::string hex(unsigned value, int width = 4);
-/// At most 80 bytes of node-supplied text, cut on a UTF-8 boundary.
+/// At most 80 bytes of node-supplied text, cut on a UTF-8 boundary, made printable, with the raw
+/// bytes in hex after it when it is not clean UTF-8 (show_node_text()).
 std::string clip(std::string_view text);
 /// clip() in double quotes.
 std::string quoted(std::string_view text);
@@ -146,6 +149,8 @@ public:
     const std::optional<ProtocolSet>& pip();
     /// Get Configuration Options (also in ctx().options); the exchange's outcome.
     const MemResult& config_options();
+    /// The reply the Options exchange got, in words ("" before config_options()).
+    const std::string& config_options_reply() const { return options_reply_; }
     /// Get Address Space Information for space (cached in ctx().spaces).
     const SpaceInfo& space_info(std::uint8_t space);
     /// Space 0xFF downloaded, parsed and laid out into ctx().
@@ -158,6 +163,10 @@ public:
     const MemResult& acdi_manufacturer_result() const { return acdi_manufacturer_result_; }
     /// The outcome of reading 251 (after acdi_blocks()).
     const MemResult& acdi_user_result() const { return acdi_user_result_; }
+    /// "depends on <id>: why" when a check finds Space Info's highest address of space too small
+    /// (the CDI goes on past it, the layout or ACDI needs more), so a check at that address would
+    /// only repeat the finding; "" when nothing says so.
+    std::string highest_too_small(std::uint8_t space);
     /// True when any memory-config exchange got an answer (asks Options when none was made).
     bool memory_works();
     /// The spaces the CDI's segments use, in ascending order.
@@ -177,10 +186,11 @@ public:
     const T& remember(const std::string& key, T value) {
         return *std::any_cast<T>(&(memos_[key] = std::move(value)));
     }
-    /// The replies of the CDI download came in their request's form.
-    bool cdi_forms_ok();
 
 private:
+    /// Reads on past Space Info's highest address when the download ended there without a NUL.
+    void read_past_highest(CdiDownload& d, std::uint32_t len);
+
     Session& s_;
     NodeInfo node_;
     ProtocolOptions o_;
@@ -195,6 +205,7 @@ private:
     std::optional<std::vector<std::uint8_t>> snip_raw_;
     bool pip_asked_ = false;
     std::optional<MemResult> options_result_;
+    std::string options_reply_;
     std::optional<CdiDownload> cdi_;
     std::optional<bool> acdi_read_;
     std::optional<std::vector<cdi::RuleFinding>> rules_;

@@ -1,5 +1,7 @@
 #include "conformance/config_backup.hpp"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <ostream>
 #include <sstream>
@@ -66,7 +68,7 @@ bool plan_on_node(Session& session, const std::string& node_id, const BackupFile
 bool read_text_file(const std::string& path, std::string& text, std::ostream& err) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
-        err << "lcc-conform: cannot read " << path << "\n";
+        err << "lcc-conform: cannot read " << path << ": " << std::strerror(errno) << "\n";
         return false;
     }
     std::ostringstream buf;

@@ -224,14 +224,13 @@ std::vector<CheckResult> unwritten_checks(const std::vector<Unwritten>& unwritte
         std::string hint = write_protected ? "" : "; --write-protected probes it";
         if (u.reason.starts_with("<action>")) hint = "; never written";
         out.push_back({"encoding.protected", Category::kEncoding, Status::kSkip,
-                       u.key + ": not written: " + u.reason + hint, "lcc-conform safety rule", "",
-                       ""});
+                       u.key + ": not written: " + u.reason + hint, "", "", ""});
     }
     if (deselected != 0) {
         out.push_back(
             {"encoding.excluded", Category::kEncoding, Status::kSkip,
-             std::to_string(deselected) + " variables not written; first: " + first_deselected,
-             "lcc-conform --exclude / --only", "", ""});
+             std::to_string(deselected) + " variables not written; first: " + first_deselected, "",
+             "", ""});
     }
     return out;
 }

@@ -129,6 +129,11 @@ std::vector<RangeRequest> ranges_to_backup(const std::vector<Probe>& probes,
 EncodingOutcome run_encoding_checks(const std::vector<Probe>& probes, MemoryAccess& memory,
                                     const EncodingOptions& options, const EncodingHooks& hooks);
 
+/// encoding.stored-strings by reads alone (--read-only): the original of every <string> probe
+/// read and judged (a NUL within its size, valid UTF-8); nothing is written.
+CheckResult check_stored_strings(const std::vector<Probe>& probes, MemoryAccess& memory,
+                                 const EncodingHooks& hooks);
+
 /// The SKIP results of a plan's unwritten variables (encoding.protected, encoding.excluded).
 std::vector<CheckResult> unwritten_checks(const std::vector<Unwritten>& unwritten,
                                           bool write_protected);

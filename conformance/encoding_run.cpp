@@ -9,6 +9,7 @@
 #include "cdi/string_codec.hpp"
 #include "cdi/value_codec.hpp"
 #include "conformance/encoding_checks.hpp"
+#include "conformance/report.hpp"
 #include "memory/acdi.hpp"
 
 namespace olcb::conform {
@@ -46,14 +47,6 @@ std::string check_id(ElementKind kind) {
         default:
             return "encoding.blob";
     }
-}
-
-std::string section_of(const std::string& id) {
-    if (id == "encoding.int") return "CDI S 5.1.4.2";
-    if (id == "encoding.string") return "CDI S 5.1.4.3";
-    if (id == "encoding.eventid") return "CDI S 5.1.4.4";
-    if (id == "encoding.float") return "CDI S 5.1.4.5";
-    return "CDI S 5.1.4.7";
 }
 
 std::string code_text(const AccessResult& r) {
@@ -121,6 +114,19 @@ public:
         if (options.blob) tallies_["encoding.blob"];
     }
 
+    // Only reads: the original of every string probe judged, nothing written.
+    CheckResult stored_strings(const std::vector<Probe>& probes) {
+        for (const Probe& p : probes) {
+            if (p.element->kind != ElementKind::kString || asked_to_stop()) continue;
+            auto original = read_original(p.space, p.address, p.size, p.key);
+            if (stop_ != Stop::kNone) break;  // the node died: the runner reports it
+            if (original) check_stored_string(p, *original);
+        }
+        std::vector<CheckResult> out;
+        add_stored_result(out);
+        return std::move(out.front());
+    }
+
     EncodingOutcome run(const std::vector<Probe>& probes) {
         for (const Probe& p : probes) planned_ += p.values.empty() ? 2 : p.values.size();
         for (const Probe& p : probes) {
@@ -179,8 +185,12 @@ private:
             memory_.read(f.space, f.address, static_cast<std::uint32_t>(f.original.size()));
         if (!step("reading back the original of", f.key, r)) return false;
         if (w.ok && r.ok && r.data == f.original) return true;
-        restore_problem_ = f.key + ": original " + hex_bytes(f.original) + " did not read back (" +
-                           (r.ok ? hex_bytes(r.data) : code_text(r)) + ")";
+        restore_seen_ = !w.ok  ? "write refused (" + code_text(w) + ")"
+                        : r.ok ? hex_bytes(r.data)
+                               : "read failed (" + code_text(r) + ")";
+        restore_expected_ = hex_bytes(f.original);
+        restore_problem_ = f.key + ": original " + restore_expected_ + " did not read back (" +
+                           restore_seen_ + ")";
         stop_ = Stop::kRestoreFailed;
         return false;
     }
@@ -311,7 +321,7 @@ private:
     std::size_t planned_ = 0, done_ = 0;
     Stop stop_ = Stop::kNone;
     std::vector<InFlight> in_flight_;
-    std::string restore_problem_;
+    std::string restore_problem_, restore_expected_, restore_seen_;
     std::string last_label_;
     Bytes last_bytes_;
     std::vector<std::pair<const Probe*, Bytes>> tested_;  // probes cycled, with their originals
@@ -333,8 +343,7 @@ std::string EncodingRun::not_run_reason() const {
 }
 
 void EncodingRun::add_stored_result(std::vector<CheckResult>& out) const {
-    CheckResult c{
-        "encoding.stored-strings", Category::kEncoding, Status::kPass, "", "CDI S 5.1.4.3", "", ""};
+    CheckResult c{"encoding.stored-strings", Category::kEncoding, Status::kPass, "", "", "", ""};
     if (stored_.values == 0) {
         c.status = Status::kSkip;
         c.message = "no string variable read";
@@ -353,19 +362,18 @@ void EncodingRun::add_stored_result(std::vector<CheckResult>& out) const {
 void EncodingRun::add_problem_results(std::vector<CheckResult>& out) const {
     for (const std::string& u : unreadable_) {
         out.push_back({"encoding.unreadable", Category::kEncoding, Status::kSkip,
-                       u + "; not tested (its original could not be saved)",
-                       "lcc-conform safety rule", "", ""});
+                       u + "; not tested (its original could not be saved)", "", "", ""});
     }
     if (!restore_problem_.empty()) {
         out.push_back({"encoding.original-restored", Category::kEncoding, Status::kFail,
-                       restore_problem_ + "; no further variable was written",
-                       "lcc-conform safety rule", "the original bytes", "other bytes"});
+                       restore_problem_ + "; no further variable was written", "",
+                       restore_expected_, restore_seen_});
     }
 }
 
 void EncodingRun::add_tally_results(std::vector<CheckResult>& out) const {
     for (const auto& [id, t] : tallies_) {
-        CheckResult c{id, Category::kEncoding, Status::kPass, "", section_of(id), "", ""};
+        CheckResult c{id, Category::kEncoding, Status::kPass, "", "", "", ""};
         const std::string cut = not_run_reason();
         if (t.failures) {
             c.status = Status::kFail;
@@ -395,13 +403,7 @@ bool EncodingRun::put_back_all() {
 }
 
 CheckResult EncodingRun::snip_follows() {
-    CheckResult c{"snip.follows-acdi-user-write",
-                  Category::kSnip,
-                  Status::kSkip,
-                  "",
-                  "SNIP S 5.1 / CDI S 5.1.2 (ACDI)",
-                  "",
-                  ""};
+    CheckResult c{"snip.follows-acdi-user-write", Category::kSnip, Status::kSkip, "", "", "", ""};
     if (!options_.acdi_user) {
         c.message = options_.acdi_user_skipped.empty() ? "node has no ACDI user space (251)"
                                                        : options_.acdi_user_skipped;
@@ -431,13 +433,15 @@ CheckResult EncodingRun::snip_follows() {
     if (!w.ok) {
         c.status = Status::kFail;
         c.message = "write of the user name to space 251 refused (" + code_text(w) + ")";
+        c.expected = "the write accepted";
+        c.seen = "refused with " + code_text(w);
     } else {
         // The variable's own read-back: SNIP reports the user name from space 251.
         auto name = hooks_.snip_user_name();
         const AccessResult unanswered{false, 0x2010, {}};
         if (!name && !step("asking SNIP for", key, unanswered)) return c;
-        c.expected = kSnipTestName;
-        c.seen = name ? *name : "no SNIP reply";
+        c.expected = show_node_text(kSnipTestName);
+        c.seen = name ? show_node_text(*name, true, name->size()) : "no SNIP reply";
         c.status = name && *name == kSnipTestName ? Status::kPass : Status::kFail;
         c.message = c.status == Status::kPass ? "SNIP user name follows a write to space 251"
                     : name                    ? "SNIP user name does not follow space 251"
@@ -449,13 +453,8 @@ CheckResult EncodingRun::snip_follows() {
 }
 
 CheckResult EncodingRun::persistence() {
-    CheckResult c{"encoding.persist-after-reboot",
-                  Category::kEncoding,
-                  Status::kSkip,
-                  "",
-                  "MemoryConfigurationS 4.23 (Reset/Reboot)",
-                  "",
-                  ""};
+    CheckResult c{
+        "encoding.persist-after-reboot", Category::kEncoding, Status::kSkip, "", "", "", ""};
     if (!options_.reboot) {
         c.message = "not asked (--reboot)";
         return c;
@@ -498,6 +497,8 @@ CheckResult EncodingRun::persistence() {
     } else if (!rb.back) {
         c.status = Status::kFail;
         c.message = "no Initialization Complete after Reset/Reboot";
+        c.expected = "Initialization Complete after 20 A9";
+        c.seen = "none while lcc-conform waited";
     } else {
         Tally t;
         for (const auto& [p, bytes] : set) {
@@ -526,6 +527,12 @@ CheckResult EncodingRun::persistence() {
 EncodingOutcome run_encoding_checks(const std::vector<Probe>& probes, MemoryAccess& memory,
                                     const EncodingOptions& options, const EncodingHooks& hooks) {
     return EncodingRun(memory, options, hooks).run(probes);
+}
+
+CheckResult check_stored_strings(const std::vector<Probe>& probes, MemoryAccess& memory,
+                                 const EncodingHooks& hooks) {
+    const EncodingOptions options;
+    return EncodingRun(memory, options, hooks).stored_strings(probes);
 }
 
 }  // namespace olcb::conform

@@ -23,6 +23,19 @@ constexpr Duration kLatencyTimeout = std::chrono::seconds(2);
 constexpr Duration kSlowNode = std::chrono::milliseconds(100);
 // Longest wait for the Initialization Complete after a deliberate Reset/Reboot.
 constexpr std::chrono::seconds kRebootWait{10};
+// Without a terminal, the longest a phase stays silent on stderr before a progress line.
+constexpr Duration kHeartbeat = std::chrono::seconds(5);
+// Phases that may take long on a slow node: announced when they start, not only when done.
+constexpr std::string_view kLongPhases[] = {"measure",     "protocol checks", "stored strings",
+                                            "layout",      "backup",          "encoding checks",
+                                            "event write", "recovery",        "restore"};
+
+// "1.4 s": elapsed time for the phase lines.
+std::string elapsed_text(Duration d) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.1f s", std::chrono::duration<double>(d).count());
+    return b;
+}
 
 auto wall() {
     return std::chrono::steady_clock::now();
@@ -55,7 +68,9 @@ NodeReport NodeRun::run() {
     timed("measure", &NodeRun::measure);
     timed("identify", &NodeRun::identify);
     timed("protocol checks", &NodeRun::protocol);
-    if (writes_allowed() && timed("layout", &NodeRun::load_layout)) {
+    if (!writes_allowed()) {
+        if (options_.read_only) timed("stored strings", &NodeRun::read_stored_strings);
+    } else if (timed("layout", &NodeRun::load_layout)) {
         timed("plan", &NodeRun::plan);
         if (timed("backup", &NodeRun::capture_backup) && timed("lock", &NodeRun::take_lock)) {
             timed("encoding checks", &NodeRun::encode);
@@ -68,8 +83,33 @@ NodeReport NodeRun::run() {
     timed("memory map", &NodeRun::map_memory);
     timed("findings", &NodeRun::findings);
     select_results();
+    note_not_tested();
     report_.elapsed = wall() - began;
+    say("done in " + elapsed_text(report_.elapsed));
     return std::move(report_);
+}
+
+void NodeRun::say(const std::string& text) {
+    // On a terminal the bars show progress; in a log one line at a time does.
+    if (options_.progress) return;
+    progress_ << "lcc-conform: " << report_.node_id << " " << text << std::endl;
+    last_line_ = wall();
+}
+
+void NodeRun::heartbeat(const std::string& text) {
+    if (wall() - last_line_ >= kHeartbeat) say(text);
+}
+
+void NodeRun::begin_task(std::string label) {
+    bar_.start(label, 0, wall());
+    task_ = std::move(label);
+}
+
+void NodeRun::tick(std::size_t done, std::string_view unit) {
+    if (options_.progress)
+        bar_.update(done, wall());
+    else
+        heartbeat(task_ + ": " + std::to_string(done) + " " + std::string(unit));
 }
 
 void NodeRun::timed(std::string_view name, void (NodeRun::*step)()) {
@@ -83,12 +123,16 @@ bool NodeRun::timed(std::string_view name, bool (NodeRun::*step)()) {
     return timed(name, [&] { return (this->*step)(); });
 }
 
-bool NodeRun::timed(std::string_view /*name*/, const std::function<bool()>& step) {
+bool NodeRun::timed(std::string_view name, const std::function<bool()>& step) {
     const std::size_t first = report_.checks.size();
     const auto since = wall();
+    const bool long_phase =
+        std::find(std::begin(kLongPhases), std::end(kLongPhases), name) != std::end(kLongPhases);
+    if (long_phase) say(std::string(name) + "...");
     const bool ok = step();
     // Results the phase judged together share its time, so durations add up to the run's.
     const Duration spent = wall() - since;
+    say(std::string(name) + " done in " + elapsed_text(spent));
     std::size_t untimed = 0;
     for (std::size_t i = first; i < report_.checks.size(); ++i)
         untimed += report_.checks[i].duration == Duration{} ? 1 : 0;
@@ -102,8 +146,14 @@ bool NodeRun::timed(std::string_view /*name*/, const std::function<bool()>& step
 
 void NodeRun::select_results() {
     // One result per ID (per-variable SKIPs and the like become one, with details), and only
-    // what --only / --skip asked for.
+    // what --only / --skip asked for; the registry is the one source of every citation.
     merge_duplicate_ids(report_.checks);
+    for (CheckResult& c : report_.checks) {
+        if (const CheckSpec* spec = find_check(c.id)) {
+            c.category = spec->category;
+            c.section = std::string(spec->section);
+        }
+    }
     std::erase_if(report_.checks,
                   [&](const CheckResult& c) { return !options_.selection.wants_id(c.id); });
 }
@@ -135,8 +185,11 @@ void NodeRun::identify() {
 
 void NodeRun::protocol() {
     if (!protocol_checks_) return;
-    ctx_.cdi_progress = [this](std::size_t n) { bar_.update(n, wall()); };
-    bar_.start("protocol checks, reading CDI", 0, wall());
+    ctx_.cdi_progress = [this](std::size_t n) { tick(n, "bytes of the CDI"); };
+    ctx_.check_started = [this](std::string_view id) {
+        if (!options_.progress) heartbeat("protocol checks: at " + std::string(id));
+    };
+    begin_task("protocol checks, reading CDI");
     report_.checks = protocol_checks_(session_, node_, ctx_);
     bar_.finish();
     // Nothing has been written yet; a node that died meanwhile gets no write at all.
@@ -174,12 +227,44 @@ bool NodeRun::writes_allowed() {
 }
 
 bool NodeRun::load_layout() {
+    if (ensure_layout()) return true;
+    skip_writes("no usable CDI layout (see the cdi checks)", "nothing written");
+    return false;
+}
+
+void NodeRun::read_stored_strings() {
+    // The one encoding check that only reads: --read-only runs it too.
+    if (incident_ || stop_requested() || link_lost() ||
+        !options_.selection.wants_id("encoding.stored-strings"))
+        return;
+    const auto skipped =
+        std::find_if(report_.checks.begin(), report_.checks.end(),
+                     [](const CheckResult& c) { return c.id == "encoding.stored-strings"; });
+    if (skipped == report_.checks.end()) return;
+    if (!ensure_layout()) {
+        skipped->message = "no usable CDI layout (see the cdi checks)";
+        return;
+    }
+    EncodingOptions all = eo_;
+    all.sample = options_.sample;
+    all.protection = options_.protection;
+    all.protection.write_protected = true;  // reading a protected setting is harmless
+    all.protection.exclude.clear();         // --exclude keeps writes away, not reads
+    all.protection.only.clear();
+    const EncodingPlan read_plan = plan_encoding(*ctx_.layout, all);
+    begin_task("stored strings");
+    *skipped = check_stored_strings(read_plan.probes, memory_, hooks());
+    bar_.finish();
+    if (incident_) report_.checks.push_back(incident_result(*incident_));
+}
+
+bool NodeRun::ensure_layout() {
     // Without the protocol checks' layout (none ran, or their read stopped at a wrong highest
     // address), the CDI is read here up to its NUL.
     if (!ctx_.document || !ctx_.layout) {
-        bar_.start("reading CDI", 0, wall());
+        begin_task("reading CDI");
         MemResult cdi_bytes = session_.read_range(node_, memory::Space::kCdi, 0, kMaxCdi, true,
-                                                  [&](std::size_t n) { bar_.update(n, wall()); });
+                                                  [&](std::size_t n) { tick(n, "bytes"); });
         bar_.finish();
         std::string xml(cdi_bytes.data.begin(), cdi_bytes.data.end());
         if (auto nul = xml.find('\0'); nul != std::string::npos) xml.resize(nul);
@@ -191,9 +276,7 @@ bool NodeRun::load_layout() {
             ctx_.layout = cdi::build_layout(*ctx_.document).layout;
         }
     }
-    if (ctx_.document && ctx_.layout) return true;
-    skip_writes("no usable CDI layout (see the cdi checks)", "nothing written");
-    return false;
+    return ctx_.document && ctx_.layout;
 }
 
 void NodeRun::plan() {
@@ -268,7 +351,7 @@ bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
         report_.checks.push_back(
             {"encoding.unreadable", Category::kEncoding, Status::kSkip,
              unreadable->key + ": " + why + "; not tested (its original could not be saved)",
-             "lcc-conform safety rule", "", ""});
+             "", "", ""});
         VariableVerdict unsaved;
         unsaved.reason = "original could not be saved: " + why;
         evidence_.tested.push_back({unreadable->ordinal, std::move(unsaved)});
@@ -306,8 +389,8 @@ bool NodeRun::take_lock() {
     }
     report_.checks.push_back(
         {"encoding.lock", Category::kEncoding, Status::kWarn,
-         "Lock/Reserve " + how + ": a second tool writing at the same time cannot be excluded",
-         "MemoryConfigurationS 4.15", "", ""});
+         "Lock/Reserve " + how + ": a second tool writing at the same time cannot be excluded", "",
+         "", ""});
     return true;
 }
 
@@ -330,7 +413,7 @@ EncodingHooks NodeRun::hooks() {
         if (!payload) return std::nullopt;
         return memory::decode_snip(*payload).user_name;
     };
-    h.progress = [this](std::size_t done, std::size_t) { bar_.update(done, wall()); };
+    h.progress = [this](std::size_t done, std::size_t) { tick(done, "values"); };
     return h;
 }
 
@@ -353,14 +436,14 @@ RebootOutcome NodeRun::reboot() {
     }
     watch_.rebase();
     if (locked_) {
-        // A reset clears the lock (MemoryConfigurationS 4.15): take it again.
+        // A reset clears the lock (MemoryConfigurationS §4.17): take it again.
         session_.command(node_, memory::encode(memory::Lock{session_.tool_id().value()}));
     }
     return {true, 0, false};
 }
 
 void NodeRun::encode() {
-    bar_.start("encoding checks", 0, wall());
+    begin_task("encoding checks");
     EncodingOutcome out = run_encoding_checks(plan_.probes, memory_, eo_, hooks());
     bar_.finish();
     for (auto& c : unwritten_checks(plan_.unwritten, eo_.protection.write_protected)) {
@@ -374,7 +457,7 @@ void NodeRun::encode() {
             std::to_string(read_only_skipped_) +
                 " variables in the read-only spaces 252/255 or on the ACDI version byte (251 @0) "
                 "not written (see cdi.acdi-spaces)",
-            "MemoryConfigurationS 4.2", "", ""});
+            "", "", ""});
     }
     in_flight_ = std::move(out.in_flight);
 }
@@ -394,7 +477,8 @@ void NodeRun::after_incident() {
     if (!incident_) return;
     const CheckResult failed = incident_result(*incident_);
     report_.checks.push_back(failed);
-    progress_ << "lcc-conform: " << failed.message << "; waiting up to "
+    // The message names the node's own variable names: untrusted bytes.
+    progress_ << "lcc-conform: " << printable(failed.message) << "; waiting up to "
               << options_.node_wait.count() << " s for it to come back" << std::endl;
     if (!watch_.wait_for_return(options_.node_wait)) {
         keep_backup("the node did not come back within " +
@@ -415,7 +499,7 @@ void NodeRun::keep_backup(const std::string& why) {
         {"encoding.restore", Category::kEncoding, Status::kFail,
          "not restored: " + why + "; backup kept in " + path +
              "; when the node is reachable again run: " + options_.restore_command + " " + path,
-         "lcc-conform safety rule", "", ""});
+         "", "every saved byte written back and read again", "not restored: " + why});
 }
 
 bool NodeRun::link_lost() const {
@@ -470,12 +554,14 @@ void NodeRun::restore_and_verify() {
                          Category::kEncoding,
                          outcome.identical ? Status::kPass : Status::kFail,
                          outcome.summary(),
-                         "lcc-conform safety rule",
+                         "",
                          "",
                          ""};
     if (outcome.identical) {
         backup_->remove_file();
     } else {
+        restored.expected = "memory byte-identical to before the run";
+        restored.seen = outcome.summary();
         const std::string path = std::filesystem::absolute(backup_->path()).string();
         restored.message += "; backup kept in " + path +
                             "; when the node is reachable again run: " + options_.restore_command +
@@ -510,6 +596,46 @@ void NodeRun::note_slow_node() {
     }
 }
 
+void NodeRun::note_not_tested() {
+    // What this run left out and the option that tests it: a clean report must not read as
+    // "everything is fine" when whole rules were never looked at.
+    std::vector<std::string>& out = report_.not_tested;
+    const CheckSelection& sel = options_.selection;
+    if (options_.read_only && sel.wants_writes())
+        out.push_back(
+            "writes not tested (encoding checks, write refusals, persistence): run "
+            "without --read-only");
+    if (!options_.reboot && !options_.read_only && sel.wants_id("encoding.persist-after-reboot"))
+        out.push_back("persistence not tested (values surviving Reset/Reboot): add --reboot");
+    if (!options_.reboot && sel.wants_id("frame.startup-sequence"))
+        out.push_back(
+            "start-up sequence not tested (CID..RID, AMD, Initialization Complete "
+            "after Reset/Reboot): add --reboot");
+    if (!options_.blob && !options_.read_only && ctx_.layout) {
+        std::size_t blobs = 0;
+        ctx_.layout->visit([&](const cdi::Cursor& c) {
+            blobs +=
+                c.element().kind == cdi::ElementKind::kBlob && c.element().blob_mode == "readwrite";
+            return true;
+        });
+        if (blobs != 0)
+            out.push_back(std::to_string(blobs) +
+                          " writable <blob> variables not written: add "
+                          "--blob");
+    }
+    CheckSelection with_thorough = sel;
+    with_thorough.thorough = true;
+    std::string thorough;
+    std::size_t count = 0;
+    for (const CheckSpec& spec : check_registry()) {
+        if (!spec.thorough || sel.thorough || !with_thorough.wants(spec)) continue;
+        thorough += (count++ == 0 ? "" : ", ") + std::string(spec.id);
+    }
+    if (count != 0)
+        out.push_back(std::to_string(count) + " thorough-only checks not run (" + thorough +
+                      "): add --thorough");
+}
+
 void NodeRun::findings() {
     note_slow_node();
     Link& link = session_.link();
@@ -520,8 +646,9 @@ void NodeRun::findings() {
     std::string message = "the link went down during the run";
     if (!link.loss_reason().empty()) message += ": " + link.loss_reason();
     message += link.up() ? " (it came back)" : " (still down)";
-    report_.checks.push_back(
-        CheckResult{"link.lost", Category::kLink, Status::kFail, message, "", "", ""});
+    report_.checks.push_back(CheckResult{
+        "link.lost", Category::kLink, Status::kFail, message, "", "the link up for the whole run",
+        link.loss_reason().empty() ? "the link went down" : link.loss_reason()});
 }
 
 }  // namespace olcb::conform

@@ -41,6 +41,10 @@ private:
     void protocol();
     bool writes_allowed();
     bool load_layout();
+    /// The CDI's layout in ctx_, read here when the protocol checks left none: true when there.
+    bool ensure_layout();
+    /// encoding.stored-strings by reads alone (--read-only).
+    void read_stored_strings();
     void plan();
     using Missing = std::vector<std::pair<RangeRequest, std::string>>;
     bool capture_backup();
@@ -55,6 +59,16 @@ private:
     void select_results();
     void note_slow_node();
     void map_memory();
+    /// Fills report_.not_tested: what the options left out and the option that tests it.
+    void note_not_tested();
+    /// Without a terminal: one line "lcc-conform: NODE text" on the progress stream.
+    void say(const std::string& text);
+    /// say() when nothing was said for a while (a long phase is never silent).
+    void heartbeat(const std::string& text);
+    /// A task within a phase: its bar on a terminal, its heartbeat label otherwise.
+    void begin_task(std::string label);
+    /// Progress of the task: done units so far.
+    void tick(std::size_t done, std::string_view unit);
 
     void skip_writes(const std::string& reason, const std::string& summary);
     EncodingHooks hooks();
@@ -83,6 +97,8 @@ private:
     std::optional<NodeIncident> incident_;
     std::vector<InFlight> in_flight_;
     MapEvidence evidence_;  // what the memory map's verdicts rest on
+    std::string task_;
+    std::chrono::steady_clock::time_point last_line_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace olcb::conform

@@ -104,7 +104,7 @@ CheckResult incident_result(const NodeIncident& i) {
             Category::kNode,
             Status::kFail,
             m,
-            "MessageNetworkS 3.4.2 (Verify Node ID); CanFrameTransferS 6.2 (alias reservation)",
+            "",
             "the node keeps running through the checks",
             rebooted ? "restart" : "no answer"};
 }

@@ -57,13 +57,9 @@ CheckResult short_read_check(Session& s, const NodeInfo& node, std::uint8_t spac
                              CheckContext& ctx) {
     char id[8];
     std::snprintf(id, sizeof id, "%02x", space);
-    CheckResult c{std::string("memory.short-read.") + id,
-                  Category::kMemory,
-                  Status::kPass,
-                  "",
-                  "MemoryConfigurationS 4.4",
-                  "",
-                  ""};
+    CheckResult c{
+        std::string("memory.short-read.") + id, Category::kMemory, Status::kPass, "", "", "", ""};
+    if (const CheckSpec* spec = find_check(c.id)) c.section = std::string(spec->section);
     const std::string name = hex(space, 2);
     const std::uint64_t reads = s.reads(node.id, space);
     const std::vector<const ShortRead*> bad = short_reads_inside(s, node, space, ctx);
@@ -81,9 +77,7 @@ CheckResult short_read_check(Session& s, const NodeInfo& node, std::uint8_t spac
     c.message = "space " + name + ": " + std::to_string(bad.size()) + " of " +
                 std::to_string(reads) + " reads returned fewer bytes than asked away from the " +
                 "end of the space (" + list + (bad.size() > kShortReadsListed ? "; ..." : "") + ")";
-    c.expected =
-        "the count asked: only the end of the space may shorten a Read Reply "
-        "(MemoryConfigurationS 4.4)";
+    c.expected = "the count asked: only the end of the space may shorten a Read Reply";
     c.seen = std::to_string(bad.size()) + " short replies, first " + list.substr(0, list.find(';'));
     return c;
 }
@@ -170,6 +164,7 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
                 continue;
             }
         }
+        if (ctx.check_started) ctx.check_started(spec.id);
         const std::size_t mark = session.frame_mark();
         const std::size_t first = run.result_count();
         const auto since = std::chrono::steady_clock::now();

@@ -13,8 +13,15 @@
 
 namespace olcb::conform {
 
-/// Node text made safe for terminals and XML: control bytes become '?'.
+/// Node text made safe for terminals, JSON and XML: every byte that is not part of valid UTF-8
+/// becomes U+FFFD, control characters (C0, DEL, C1) become '?', and the non-characters U+FFFE
+/// and U+FFFF (not allowed in XML) become U+FFFD.
 std::string printable(std::string_view text);
+
+/// Node-supplied bytes for a message: at most max_bytes of them (cut on a UTF-8 boundary, "..."
+/// marking the cut), printable(), in double quotes when quote is set, then " (bytes 62 61 FF)"
+/// with the raw bytes in hex whenever printable() had to change any of them.
+std::string show_node_text(std::string_view text, bool quote = true, std::size_t max_bytes = 80);
 
 /// Totals over every node of a run.
 struct Summary {
@@ -47,8 +54,8 @@ Summary summarize(const std::vector<NodeReport>& reports);
 /// ANSI colour on the status word when colour is true. No trailing newline.
 std::string format_check(const CheckResult& check, bool colour);
 
-/// The whole text report of one node: a header, one line per check, the restore outcome and the
-/// totals.
+/// The whole text report of one node: a header, one line per check, the restore outcome, the
+/// totals, then one line per thing not tested naming the option that tests it.
 void write_text(std::ostream& out, const NodeReport& report, bool colour);
 
 /// The JSON report of docs/report.schema.json: {"schema_version", "tool", "run", "nodes": [...]}

@@ -80,6 +80,7 @@ nlohmann::ordered_json node_json(const NodeReport& report) {
             {"checks", std::move(checks)},
             {"summary", summary_json(summarize({report}))},
             {"restore", report.restore_summary},
+            {"not_tested", report.not_tested},
             {"memory_map", map_json(report.memory_map)}};
 }
 

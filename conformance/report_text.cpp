@@ -1,10 +1,38 @@
-// The text report: a line per check for people, colour on a terminal.
+// The text report: a line per check for people, colour on a terminal; and how node-supplied
+// bytes are shown in every report (untrusted: any bytes at all may come).
 #include <ostream>
+#include <span>
 
+#include "cdi/string_codec.hpp"
+#include "conformance/backup.hpp"
 #include "conformance/report.hpp"
 
 namespace olcb::conform {
 namespace {
+
+// U+FFFD REPLACEMENT CHARACTER in UTF-8.
+constexpr std::string_view kReplacement = "\xEF\xBF\xBD";
+
+// Appends valid UTF-8 with what a terminal would act on (C0 and C1 controls, DEL) as '?' and
+// what XML forbids (U+FFFE, U+FFFF) as U+FFFD.
+void append_valid(std::string& out, std::string_view text) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        const auto next = i + 1 < text.size() ? static_cast<unsigned char>(text[i + 1]) : 0;
+        if (c < 0x20 || c == 0x7F) {
+            out.push_back('?');
+        } else if (c == 0xC2 && next >= 0x80 && next <= 0x9F) {
+            out.push_back('?');
+            ++i;
+        } else if (c == 0xEF && next == 0xBF && i + 2 < text.size() &&
+                   (static_cast<unsigned char>(text[i + 2]) & 0xFE) == 0xBE) {
+            out += kReplacement;
+            i += 2;
+        } else {
+            out.push_back(static_cast<char>(c));
+        }
+    }
+}
 
 const char* colour_of(Status status) {
     switch (status) {
@@ -22,51 +50,32 @@ const char* colour_of(Status status) {
 
 }  // namespace
 
-namespace {
-
-// Length of the valid UTF-8 sequence at the start of text, 0 when it is not one.
-std::size_t utf8_sequence(std::string_view text) {
-    const auto b = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
-    const unsigned char lead = b(0);
-    std::size_t n = 0;
-    unsigned min = 0;
-    if (lead < 0x80) return 1;
-    if (lead >= 0xC2 && lead <= 0xDF)
-        n = 2, min = 0x80;
-    else if (lead >= 0xE0 && lead <= 0xEF)
-        n = 3, min = 0x800;
-    else if (lead >= 0xF0 && lead <= 0xF4)
-        n = 4, min = 0x10000;
-    else
-        return 0;
-    if (text.size() < n) return 0;
-    unsigned cp = lead & (0x7F >> n);
-    for (std::size_t i = 1; i < n; ++i) {
-        if ((b(i) & 0xC0) != 0x80) return 0;
-        cp = (cp << 6) | (b(i) & 0x3F);
-    }
-    const bool surrogate = cp >= 0xD800 && cp <= 0xDFFF;
-    return cp < min || cp > 0x10FFFF || surrogate ? 0 : n;
-}
-
-}  // namespace
 
 std::string printable(std::string_view text) {
     std::string out;
     out.reserve(text.size());
+    // Each byte that starts no valid sequence is one U+FFFD, so the count of bad bytes shows.
     while (!text.empty()) {
-        const std::size_t n = utf8_sequence(text);
-        if (n == 0) {
-            out += "\xEF\xBF\xBD";  // U+FFFD for a byte that starts no valid sequence
-            text.remove_prefix(1);
-            continue;
-        }
-        const auto c = static_cast<unsigned char>(text[0]);
-        if (n == 1)
-            out.push_back(c < 0x20 || c == 0x7F ? '?' : static_cast<char>(c));
-        else
-            out.append(text.substr(0, n));
-        text.remove_prefix(n);
+        const std::size_t valid = cdi::find_invalid_utf8(text).value_or(text.size());
+        append_valid(out, text.substr(0, valid));
+        if (valid == text.size()) break;
+        out += kReplacement;
+        text.remove_prefix(valid + 1);
+    }
+    return out;
+}
+
+std::string show_node_text(std::string_view text, bool quote, std::size_t max_bytes) {
+    const std::string_view shown = cdi::truncate_utf8(text, max_bytes);
+    const std::string safe = printable(shown);
+    std::string out = quote ? "\"" : "";
+    out += safe;
+    if (shown.size() < text.size()) out += "...";
+    if (quote) out += "\"";
+    if (safe != shown) {
+        const std::span<const std::uint8_t> bytes(
+            reinterpret_cast<const std::uint8_t*>(shown.data()), shown.size());
+        out += " (bytes " + hex_bytes(bytes, bytes.size()) + ")";
     }
     return out;
 }
@@ -96,6 +105,16 @@ std::string format_check(const CheckResult& check, bool colour) {
 void write_text(std::ostream& out, const NodeReport& report, bool colour) {
     out << "node " << report.node_id;
     if (!report.name.empty()) out << "  " << printable(report.name);
+    // The raw bytes of each SNIP string the header had to change, so nothing is hidden.
+    const NodeIdentity& id = report.identity;
+    const std::pair<const char*, const std::string*> shown[] = {
+        {"manufacturer", &id.manufacturer}, {"model", &id.model}, {"user name", &id.user_name}};
+    for (const auto& [label, text] : shown) {
+        if (printable(*text) == *text) continue;
+        const std::span<const std::uint8_t> bytes(
+            reinterpret_cast<const std::uint8_t*>(text->data()), text->size());
+        out << " (" << label << " bytes " << hex_bytes(bytes, bytes.size()) << ")";
+    }
     out << '\n';
     out << "timing: " << report.timing.describe() << '\n';
     for (const CheckResult& c : report.checks) out << format_check(c, colour) << '\n';
@@ -103,6 +122,7 @@ void write_text(std::ostream& out, const NodeReport& report, bool colour) {
     Summary s = summarize({report});
     out << s.total() << " checks: " << s.pass << " passed, " << s.fail << " failed, " << s.warn
         << " warnings, " << s.skip << " skipped\n";
+    for (const std::string& what : report.not_tested) out << what << '\n';
 }
 
 }  // namespace olcb::conform

@@ -6,6 +6,9 @@
 namespace olcb::conform {
 namespace {
 
+// How long lcc-conform tries to reach a hub before giving up with the reason.
+constexpr std::chrono::seconds kConnectWait{2};
+
 class TcpLink final : public RealLink {
 public:
     TcpLink(std::unique_ptr<boost::asio::io_context> io, const std::string& host,
@@ -56,8 +59,13 @@ std::unique_ptr<Link> connect_tcp(const std::string& host, std::uint16_t port, N
         std::make_unique<TcpLink>(std::make_unique<boost::asio::io_context>(), host, port, tool_id);
     link->client().start();
     // Connect before the stack starts, so alias reservation is seen by the segment.
-    if (!link->run_until([&] { return link->client().connected(); }, std::chrono::seconds(2))) {
-        error = "cannot connect to " + host + ":" + std::to_string(port);
+    if (!link->run_until([&] { return link->client().connected(); }, kConnectWait)) {
+        // Refused, not found or silent: each asks the user for something else.
+        const std::string why = link->client().last_error();
+        error = "cannot connect to " + host + ":" + std::to_string(port) + ": " +
+                (why.empty()
+                     ? "no answer within " + std::to_string(kConnectWait.count()) + " s (timed out)"
+                     : why);
         return nullptr;
     }
     link->attach(link->client());

@@ -46,6 +46,7 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
                                                     const tcp::resolver::results_type& results) {
                 if (self->stopped || generation != self->conn_generation) return;
                 if (ec) {
+                    self->last_error = "host " + self->host + " not found (" + ec.message() + ")";
                     self->retry(true);
                     return;
                 }
@@ -54,6 +55,9 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
                     [self, generation](const boost::system::error_code& cec, const tcp::endpoint&) {
                         if (self->stopped || generation != self->conn_generation) return;
                         if (cec) {
+                            self->last_error = cec == boost::asio::error::connection_refused
+                                                   ? std::string("connection refused")
+                                                   : cec.message();
                             self->retry(true);
                             return;
                         }
@@ -199,6 +203,7 @@ struct TcpClient::Impl : std::enable_shared_from_this<TcpClient::Impl> {
     bool stopped = false;
     bool started = false;
     bool given_up = false;
+    std::string last_error;
     unsigned failures = 0;
     std::uint64_t conn_generation = 0;
     HandlerSlot handler;
@@ -231,6 +236,9 @@ bool TcpClient::connected() const {
 }
 bool TcpClient::gave_up() const {
     return impl_->given_up;
+}
+std::string TcpClient::last_error() const {
+    return impl_->last_error;
 }
 
 void TcpClient::set_connection_handler(std::function<void(bool)> handler) {

@@ -61,6 +61,9 @@ public:
     bool connected() const;
     /// True after max_attempts consecutive failures made the client give up.
     bool gave_up() const;
+    /// Why the last connect attempt failed ("connection refused", "host X not found (...)",
+    /// the system's text otherwise); "" while none has.
+    std::string last_error() const;
     /// Called with true on each connect and false on each disconnect.
     void set_connection_handler(std::function<void(bool connected)> handler);
     /// Counters.

@@ -1,6 +1,7 @@
 #include "openlcb/traffic_log.hpp"
 
 #include <filesystem>
+#include <iostream>
 #include <system_error>
 #include <utility>
 
@@ -24,6 +25,12 @@ bool RotatingFile::open(const std::string& path, std::uint64_t max_bytes) {
     path_ = path;
     max_bytes_ = max_bytes;
     failed_ = false;
+    // "-" is standard output, as for most Unix tools: a pipe cannot be rotated.
+    stdout_ = path == "-";
+    if (stdout_) {
+        max_bytes_ = 0;
+        return true;
+    }
     file_.open(path, std::ios::app);
     if (!file_) return false;
     std::error_code ec;
@@ -33,6 +40,13 @@ bool RotatingFile::open(const std::string& path, std::uint64_t max_bytes) {
 }
 
 void RotatingFile::write(std::string_view text) {
+    if (stdout_) {
+        std::cout.write(text.data(), static_cast<std::streamsize>(text.size()));
+        std::cout.flush();
+        if (!std::cout) failed_ = true;
+        size_ += text.size();
+        return;
+    }
     if (!file_.is_open()) return;
     if (max_bytes_ != 0 && size_ != 0 && size_ + text.size() > max_bytes_) rotate();
     file_.write(text.data(), static_cast<std::streamsize>(text.size()));

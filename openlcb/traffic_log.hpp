@@ -20,15 +20,15 @@ namespace olcb {
 /// 2 * max_bytes stay on disk. Writes are flushed at once so a log survives a crash.
 class RotatingFile {
 public:
-    /// Opens path for appending (its current size counts); max_bytes 0 = never rotate. False if
-    /// it cannot be opened.
+    /// Opens path for appending (its current size counts); max_bytes 0 = never rotate. "-" is
+    /// standard output (never rotated). False if it cannot be opened.
     bool open(const std::string& path, std::uint64_t max_bytes = 0);
     /// Appends text, which stays whole in one file (a text longer than max_bytes fills one alone).
     void write(std::string_view text);
     /// True after a successful open().
-    bool is_open() const { return file_.is_open(); }
+    bool is_open() const { return stdout_ || file_.is_open(); }
     /// False once a write or a rotation failed.
-    bool ok() const { return !failed_ && static_cast<bool>(file_); }
+    bool ok() const { return !failed_ && (stdout_ || static_cast<bool>(file_)); }
     /// Bytes in the current file.
     std::uint64_t size() const { return size_; }
     /// Times the file was rotated.
@@ -42,6 +42,7 @@ private:
     std::uint64_t size_ = 0;
     std::uint64_t rotations_ = 0;
     bool failed_ = false;
+    bool stdout_ = false;  ///< writing to standard output ("-")
     std::ofstream file_;
 };
 

@@ -46,6 +46,7 @@ struct FlagFault {
 
 constexpr FlagFault kFlagFaults[] = {
     {"snip-mismatch", &FaultSet::snip_mismatch},
+    {"snip-invalid-utf8", &FaultSet::snip_invalid_utf8},
     {"acdi-version", &FaultSet::acdi_version},
     {"cdi-unterminated", &FaultSet::cdi_unterminated},
     {"cdi-padding", &FaultSet::cdi_padding},
@@ -221,6 +222,8 @@ bool FaultSet::none() const {
 const std::vector<FaultInfo>& fault_catalog() {
     static const std::vector<FaultInfo> catalog = {
         {"snip-mismatch", "", "SNIP model string differs from ACDI space 252 and the CDI"},
+        {"snip-invalid-utf8", "",
+         "SNIP user name ends in the bytes FF FE, which are not UTF-8 (space 251 stays valid)"},
         {"acdi-version", "", "version bytes of spaces 252/251 are fixed+1 and var+1"},
         {"pip-missing-bit", "cdi|acdi|snip|datagram|memory|events (default cdi)",
          "Protocol Support Reply lacks a bit for a protocol the node serves"},

@@ -17,6 +17,7 @@ enum class PipBit : std::uint8_t { kCdi, kAcdi, kSnip, kDatagram, kMemoryConfigu
 /// The faults of one node; all off by default (a well-behaved node).
 struct FaultSet {
     bool snip_mismatch = false;         ///< SNIP model string differs from ACDI/CDI
+    bool snip_invalid_utf8 = false;     ///< SNIP user name ends in bytes that are not UTF-8
     bool acdi_version = false;          ///< 252/251 version bytes are fixed+1 / var+1
     std::optional<PipBit> pip_missing;  ///< PSR lacks this bit although the node serves it
     bool cdi_unterminated = false;      ///< space 0xFF without the terminating NUL

@@ -125,6 +125,7 @@ bool add_option(Raw& raw, const std::string& key, std::vector<std::string> value
 po::options_description cli_options() {
     po::options_description general("General");
     general.add_options()("help,h", "print this help and exit")(
+        "version", "print the program's version and exit")(
         "list-faults", "print the names of every fault and exit")(
         "scenario", po::value<std::string>()->value_name("FILE"),
         "scenario .ini file (also accepted as the only positional argument)")(
@@ -162,10 +163,11 @@ po::options_description cli_options() {
         "join the CAN bus behind a GridConnect USB/serial adapter (e.g. /dev/ttyACM0)")(
         "baud", po::value<std::string>()->value_name("N"), "serial bit rate (default 115200)")(
         "flow-control", po::value<std::string>()->value_name("none|rtscts"),
-        "serial flow control (default none)")("trace", po::value<std::string>()->value_name("FILE"),
-                                              "write decoded traffic to FILE")(
+        "serial flow control (default none)")(
+        "trace", po::value<std::string>()->value_name("FILE"),
+        "write decoded traffic to FILE ('-': standard output)")(
         "candump", po::value<std::string>()->value_name("FILE"),
-        "write traffic to FILE as candump -L lines")(
+        "write traffic to FILE as candump -L lines ('-': standard output)")(
         "max-clients", po::value<std::string>()->value_name("N"),
         "hub: refuse connections beyond N (default 64)")(
         "max-clients-per-address", po::value<std::string>()->value_name("N"),
@@ -207,6 +209,7 @@ struct CommandLine {
     std::optional<std::string> scenario;
     bool help = false;
     bool list_faults = false;
+    bool version = false;
 };
 
 std::optional<CommandLine> parse_command_line(std::span<const std::string> args,
@@ -231,6 +234,8 @@ std::optional<CommandLine> parse_command_line(std::span<const std::string> args,
             cl.help = true;
         } else if (opt.string_key == "list-faults") {
             cl.list_faults = true;
+        } else if (opt.string_key == "version") {
+            cl.version = true;
         } else if (opt.string_key == "scenario") {
             if (cl.scenario) {
                 error = "more than one scenario file given";
@@ -290,6 +295,7 @@ fs::path path_of(const Keys& keys, std::string_view key) {
     const auto it = keys.find(key);
     if (it == keys.end() || it->second.items.empty()) return {};
     fs::path p = it->second.items.back();
+    if (p == "-") return p;  // standard output (--trace -, --candump -), not a file named "-"
     if (p.is_relative() && !it->second.base.empty()) p = it->second.base / p;
     return p.lexically_normal();
 }
@@ -672,7 +678,8 @@ std::optional<Arguments> parse_arguments(std::span<const std::string> args,
     Arguments result;
     result.help = cl->help;
     result.list_faults = cl->list_faults;
-    if (result.help || result.list_faults) return result;
+    result.version = cl->version;
+    if (result.help || result.list_faults || result.version) return result;
 
     fs::path file;
     if (cl->scenario) {

@@ -64,6 +64,7 @@ struct Scenario {
 struct Arguments {
     bool help = false;         ///< --help: print help_text() and exit
     bool list_faults = false;  ///< --list-faults: print fault_names() and exit
+    bool version = false;      ///< --version: print the program's version and exit
     Scenario scenario;         ///< filled unless help or list_faults
 };
 

@@ -219,6 +219,13 @@ memory::Snip SimNode::snip() const {
             std::string(memory::clamp_utf8(s.model, memory::kSnipModelMax - 1 - kSuffix.size())) +
             std::string(kSuffix);
     }
+    if (config_.faults.snip_invalid_utf8) {
+        // Bytes no UTF-8 text holds anywhere: a client must not trust SNIP strings blindly.
+        constexpr std::string_view kInvalid = "\xFF\xFE";
+        s.user_name = std::string(memory::clamp_utf8(
+                          s.user_name, memory::kSnipUserNameMax - 1 - kInvalid.size())) +
+                      std::string(kInvalid);
+    }
     return s;
 }
 

@@ -8,6 +8,7 @@
 #include <boost/program_options.hpp>
 
 #include "cdi/tool/commands.hpp"
+#include "olcb_version.hpp"
 
 namespace po = boost::program_options;
 
@@ -34,6 +35,10 @@ int main(int argc, char** argv) {
     const std::string command = argv[1];
     if (command == "--help" || command == "-h" || command == "help") {
         std::cout << kUsage;
+        return 0;
+    }
+    if (command == "--version") {
+        std::cout << "lcc-cdi " << olcb::kVersion << "\n";
         return 0;
     }
     std::vector<std::string> args(argv + 2, argv + argc);

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "conformance/runner.hpp"
 #include "conformance/session.hpp"
 #include "memory/snip.hpp"
+#include "olcb_version.hpp"
 
 namespace po = boost::program_options;
 using namespace olcb;
@@ -29,6 +31,32 @@ namespace {
 constexpr int kUsage = 2;
 // The tool's own node IDs: self-assigned IDs of the experimental range 05.01.01.01.3F.01 to
 // 05.01.01.01.3F.FE; each run takes one of its own so concurrent runs on one bus don't collide.
+
+// A node ID option as typed: every dotted byte with both its hex digits, so a truncated
+// "05.01.01.01.22.0" is refused rather than taken as 05.01.01.01.22.00 (another node).
+bool check_node_id_option(const std::string& option, const std::string& text, std::string& error) {
+    if (text.find('.') != std::string::npos) {
+        std::size_t field = 0;
+        for (std::size_t start = 0; start <= text.size(); ++field) {
+            const std::size_t dot = std::min(text.find('.', start), text.size());
+            const std::size_t digits = dot - start;
+            if (digits != 2) {
+                error = "--" + option;
+                error.append(" ").append(text).append(": byte ");
+                error.append(std::to_string(field + 1)).append(" has ");
+                error.append(std::to_string(digits))
+                    .append(" hex digit(s); write all six bytes with two each, e.g. ")
+                    .append("05.01.01.01.22.00");
+                return false;
+            }
+            start = dot + 1;
+        }
+    }
+    std::string why;
+    if (NodeId::parse(text, &why)) return true;
+    error = "--" + option + " " + text + ": " + why;
+    return false;
+}
 
 NodeId pick_tool_id(const po::variables_map& vm, std::string& error) {
     if (vm.count("tool-id")) {
@@ -115,8 +143,8 @@ po::options_description transport_options() {
 
 po::options_description check_options() {
     po::options_description o("what to check");
-    o.add_options()("help,h", "this text")("list",
-                                           "list every node with its SNIP names, check nothing")(
+    o.add_options()("help,h", "this text")("version", "print the program's version and exit")(
+        "list", "list every node with its SNIP names, check nothing")(
         "read-only", "never write (encoding checks are skipped)")(
         "sample", po::value<std::size_t>()->default_value(3),
         "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
@@ -257,10 +285,14 @@ std::vector<NodeInfo> find_nodes(Session& session, const po::variables_map& vm,
 void print_node_line(Session& session, const NodeInfo& n) {
     std::cout << n.id.to_string();
     if (auto p = session.snip_payload(n)) {
-        memory::Snip s = memory::decode_snip(*p);
-        std::cout << "  " << s.manufacturer << " | " << s.model << " | " << s.hardware_version
-                  << " | " << s.software_version << " | " << s.user_name << " | "
-                  << s.user_description;
+        // The node's own bytes: never raw to a terminal.
+        const memory::Snip s = memory::decode_snip(*p);
+        const auto shown = [](const std::string& text) {
+            return show_node_text(text, false, text.size());
+        };
+        std::cout << "  " << shown(s.manufacturer) << " | " << shown(s.model) << " | "
+                  << shown(s.hardware_version) << " | " << shown(s.software_version) << " | "
+                  << shown(s.user_name) << " | " << shown(s.user_description);
     }
     std::cout << "\n";
 }
@@ -381,6 +413,50 @@ int backup_command(Session& session, const std::string& command,
     return run_diff_node(session, o, std::cout, std::cerr);
 }
 
+// --help, --version and --list-checks: printed, with the exit status; nullopt for a run.
+std::optional<int> answer_without_a_run(const po::variables_map& vm,
+                                        const po::options_description& opts) {
+    if (vm.count("help")) {
+        print_help(opts);
+        return 0;
+    }
+    if (vm.count("version")) {
+        std::cout << "lcc-conform " << kVersion << "\n";
+        return 0;
+    }
+    if (vm.count("list-checks")) {
+        const std::string form = vm["list-checks"].as<std::string>();
+        if (form != "text" && form != "markdown") {
+            std::cerr << "lcc-conform: --list-checks takes text or markdown\n";
+            return kUsage;
+        }
+        std::cout << (form == "markdown" ? format_check_markdown() : format_check_list());
+        return 0;
+    }
+    return std::nullopt;
+}
+
+// Options no run can start with: false after saying why (before anything is connected).
+bool options_usable(const po::variables_map& vm) {
+    for (const char* option : {"node", "tool-id"}) {
+        std::string error;
+        if (vm.count(option) &&
+            !check_node_id_option(option, vm[option].as<std::string>(), error)) {
+            std::cerr << "lcc-conform: " << error << "\n";
+            return false;
+        }
+    }
+    if (!vm.count("skip")) return true;
+    for (const std::string& p : vm["skip"].as<std::vector<std::string>>()) {
+        if (is_check_pattern(p)) continue;
+        std::cerr << "lcc-conform: --skip '" << p
+                  << "': not a check ID pattern (it starts with a category, e.g. "
+                     "'memory.*'); to leave variables alone use --exclude\n";
+        return false;
+    }
+    return true;
+}
+
 int main_checked(int argc, char** argv) {
     po::options_description opts("options");
     opts.add(transport_options()).add(check_options());
@@ -398,28 +474,8 @@ int main_checked(int argc, char** argv) {
         std::cerr << "lcc-conform: " << e.what() << "\n";
         return kUsage;
     }
-    if (vm.count("help")) {
-        print_help(opts);
-        return 0;
-    }
-    if (vm.count("list-checks")) {
-        const std::string form = vm["list-checks"].as<std::string>();
-        if (form != "text" && form != "markdown") {
-            std::cerr << "lcc-conform: --list-checks takes text or markdown\n";
-            return kUsage;
-        }
-        std::cout << (form == "markdown" ? format_check_markdown() : format_check_list());
-        return 0;
-    }
-    if (vm.count("skip")) {
-        for (const std::string& p : vm["skip"].as<std::vector<std::string>>()) {
-            if (is_check_pattern(p)) continue;
-            std::cerr << "lcc-conform: --skip '" << p
-                      << "': not a check ID pattern (it starts with a category, e.g. "
-                         "'memory.*'); to leave variables alone use --exclude\n";
-            return kUsage;
-        }
-    }
+    if (auto answered = answer_without_a_run(vm, opts)) return *answered;
+    if (!options_usable(vm)) return kUsage;
     std::vector<std::string> args;
     if (vm.count("args")) args = vm["args"].as<std::vector<std::string>>();
     const std::string command = args.empty() ? "check" : args[0];
@@ -441,7 +497,11 @@ int main_checked(int argc, char** argv) {
     }
     const Reports reports(vm, argc, argv);
     std::string error;
-    if (command == "check" && !reports.writable(error)) return reports.fail(error);
+    if (command == "check" && !reports.writable(error)) {
+        // Said once: the reports cannot be written, so none is tried again.
+        std::cerr << "lcc-conform: " << error << "\n";
+        return kUsage;
+    }
     const NodeId tool = pick_tool_id(vm, error);
     if (tool.is_zero()) return reports.fail("--tool-id: " + error);
     auto link = open_link(vm, tool, error);

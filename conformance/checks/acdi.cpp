@@ -1,4 +1,5 @@
 // ACDI: the version bytes of 252/251 against <acdi fixed/var>, and their Space Info.
+#include "memory/acdi.hpp"
 #include "conformance/checks/checks.hpp"
 
 namespace olcb::conform::checks {
@@ -22,6 +23,15 @@ void version_byte(CheckRun& run, const MemResult& r, unsigned want, const char* 
     const bool readable = r.ok && !r.data.empty();
     run.out().judge(readable && r.data[0] == want, what, std::to_string(want),
                     readable ? std::to_string(r.data[0]) : "unreadable: " + describe(r));
+}
+
+// A string slot of an ACDI block: its bytes up to the NUL (all of them when there is none).
+std::string_view slot(const std::vector<std::uint8_t>& block, std::size_t offset,
+                      std::size_t size) {
+    if (offset >= block.size()) return {};
+    const auto* begin = reinterpret_cast<const char*>(block.data()) + offset;
+    const std::string_view field(begin, std::min(size, block.size() - offset));
+    return field.substr(0, field.find('\0'));
 }
 
 }  // namespace
@@ -53,6 +63,30 @@ void acdi_space_info(CheckRun& run) {
                         fb.highest_address == 127,
                     "Space Info: 252 read-only highest 124, 251 highest 127", "124 RO / 127",
                     seen(fc) + " / " + seen(fb));
+}
+
+void acdi_utf8(CheckRun& run) {
+    if (!has_acdi(run)) return;
+    const CheckContext& ctx = run.ctx();
+    if (!ctx.acdi_manufacturer)
+        return run.out().skip(
+            "depends on acdi.manufacturer-version: space 252 could not be read (" +
+            describe(run.acdi_manufacturer_result()) + ")");
+    if (!ctx.acdi_user)
+        return run.out().skip("depends on acdi.user-version: space 251 could not be read (" +
+                              describe(run.acdi_user_result()) + ")");
+    using namespace memory::acdi;
+    const auto& m = *ctx.acdi_manufacturer;
+    const auto& u = *ctx.acdi_user;
+    judge_utf8(
+        run,
+        {{"space 252 @1 manufacturer", slot(m, kManufacturerOffset, kManufacturerSize)},
+         {"space 252 @42 model", slot(m, kModelOffset, kModelSize)},
+         {"space 252 @83 hardware version", slot(m, kHardwareVersionOffset, kHardwareVersionSize)},
+         {"space 252 @104 software version", slot(m, kSoftwareVersionOffset, kSoftwareVersionSize)},
+         {"space 251 @1 user name", slot(u, kUserNameOffset, kUserNameSize)},
+         {"space 251 @64 user description", slot(u, kUserDescriptionOffset, kUserDescriptionSize)}},
+        "the six ACDI strings of spaces 252/251 are valid UTF-8");
 }
 
 }  // namespace olcb::conform::checks

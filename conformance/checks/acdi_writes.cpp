@@ -80,8 +80,8 @@ void version_write_refused(CheckRun& run) {
 
 std::vector<CheckSpec> acdi_write_checks() {
     return {
-        {"acdi.version-write-refused", Category::kAcdi, "CDI §5.1.2; MemoryConfigurationS §4.6",
-         "cd40",
+        {"acdi.version-write-refused", Category::kAcdi,
+         "ConfigurationDescriptionInformationS §5.1.2; MemoryConfigurationS §4.8", "cd40",
          "with <acdi/> or 0xFB present: 0xFB byte 0 (the version) read, then written with that "
          "value: refused (0x1083 preferred); writes to 0xFC (cd40's other half) are "
          "memory.readonly-refused.fc",

@@ -25,6 +25,7 @@ void no_unsolicited(CheckRun& run);
 
 // snip.cpp
 void snip_version_bytes(CheckRun& run);
+void snip_utf8(CheckRun& run);
 void snip_matches_acdi(CheckRun& run);
 void snip_matches_cdi(CheckRun& run);
 
@@ -46,6 +47,7 @@ std::string acdi_conflict(const CheckContext& ctx);
 // acdi.cpp
 void acdi_manufacturer_version(CheckRun& run);
 void acdi_user_version(CheckRun& run);
+void acdi_utf8(CheckRun& run);
 void acdi_space_info(CheckRun& run);
 
 // pip.cpp
@@ -72,6 +74,15 @@ void memory_read_short_at_end(CheckRun& run);
 void memory_unknown_space(CheckRun& run);
 void memory_lock(CheckRun& run);
 void memory_readonly_refused(CheckRun& run);
+
+/// One string from the node a check judges, named for its messages ("user name").
+struct NamedText {
+    std::string name;
+    std::string_view text;
+};
+/// PASS (what) when every text is valid UTF-8; else FAIL naming each invalid one with its bytes
+/// in hex (snip.cpp).
+void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what);
 
 /// What the node sent in one silence window after four probes that must go unanswered: an
 /// unknown global MTI, and Verify Node ID, Protocol Support Inquiry and an unknown MTI addressed

@@ -65,12 +65,11 @@ void learn_tolerated(CheckRun& run) {
 
 std::vector<CheckSpec> event_robustness_checks() {
     return {
-        {"events.pcer-payload-tolerated", Category::kEvents, "EventTransportS; CanFrameTransferS",
-         "ev60",
+        {"events.pcer-payload-tolerated", Category::kEvents, "EventTransportS §4.1, §7", "ev60",
          "PCERs with payload (first/middle/last frames, 4 to 2,044 payload bytes) of an event in "
          "lcc-conform's own range: no restart, the node still answers Verify Node ID",
          pcer_payload_tolerated},
-        {"events.learn-tolerated", Category::kEvents, "EventTransportS", "ev70",
+        {"events.learn-tolerated", Category::kEvents, "EventTransportS §4.9, §6.5", "ev70",
          "Learn Event with an event of lcc-conform's own range: no restart, the node still "
          "answers (only with --thorough: a node in learn mode would store the event)",
          learn_tolerated, true},

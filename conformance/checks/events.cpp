@@ -37,7 +37,8 @@ constexpr std::uint64_t kUnknownEvent = 0x0501'0101'3FFF'FFFEull;
 constexpr std::uint64_t kFollowBase = 0x0501'0101'3FFE'0000ull;
 // An Identify Events answer may go on this many answer windows (hundreds of events at CAN speed).
 constexpr int kMaxAnswerWindows = 10;
-constexpr std::string_view kSection = "EventTransportS §6";
+// Event Inquiry: Identify Events is answered with every event the node produces and consumes.
+constexpr std::string_view kInquiry = "EventTransportS §6.2";
 
 // How long answers are awaited: quiet ends a stream of answers, answer bounds the first one.
 struct Windows {
@@ -511,7 +512,7 @@ void identify_producer_consumer(CheckRun& run) {
 CheckResult follow_result(Status status, std::string message, std::string expected = {},
                           std::string seen = {}) {
     return {"events.follow-write", Category::kEvents,   status,         std::move(message),
-            std::string(kSection), std::move(expected), std::move(seen)};
+            std::string(kInquiry), std::move(expected), std::move(seen)};
 }
 
 // The variable to rewrite: identified exactly (its role known), its value held by no other
@@ -582,7 +583,7 @@ struct FollowRun {
         out.push_back({"encoding.original-restored", Category::kEncoding, Status::kFail,
                        v.key + ": original " + event_text(*v.value) +
                            " did not read back after events.follow-write (reads " + seen + ")",
-                       "lcc-conform safety rule", "the original bytes", seen});
+                       "", event_text(*v.value), seen});
     }
     void run(const EventVar& v, const EventAnswers& a, std::uint64_t id);
 };
@@ -655,18 +656,20 @@ std::vector<CheckResult> events_follow_write(Session& session, const NodeInfo& n
 
 std::vector<CheckSpec> event_checks() {
     return {
-        {"events.identify-global", Category::kEvents, kSection, "ev20",
+        {"events.identify-global", Category::kEvents, kInquiry, "ev20",
          "Identify Events global: Producer/Consumer (Range) Identified from the node until quiet; "
          "at least one with the PIP Event Exchange bit, none without",
          identify_global},
-        {"events.identify-addressed", Category::kEvents, kSection, "ev10",
+        {"events.identify-addressed", Category::kEvents, kInquiry, "ev10",
          "Identify Events addressed: the same produced/consumed events and ranges as global",
          identify_addressed},
-        {"events.cdi-events-identified", Category::kEvents, "CDI §5.1.4.4; EventTransportS §6", "",
+        {"events.cdi-events-identified", Category::kEvents,
+         "ConfigurationDescriptionInformationS §5.1.4.4; EventTransportS §6.2", "",
          "every non-zero event ID the CDI's eventid variables hold (read from the node, at most "
          "512) is identified by Identify Events or Identify Producer/Consumer; WARN lists others",
          cdi_events_identified},
-        {"events.identify-producer-consumer", Category::kEvents, kSection, "ev30, ev40",
+        {"events.identify-producer-consumer", Category::kEvents, "EventTransportS §6.3, §6.4",
+         "ev30, ev40",
          "Identify Producer/Consumer of an identified produced/consumed event: its Identified "
          "message; of 05.01.01.01.3F.FF.FF.FE (not the node's): silence",
          identify_producer_consumer},
@@ -675,7 +678,7 @@ std::vector<CheckSpec> event_checks() {
 
 std::vector<CheckSpec> event_phase_checks() {
     return {
-        {"events.follow-write", Category::kEvents, kSection, "",
+        {"events.follow-write", Category::kEvents, kInquiry, "",
          "write phase: 05.01.01.01.3F.FE.xx.yy into one identified, unprotected eventid "
          "variable, Update Complete: the new ID identified, the old not; original back and read",
          nullptr},

@@ -18,12 +18,29 @@ std::optional<std::uint64_t> lock_cmd(CheckRun& run, std::uint64_t id, MemResult
     return std::nullopt;
 }
 
+// The read reply command byte in one form, as on the wire: "20 53" (short form of 0xFF) or
+// "20 50 .. FF" (the space in byte 6).
+std::string read_reply(std::uint8_t sp, bool short_form) {
+    using namespace memory::command_bits;
+    const auto space = static_cast<Space>(sp);
+    if (short_form)
+        return "20 " + hex(kRead | kReply | memory::short_form_bits(space), 2).substr(2);
+    return "20 " + hex(kRead | kReply, 2).substr(2) + " .. " + hex(sp, 2).substr(2);
+}
+
+// What a read's reply form was, against the one asked for.
+std::string form_seen(std::uint8_t sp, bool asked_short, const MemResult& r) {
+    const bool got_short = r.reply_in_request_form == asked_short;
+    return "Read Reply " + read_reply(sp, got_short) + " (" +
+           (got_short ? "short form" : "byte-6 form") + ")";
+}
+
 }  // namespace
 
 void memory_config_options(CheckRun& run) {
     const MemResult& r = run.config_options();
     run.out().judge(run.ctx().options.has_value(), "Get Configuration Options answered",
-                    "reply 20 82", r.ok ? "a reply other than 20 82" : describe(r));
+                    "reply 20 82", r.ok ? run.config_options_reply() : describe(r));
 }
 
 void memory_reply_latency(CheckRun& run) {
@@ -69,8 +86,8 @@ void memory_space_info_layout(CheckRun& run) {
 
 void memory_read_byte6_form(CheckRun& run) {
     const FormProbe& p = run.form_probe();
-    run.out().judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form", "data",
-                    describe(p.byte6));
+    run.out().judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form",
+                    "Read Reply OK with 8 bytes", describe(p.byte6));
 }
 
 void memory_read_short_form(CheckRun& run) {
@@ -78,24 +95,33 @@ void memory_read_short_form(CheckRun& run) {
     if (!p.short_form)
         return run.out().skip("space " + hex(p.space, 2) + " has only the byte-6 form");
     run.out().judge(p.short_form->ok, "read of space " + hex(p.space, 2) + " in the short form",
-                    "data", describe(*p.short_form));
+                    "Read Reply OK with 8 bytes", describe(*p.short_form));
 }
 
 void memory_reply_form(CheckRun& run) {
     const FormProbe& p = run.form_probe();
-    std::string seen;
-    if (!p.byte6.ok || !p.byte6.reply_in_request_form)
-        seen = "byte-6 read answered in the short form";
-    if (p.short_form && (!p.short_form->ok || !p.short_form->reply_in_request_form))
-        seen = "short-form read answered in the byte-6 form";
-    if (!run.cdi_forms_ok()) seen = "CDI reads answered in the other form";
-    run.out().judge(seen.empty(), "replies use the form of the request", "same form", seen);
+    if (!p.byte6.ok)
+        return run.out().skip("depends on memory.read-byte6-form: " + describe(p.byte6));
+    // The first read whose reply came in the other form, with both forms as on the wire.
+    std::string expected, seen;
+    const auto judge = [&](const std::string& what, std::uint8_t sp, bool asked_short,
+                           const MemResult& r) {
+        if (!seen.empty() || r.reply_in_request_form) return;
+        expected = what + ": Read Reply " + read_reply(sp, asked_short);
+        seen = what + ": " + form_seen(sp, asked_short, r);
+    };
+    judge("byte-6 read of " + hex(p.space, 2), p.space, false, p.byte6);
+    if (p.short_form) judge("short-form read of " + hex(p.space, 2), p.space, true, *p.short_form);
+    judge("CDI read of 0xFF", 0xFF, true, run.cdi().result);
+    run.out().judge(seen.empty(), "replies use the form of the request", expected, seen);
 }
 
 void memory_read_short_at_end(CheckRun& run) {
     const SpaceInfo ff = run.space_info(0xFF);
     if (!ff.present || ff.highest_address < 3)
         return run.out().skip("depends on cdi.space-info: 0xFF not present or too small");
+    if (std::string doubt = run.highest_too_small(0xFF); !doubt.empty())
+        return run.out().skip(doubt);
     const MemResult& e =
         run.note(run.session().read(run.node(), Space::kCdi, ff.highest_address - 3, 8));
     run.out().judge(e.ok && e.data.size() == 4,

@@ -150,6 +150,11 @@ void read_at_highest(CheckRun& run) {
 
 void read_past_end(CheckRun& run) {
     for (std::uint8_t sp : bounded_spaces(run)) {
+        // Past a highest address that is too small lies data: that is the other check's finding.
+        if (std::string doubt = run.highest_too_small(sp); !doubt.empty()) {
+            run.out(sp).skip(doubt);
+            continue;
+        }
         const std::uint32_t highest = run.space_info(sp).highest_address;
         if (highest == 0xFFFFFFFFu) {
             run.out(sp).skip(space_name(sp) + " ends at 0xFFFFFFFF: no address past it");
@@ -304,6 +309,9 @@ void judge_crossing(CheckRun& run, std::uint8_t sp, const LastByte& last, const 
 }
 
 void write_past_end_space(CheckRun& run, std::uint8_t sp) {
+    // Below the real end a 2-byte write at "the last byte" crosses nothing.
+    if (std::string doubt = run.highest_too_small(sp); !doubt.empty())
+        return run.out(sp).skip(doubt);
     std::string why;
     const std::optional<LastByte> last = last_byte(run, sp, why);
     if (!last) return run.out(sp).skip(why);
@@ -456,16 +464,17 @@ void options_write_lengths(CheckRun& run) {
 
 std::vector<CheckSpec> memory_bounds_checks() {
     return {
-        {"memory.read-at-highest.<sp>", Category::kMemory, "MemoryConfigurationS §4.4, §4.14",
+        {"memory.read-at-highest.<sp>", Category::kMemory, "MemoryConfigurationS §4.5, §4.16",
          "mc20, mc30",
          "1-byte read at Space Info's highest address of 0xFF, 0xFD, 0xFC, 0xFB and every CDI "
          "space (each present per Space Info): data; 0x1082 there means Space Info gives the size",
          read_at_highest},
-        {"memory.read-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.4", "mc60",
+        {"memory.read-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.3, §4.5", "mc60",
          "8-byte read at highest+1 of each space (and 64 bytes at highest+0x100 of 0xFD): refused "
-         "with exactly 0x1082 (Datagram Rejected or Read Reply Fail); data or OK fails",
+         "with exactly 0x1082 (Datagram Rejected or Read Reply Fail); data or OK fails; SKIP "
+         "\"depends on\" the check that found the highest address too small",
          read_past_end},
-        {"memory.write-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.6", "",
+        {"memory.write-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.3, §4.8", "",
          "(--thorough) writable spaces the CDI uses (0xFB, CDI spaces): every byte the CDI lays "
          "out there read first, 2 bytes written at the last byte (its value twice), everything "
          "read again: refused (0x1082 preferred) and nothing changed, a changed byte put back at "
@@ -478,11 +487,11 @@ std::vector<CheckSpec> memory_bounds_checks() {
          "v, on the first byte of the first unprotected writable CDI variable: reads v after each "
          "(a changed byte is written back at once)",
          write_under_mask},
-        {"memory.update-complete", Category::kMemory, "MemoryConfigurationS Update Complete", "",
+        {"memory.update-complete", Category::kMemory, "MemoryConfigurationS §4.23", "",
          "Update Complete (20 A8): Datagram Received OK (or a re-initialization), then the node "
          "still answers Verify Node ID",
          update_complete},
-        {"memory.options-write-lengths", Category::kMemory, "MemoryConfigurationS §4.13", "mc10",
+        {"memory.options-write-lengths", Category::kMemory, "MemoryConfigurationS §4.14", "mc10",
          "Get Configuration Options write-lengths byte: (byte & 0xFE) == 0xE2",
          options_write_lengths},
     };

@@ -1,7 +1,9 @@
 // SNIP: its version bytes, and its strings against the ACDI spaces and the CDI.
 #include <initializer_list>
 
+#include "cdi/string_codec.hpp"
 #include "conformance/checks/checks.hpp"
+#include "conformance/report.hpp"
 #include "memory/acdi.hpp"
 
 namespace olcb::conform::checks {
@@ -38,6 +40,39 @@ void snip_version_bytes(CheckRun& run) {
     run.out().judge(
         ok, "SNIP version bytes 4 and 2", "4, 2",
         std::to_string((*raw)[0]) + ", " + std::to_string(run.ctx().snip->user_version));
+}
+
+void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what) {
+    std::vector<const NamedText*> bad;
+    for (const NamedText& t : texts)
+        if (!cdi::is_valid_utf8(t.text)) bad.push_back(&t);
+    if (bad.empty()) return run.out().pass(what);
+    // The bytes themselves, in hex: what U+FFFD stands for is what the firmware author needs.
+    const auto shown = [](const NamedText& t) {
+        return t.name + " " + show_node_text(t.text, true, t.text.size());
+    };
+    std::string message = bad.front()->name + " is not valid UTF-8";
+    std::vector<std::string> details;
+    if (bad.size() > 1) {
+        message += " (and " + std::to_string(bad.size() - 1) + " more: see the details)";
+        for (const NamedText* t : bad) details.push_back(shown(*t));
+    }
+    run.out().add(Status::kFail, std::move(message), "valid UTF-8", shown(*bad.front()),
+                  std::move(details));
+}
+
+void snip_utf8(CheckRun& run) {
+    run.snip_raw();
+    if (!run.ctx().snip) return run.out().skip("depends on snip.version-bytes: no SNIP reply");
+    const memory::Snip& sn = *run.ctx().snip;
+    judge_utf8(run,
+               {{"manufacturer", sn.manufacturer},
+                {"model", sn.model},
+                {"hardware version", sn.hardware_version},
+                {"software version", sn.software_version},
+                {"user name", sn.user_name},
+                {"user description", sn.user_description}},
+               "the six SNIP strings are valid UTF-8");
 }
 
 void snip_matches_acdi(CheckRun& run) {

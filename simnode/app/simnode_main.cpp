@@ -14,6 +14,7 @@
 
 #include "memory/memory_config_codec.hpp"
 #include "memory/memory_config_defs.hpp"
+#include "olcb_version.hpp"
 #include "openlcb/asio.hpp"
 #include "openlcb/in_process_bus.hpp"
 #include "openlcb/monitor.hpp"
@@ -395,6 +396,10 @@ static int main_checked(int argc, char** argv) {
     }
     if (parsed->help) {
         std::cout << help_text();
+        return 0;
+    }
+    if (parsed->version) {
+        std::cout << "simnode " << olcb::kVersion << "\n";
         return 0;
     }
     if (parsed->list_faults) {

@@ -23,7 +23,11 @@ TEST(CheckRegistryTest, IdsAreUniqueAndStartWithTheirCategory) {
         const std::string_view first = s.id.substr(0, s.id.find('.'));
         EXPECT_EQ(first, category_name(s.category)) << s.id;
         EXPECT_FALSE(s.summary.empty()) << s.id;
-        EXPECT_FALSE(s.section.empty()) << s.id;
+        // Empty only where no standard rules the check (the transport, lcc-conform's own choice);
+        // report_quality_test.cpp holds every other citation to the one style.
+        const bool uncited = s.id == "link.lost" || s.id == "encoding.excluded" ||
+                             s.id == "message.no-unsolicited";
+        EXPECT_EQ(s.section.empty(), uncited) << s.id;
         EXPECT_TRUE(is_check_pattern(s.id)) << s.id;
     }
     EXPECT_GT(seen.size(), 60u);

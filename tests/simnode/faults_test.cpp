@@ -3,6 +3,7 @@
 
 #include <cstring>
 
+#include "cdi/string_codec.hpp"
 #include "cdi/validator.hpp"
 #include "memory/acdi.hpp"
 #include "memory/snip.hpp"
@@ -29,6 +30,16 @@ TEST_F(FaultTest, SnipMismatch) {
     EXPECT_NE(snip.model, fixed.model);
     EXPECT_EQ(fixed.model, "simnode default");
     EXPECT_EQ(snip.manufacturer, fixed.manufacturer);
+}
+
+TEST_F(FaultTest, SnipInvalidUtf8) {
+    start_with({"snip-invalid-utf8"});
+    const memory::Snip snip = memory::decode_snip(request_snip());
+    const auto user = memory::decode_acdi_user(node_->memory().read(0xFB, 0, 128));
+    EXPECT_EQ(user.name, "Test node");  // space 251 keeps the valid name
+    EXPECT_EQ(snip.user_name, user.name + "\xFF\xFE");
+    EXPECT_FALSE(cdi::is_valid_utf8(snip.user_name));
+    EXPECT_EQ(snip.model, "simnode default");  // only the user name is touched
 }
 
 TEST_F(FaultTest, AcdiVersion) {
