@@ -350,8 +350,8 @@ bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
         if (unreadable == plan_.probes.end()) continue;
         report_.checks.push_back(
             {"encoding.unreadable", Category::kEncoding, Status::kSkip,
-             unreadable->key + ": " + why + "; not tested (its original could not be saved)",
-             "", "", ""});
+             unreadable->key + ": " + why + "; not tested (its original could not be saved)", "",
+             "", ""});
         VariableVerdict unsaved;
         unsaved.reason = "original could not be saved: " + why;
         evidence_.tested.push_back({unreadable->ordinal, std::move(unsaved)});

@@ -50,7 +50,6 @@ const char* colour_of(Status status) {
 
 }  // namespace
 
-
 std::string printable(std::string_view text) {
     std::string out;
     out.reserve(text.size());

@@ -25,8 +25,8 @@ TEST(CheckRegistryTest, IdsAreUniqueAndStartWithTheirCategory) {
         EXPECT_FALSE(s.summary.empty()) << s.id;
         // Empty only where no standard rules the check (the transport, lcc-conform's own choice);
         // report_quality_test.cpp holds every other citation to the one style.
-        const bool uncited = s.id == "link.lost" || s.id == "encoding.excluded" ||
-                             s.id == "message.no-unsolicited";
+        const bool uncited =
+            s.id == "link.lost" || s.id == "encoding.excluded" || s.id == "message.no-unsolicited";
         EXPECT_EQ(s.section.empty(), uncited) << s.id;
         EXPECT_TRUE(is_check_pattern(s.id)) << s.id;
     }

@@ -62,8 +62,9 @@ TEST(TextReport, NodeBytesAreShownSafely) {
     const std::string text = out.str();
     EXPECT_EQ(text.find('\x1B'), std::string::npos) << text;
     EXPECT_EQ(text.find('\xff'), std::string::npos) << text;
-    EXPECT_NE(text.find(std::string("ACME Node \"bad") + kFffd + "\" (user name bytes 62 61 64 FF)"),
-              std::string::npos)
+    EXPECT_NE(
+        text.find(std::string("ACME Node \"bad") + kFffd + "\" (user name bytes 62 61 64 FF)"),
+        std::string::npos)
         << text;
     EXPECT_NE(text.find("persistence not tested (values surviving Reset/Reboot): add --reboot\n"),
               std::string::npos)
