@@ -13,10 +13,7 @@
 
 namespace olcb::conform {
 
-/// The data cdi/html/conform.js renders: {"tool": {"name", "version"}, "run": {"started",
-/// "elapsed_ms", "connection", "arguments", "error", "late_nodes"}, "summary", "nodes": [{"id",
-/// "name", "identity", "started", "elapsed_ms", "restore", "incomplete", "summary", "checks",
-/// "memory_map"}]}.
+/// The data cdi/html/conform.js renders: the JSON report of to_json() (docs/report.schema.json).
 nlohmann::json html_report_json(const std::vector<NodeReport>& reports, const RunInfo& run);
 
 /// The whole page.

@@ -17,8 +17,10 @@
     const filterButtons = new Map();
     const counters = [];
 
-    function ms(n) {
-        return n >= 10000 ? (n / 1000).toFixed(1) + " s" : n + " ms";
+    // The report gives seconds; people read milliseconds below 10 s.
+    function ms(seconds) {
+        const n = seconds * 1000;
+        return n >= 10000 ? (n / 1000).toFixed(1) + " s" : Math.round(n) + " ms";
     }
 
     function chips(summary) {
@@ -39,13 +41,13 @@
             Page.kv([
                 ["Tool", data.tool.name + " " + data.tool.version],
                 ["Started", run.started],
-                ["Elapsed", run.started ? ms(run.elapsed_ms) : ""],
+                ["Elapsed", run.started ? ms(run.elapsed_s) : ""],
                 ["Connection", run.connection],
                 ["Command", (run.arguments || []).join(" ")],
                 ["Nodes", data.nodes.length ? data.nodes.map((n) => n.id).join(", ") : "none checked"],
             ]),
         );
-        card.append(chips(data.summary));
+        card.append(chips(data.run.summary));
         if (run.error) card.append(el("div", "banner error", "The run ended early: " + run.error));
         for (const id of run.late_nodes || []) card.append(el("div", "banner note", "Node " + id + " appeared during the run (not checked)"));
         return card;
@@ -67,7 +69,7 @@
         const bar = el("div", "filters");
         bar.append(el("span", "muted", "Show:"));
         for (const status of kStatuses) {
-            const button = el("button", "filter s-" + status.toLowerCase(), status + " " + (data.summary[status.toLowerCase()] || 0));
+            const button = el("button", "filter s-" + status.toLowerCase(), status + " " + (data.run.summary[status.toLowerCase()] || 0));
             button.type = "button";
             button.dataset.status = status;
             button.addEventListener("click", () => {
@@ -111,7 +113,7 @@
         id.title = "category: " + check.category;
         const message = el("td");
         message.append(el("div", "message", check.message), ...evidence(check));
-        row.append(st, id, message, el("td", "section", check.section), el("td", "time", ms(check.duration_ms || 0)));
+        row.append(st, id, message, el("td", "section", check.section), el("td", "time", ms(check.duration_s || 0)));
         return row;
     }
 
@@ -195,7 +197,7 @@
                 ["User name", id.user_name],
                 ["User description", id.user_description],
                 ["Started", node.started],
-                ["Elapsed", ms(node.elapsed_ms)],
+                ["Elapsed", ms(node.elapsed_s)],
                 ["Memory afterwards", node.restore],
             ]),
         );
