@@ -33,8 +33,8 @@ struct Wide4 {
 
 // What one child contributes to its container.
 struct ChildSpan {
-    Wide span = 0;          // the advance of the container's cursor
-    Wide lo = 0, hi = 0;    // variable bytes (relative to the child's address)
+    Wide span = 0;            // the advance of the container's cursor
+    Wide lo = 0, hi = 0;      // variable bytes (relative to the child's address)
     Wide amin = 0, amax = 0;  // every address
     Wide vars = 0;
     bool has_vars = false;
@@ -71,8 +71,7 @@ public:
 
 private:
     void build_children(std::uint32_t node, const std::vector<Element>& children);
-    void open_children(std::uint32_t node, const std::vector<Element>& children,
-                       std::size_t depth);
+    void open_children(std::uint32_t node, const std::vector<Element>& children, std::size_t depth);
     bool start_child(BuildFrame& f);
     ChildSpan group_span(const Element& e, std::uint32_t index);
     void place_child(BuildFrame& f, const ChildSpan& c);

@@ -166,7 +166,8 @@ private:
         check_hints(e);
         switch (e.kind) {
             case ElementKind::kGroup:
-                if (e.replication < 1) error(e, "replication 0 is not valid; it must be at least 1");
+                if (e.replication < 1)
+                    error(e, "replication 0 is not valid; it must be at least 1");
                 break;
             case ElementKind::kInt:
                 check_int(e);
