@@ -79,7 +79,11 @@ public:
     // The first attribute with this name.
     std::optional<XmlAttribute> attribute(std::string_view name) const {
         for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
-            if (name == a.name()) return XmlAttribute{a.name(), a.value()};
+            const char* candidate = a.name();
+            if (std::strncmp(candidate, name.data(), name.size()) == 0 &&
+                candidate[name.size()] == '\0') {
+                return XmlAttribute{{candidate, name.size()}, a.value()};
+            }
         }
         return std::nullopt;
     }
