@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Compares bench_cdi of two builds side by side: runs them alternately (so a change in machine
-# load hits both alike), each run with --benchmark_repetitions, and prints per benchmark the
-# median over all repetitions of all runs, before and after.
+# load hits both alike), each run with --benchmark_repetitions=5, and prints per benchmark the
+# median CPU and real time over all repetitions of all rounds, before and after.
 #
 #   bench/validate_compare.sh BEFORE_BUILD_DIR AFTER_BUILD_DIR [ROUNDS] [FILTER]
 #
@@ -36,9 +36,7 @@ done
 python3 - "$out" "$rounds" <<'EOF'
 import json, statistics, sys
 out, rounds = sys.argv[1], int(sys.argv[2])
-times = {}   # (benchmark, side) -> real times of every repetition, in the benchmark's unit
-units = {}
-rates = {}   # (benchmark, side) -> bytes/s of every repetition
+real, cpu, rates, units = {}, {}, {}, {}  # (benchmark, side) -> every repetition's value
 for side in ("before", "after"):
     for r in range(1, rounds + 1):
         with open(f"{out}/{side}.{r}.json") as f:
@@ -46,21 +44,22 @@ for side in ("before", "after"):
         for b in data["benchmarks"]:
             if b.get("run_type") != "iteration":
                 continue
-            name = b["run_name"]
-            times.setdefault((name, side), []).append(b["real_time"])
-            units[name] = b["time_unit"]
-            if "bytes_per_second" in b:
-                rates.setdefault((name, side), []).append(b["bytes_per_second"])
-names = sorted({name for name, _ in times})
-print(f"{'benchmark':34} {'before':>12} {'after':>12} {'speed-up':>9}   MB/s before -> after")
-for name in names:
-    b = statistics.median(times[(name, "before")])
-    a = statistics.median(times[(name, "after")])
-    line = f"{name:34} {b:10.1f}{units[name]:>2} {a:10.1f}{units[name]:>2} {b / a:8.2f}x"
-    if (name, "before") in rates and (name, "after") in rates:
-        rb = statistics.median(rates[(name, "before")]) / 1e6
-        ra = statistics.median(rates[(name, "after")]) / 1e6
-        line += f"   {rb:7.1f} -> {ra:7.1f}"
+            key = (b["run_name"], side)
+            real.setdefault(key, []).append(b["real_time"])
+            cpu.setdefault(key, []).append(b["cpu_time"])
+            units[b["run_name"]] = b["time_unit"]
+            if "bytes_per_second" in b:  # Google Benchmark divides by CPU time
+                rates.setdefault(key, []).append(b["bytes_per_second"] / 1e6)
+med = statistics.median
+print(f"{'benchmark':32} {'unit':>4} {'cpu before':>11} {'cpu after':>11} {'speed-up':>8}"
+      f" {'real before':>12} {'real after':>11}  MB/s (cpu) before -> after")
+for name in sorted({n for n, _ in real}):
+    b, a = (name, "before"), (name, "after")
+    line = (f"{name:32} {units[name]:>4} {med(cpu[b]):11.1f} {med(cpu[a]):11.1f}"
+            f" {med(cpu[b]) / med(cpu[a]):7.2f}x {med(real[b]):12.1f} {med(real[a]):11.1f}")
+    if b in rates and a in rates:
+        line += f"  {med(rates[b]):7.1f} -> {med(rates[a]):7.1f}"
     print(line)
-print(f"(medians of {rounds} alternating rounds x 5 repetitions; real time)")
+print(f"(medians over {rounds} alternating rounds x 5 repetitions; on a loaded machine trust the "
+      "CPU-time columns, real time includes waiting for a core)")
 EOF
