@@ -14,6 +14,7 @@
 
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
+#include "cdi/validator.hpp"
 
 namespace {
 
@@ -156,6 +157,27 @@ void BM_ParseLayoutLargestCorpusFile(benchmark::State& state) {
     parse_and_layout(state, text);
 }
 BENCHMARK(BM_ParseLayoutLargestCorpusFile);
+
+// What every program runs on a CDI: schema validation, the model, the semantic rules, the
+// layout.
+void BM_ValidateLargestCorpusFile(benchmark::State& state) {
+    static const std::string text = largest_corpus_file();
+    if (text.empty()) {
+        state.SkipWithError("corpus not found");
+        return;
+    }
+    for (auto _ : state) {
+        ValidationReport report = validate(text);
+        if (!report.parsed) {
+            state.SkipWithError("validate produced no model");
+            return;
+        }
+        benchmark::DoNotOptimize(report.diagnostics.data());
+    }
+    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
+    state.counters["bytes"] = static_cast<double>(text.size());
+}
+BENCHMARK(BM_ValidateLargestCorpusFile)->Unit(benchmark::kMicrosecond);
 
 void BM_ParseLayoutGenerated1MB(benchmark::State& state) {
     static const std::string text = generated_cdi(1 << 20);

@@ -31,6 +31,29 @@ struct Wide4 {
     bool has_vars = false;
 };
 
+// What one child contributes to its container.
+struct ChildSpan {
+    Wide span = 0;            // the advance of the container's cursor
+    Wide lo = 0, hi = 0;      // variable bytes (relative to the child's address)
+    Wide amin = 0, amax = 0;  // every address
+    Wide vars = 0;
+    bool has_vars = false;
+};
+
+// A container (segment root or group) whose children are being built.
+struct BuildFrame {
+    std::uint32_t node = 0;
+    const std::vector<Element>* children = nullptr;
+    std::uint32_t first = 0;  // node index of children[0]
+    std::size_t i = 0;        // the child being built
+    std::size_t depth = 0;    // group depth of the container
+    Wide address = 0;         // of child i
+    Wide cursor = 0;
+    Wide amin = 0, amax = 0;  // the zero-size element at the start (footnote 3)
+    Wide one_lo = 0, one_hi = 0, vars = 0;
+    bool has_vars = false;
+};
+
 std::string describe(const Element& e) {
     std::string out = "<" + e.tag + ">";
     if (!e.name.empty()) out += " '" + e.name + "'";
@@ -47,8 +70,12 @@ public:
     std::optional<Layout> run();
 
 private:
-    void build_children(std::uint32_t node, const std::vector<Element>& children,
-                        std::size_t depth);
+    void build_children(std::uint32_t node, const std::vector<Element>& children);
+    void open_children(std::uint32_t node, const std::vector<Element>& children, std::size_t depth);
+    bool start_child(BuildFrame& f);
+    ChildSpan group_span(const Element& e, std::uint32_t index);
+    void place_child(BuildFrame& f, const ChildSpan& c);
+    void close_children(const BuildFrame& f);
     Wide effective_offset(const Element& e);
     bool locate_overflow(std::uint32_t node, Wide address, std::uint32_t space);
     void finish_node(std::uint32_t index);
@@ -61,6 +88,8 @@ private:
     Diagnostics& diagnostics_;
     Layout layout_;
     std::vector<Wide4> wide_;
+    std::vector<BuildFrame> open_;  // build_children's stack, outermost first
+    std::size_t max_depth_ = 0;     // deepest group nesting seen
     bool failed_ = false;
 };
 
@@ -81,94 +110,138 @@ Wide LayoutBuilder::effective_offset(const Element& e) {
     return offset - kAddressLimit;
 }
 
-void LayoutBuilder::build_children(std::uint32_t node, const std::vector<Element>& children,
-                                   std::size_t depth) {
+// Allocates the nodes of a container's children and opens it on the build stack.
+void LayoutBuilder::open_children(std::uint32_t node, const std::vector<Element>& children,
+                                  std::size_t depth) {
     const auto first = static_cast<std::uint32_t>(layout_.nodes_.size());
     layout_.nodes_.resize(first + children.size());
     wide_.resize(first + children.size());
     layout_.nodes_[node].first_child = first;
     layout_.nodes_[node].child_count = static_cast<std::uint32_t>(children.size());
+    BuildFrame frame;
+    frame.node = node;
+    frame.children = &children;
+    frame.first = first;
+    frame.depth = depth;
+    open_.push_back(frame);
+    max_depth_ = std::max(max_depth_, depth);
+}
 
-    Wide cursor = 0;
-    Wide amin = 0, amax = 0;  // the zero-size element at the start (footnote 3)
-    Wide one_lo = 0, one_hi = 0, vars = 0;
-    bool has_vars = false;
-    for (std::size_t i = 0; i < children.size(); ++i) {
-        const Element& e = children[i];
-        const auto index = static_cast<std::uint32_t>(first + i);
-        layout_.nodes_[index].element = &e;
-        layout_.nodes_[index].parent = node;
-        layout_.nodes_[index].is_group = !e.is_variable();
-        const Wide address = sat(cursor + effective_offset(e));
-        Wide span = 0, lo = 0, hi = 0, child_amin = 0, child_amax = 0, child_vars = 0;
-        bool child_has_vars = false;
-        if (e.is_variable()) {
-            span = e.size;
-            hi = span;
-            child_amax = span;
-            child_vars = 1;
-            child_has_vars = true;
-            wide_[index].stride = span;
-        } else if (e.replication < 1) {
-            report(Severity::kError, e.pos.line, describe(e) + " has replication 0");
-            failed_ = true;
-        } else if (depth + 1 > kMaxGroupDepth) {
-            report(Severity::kError, e.pos.line,
-                   "groups nested deeper than " + std::to_string(kMaxGroupDepth) + " levels");
-            failed_ = true;
-        } else {
-            if (e.children.empty() && e.name.empty() && e.description.empty() && !e.link &&
-                e.offset == 0) {
-                report(Severity::kWarning, e.pos.line,
-                       "empty <group> (no name, description, link, data elements or offset) has "
-                       "no effect and is not rendered");
-            }
-            build_children(index, e.children, depth + 1);
-            layout_.nodes_[index].replication = e.replication;
-            const Wide4& w = wide_[index];
-            const Wide last = sat(Wide(e.replication - 1) * w.stride);
-            span = sat(Wide(e.replication) * w.stride);
-            child_has_vars = w.has_vars;
-            lo = std::min(w.one_lo, sat(last + w.one_lo));
-            hi = std::max(w.one_hi, sat(last + w.one_hi));
-            child_amin = std::min(w.one_amin, sat(last + w.one_amin));
-            child_amax = std::max(w.one_amax, sat(last + w.one_amax));
-            child_vars = std::min(sat(Wide(e.replication) * w.vars), kMaxVariables + 1);
-        }
-        Wide4& w = wide_[index];
-        w.rel = address;
-        w.lo = lo;
-        w.hi = hi;
-        w.amin = child_amin;
-        w.amax = child_amax;
-        if (e.is_variable()) {
-            w.one_lo = lo;
-            w.one_hi = hi;
-            w.one_amin = child_amin;
-            w.one_amax = child_amax;
-            w.vars = 1;
-            w.has_vars = true;
-        }
-        amin = std::min(amin, sat(address + child_amin));
-        amax = std::max(amax, sat(address + child_amax));
-        if (child_has_vars) {
-            one_lo = has_vars ? std::min(one_lo, sat(address + lo)) : sat(address + lo);
-            one_hi = has_vars ? std::max(one_hi, sat(address + hi)) : sat(address + hi);
-            has_vars = true;
-        }
-        layout_.nodes_[index].vars_before =
-            static_cast<std::uint64_t>(std::min(vars, kMaxVariables));
-        vars = std::min(vars + child_vars, kMaxVariables + 1);
-        cursor = sat(address + span);
+// The span of a group whose children are built, from its replica 0 and its last replica.
+ChildSpan LayoutBuilder::group_span(const Element& e, std::uint32_t index) {
+    layout_.nodes_[index].replication = e.replication;
+    const Wide4& w = wide_[index];
+    const Wide last = sat(Wide(e.replication - 1) * w.stride);
+    ChildSpan c;
+    c.span = sat(Wide(e.replication) * w.stride);
+    c.has_vars = w.has_vars;
+    c.lo = std::min(w.one_lo, sat(last + w.one_lo));
+    c.hi = std::max(w.one_hi, sat(last + w.one_hi));
+    c.amin = std::min(w.one_amin, sat(last + w.one_amin));
+    c.amax = std::max(w.one_amax, sat(last + w.one_amax));
+    c.vars = std::min(sat(Wide(e.replication) * w.vars), kMaxVariables + 1);
+    return c;
+}
+
+// Records child f.i (at address) in its own node and in the running values of its container.
+void LayoutBuilder::place_child(BuildFrame& f, const ChildSpan& c) {
+    const Element& e = (*f.children)[f.i];
+    const auto index = static_cast<std::uint32_t>(f.first + f.i);
+    const Wide address = f.address;
+    Wide4& w = wide_[index];
+    w.rel = address;
+    w.lo = c.lo;
+    w.hi = c.hi;
+    w.amin = c.amin;
+    w.amax = c.amax;
+    if (e.is_variable()) {
+        w.one_lo = c.lo;
+        w.one_hi = c.hi;
+        w.one_amin = c.amin;
+        w.one_amax = c.amax;
+        w.vars = 1;
+        w.has_vars = true;
     }
-    Wide4& w = wide_[node];
-    w.stride = cursor;
-    w.one_amin = std::min(amin, cursor);
-    w.one_amax = std::max(amax, cursor);
-    w.one_lo = one_lo;
-    w.one_hi = one_hi;
-    w.has_vars = has_vars;
-    w.vars = vars;
+    f.amin = std::min(f.amin, sat(address + c.amin));
+    f.amax = std::max(f.amax, sat(address + c.amax));
+    if (c.has_vars) {
+        f.one_lo = f.has_vars ? std::min(f.one_lo, sat(address + c.lo)) : sat(address + c.lo);
+        f.one_hi = f.has_vars ? std::max(f.one_hi, sat(address + c.hi)) : sat(address + c.hi);
+        f.has_vars = true;
+    }
+    layout_.nodes_[index].vars_before = static_cast<std::uint64_t>(std::min(f.vars, kMaxVariables));
+    f.vars = std::min(f.vars + c.vars, kMaxVariables + 1);
+    f.cursor = sat(address + c.span);
+    ++f.i;
+}
+
+// The container's own values, once every child is placed.
+void LayoutBuilder::close_children(const BuildFrame& f) {
+    Wide4& w = wide_[f.node];
+    w.stride = f.cursor;
+    w.one_amin = std::min(f.amin, f.cursor);
+    w.one_amax = std::max(f.amax, f.cursor);
+    w.one_lo = f.one_lo;
+    w.one_hi = f.one_hi;
+    w.has_vars = f.has_vars;
+    w.vars = f.vars;
+}
+
+// Starts child f.i: places a variable (or a refused group) at once; opens a group's children,
+// placed by build_children when they are done. Returns true when it opened a group.
+bool LayoutBuilder::start_child(BuildFrame& f) {
+    const Element& e = (*f.children)[f.i];
+    const auto index = static_cast<std::uint32_t>(f.first + f.i);
+    layout_.nodes_[index].element = &e;
+    layout_.nodes_[index].parent = f.node;
+    layout_.nodes_[index].is_group = !e.is_variable();
+    f.address = sat(f.cursor + effective_offset(e));
+    ChildSpan c;
+    if (e.is_variable()) {
+        c.span = e.size;
+        c.hi = c.span;
+        c.amax = c.span;
+        c.vars = 1;
+        c.has_vars = true;
+        wide_[index].stride = c.span;
+    } else if (e.replication < 1) {
+        report(Severity::kError, e.pos.line, describe(e) + " has replication 0");
+        failed_ = true;
+    } else if (f.depth + 1 > kMaxGroupDepth) {
+        report(Severity::kError, e.pos.line,
+               "groups nested deeper than " + std::to_string(kMaxGroupDepth) + " levels");
+        failed_ = true;
+    } else {
+        if (e.children.empty() && e.name.empty() && e.description.empty() && !e.link &&
+            e.offset == 0) {
+            report(Severity::kWarning, e.pos.line,
+                   "empty <group> (no name, description, link, data elements or offset) has "
+                   "no effect and is not rendered");
+        }
+        open_children(index, e.children, f.depth + 1);  // f may move: nothing after this
+        return true;
+    }
+    place_child(f, c);
+    return false;
+}
+
+// Builds the nodes under node in document order, depth first, with an explicit stack (heap in
+// proportion to the document, never the call stack).
+void LayoutBuilder::build_children(std::uint32_t node, const std::vector<Element>& children) {
+    open_children(node, children, 0);
+    while (!open_.empty()) {
+        BuildFrame& f = open_.back();
+        if (f.i < f.children->size()) {
+            start_child(f);
+            continue;
+        }
+        close_children(f);
+        const std::uint32_t group = f.node;
+        open_.pop_back();
+        if (open_.empty()) break;
+        BuildFrame& parent = open_.back();
+        place_child(parent, group_span((*parent.children)[parent.i], group));
+    }
 }
 
 // Reports the first element (document order, replica 0 then the last replica) whose address
@@ -240,11 +313,19 @@ void LayoutBuilder::finish_node(std::uint32_t index) {
 
 namespace {
 
-// A reservation hint only; stops at the depth the builder refuses anyway.
-std::size_t count_elements(const std::vector<Element>& elements, std::size_t depth) {
-    std::size_t n = elements.size();
-    if (depth > kMaxGroupDepth) return n;
-    for (const Element& e : elements) n += count_elements(e.children, depth + 1);
+// A reservation hint only: every element under the segments, without recursion.
+std::size_t count_elements(const std::vector<Segment>& segments) {
+    std::size_t n = 0;
+    std::vector<const std::vector<Element>*> todo;
+    for (const Segment& segment : segments) todo.push_back(&segment.children);
+    while (!todo.empty()) {
+        const std::vector<Element>& elements = *todo.back();
+        todo.pop_back();
+        n += elements.size();
+        for (const Element& e : elements) {
+            if (!e.children.empty()) todo.push_back(&e.children);
+        }
+    }
     return n;
 }
 
@@ -252,8 +333,7 @@ std::size_t count_elements(const std::vector<Element>& elements, std::size_t dep
 
 std::optional<Layout> LayoutBuilder::run() {
     layout_.doc_ = &doc_;
-    std::size_t nodes = doc_.segments.size();
-    for (const Segment& segment : doc_.segments) nodes += count_elements(segment.children, 0);
+    const std::size_t nodes = doc_.segments.size() + count_elements(doc_.segments);
     layout_.nodes_.reserve(nodes);
     wide_.reserve(nodes);
     Wide total = 0;
@@ -261,7 +341,7 @@ std::optional<Layout> LayoutBuilder::run() {
         const auto root = static_cast<std::uint32_t>(layout_.nodes_.size());
         layout_.nodes_.emplace_back();
         wide_.emplace_back();
-        build_children(root, segment.children, 0);
+        build_children(root, segment.children);
         Wide4& w = wide_[root];
         w.rel = segment.origin;
         w.lo = w.one_lo;
@@ -285,6 +365,7 @@ std::optional<Layout> LayoutBuilder::run() {
     }
     if (failed_) return std::nullopt;
     layout_.variable_count_ = static_cast<std::uint64_t>(total);
+    layout_.max_group_depth_ = max_depth_;
     for (std::uint32_t i = 0; i < layout_.nodes_.size(); ++i) finish_node(i);
     wide_.clear();
     wide_.shrink_to_fit();

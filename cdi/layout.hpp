@@ -50,7 +50,8 @@ struct Placement {
     std::uint64_t replication = 1;
 };
 
-/// A position on one variable (after replication) of a Layout; copyable, never allocates.
+/// A position on one variable (after replication) of a Layout; copyable. Its stack of enclosing
+/// groups is allocated once, as deep as the layout's deepest group; moving it never allocates.
 class Cursor {
 public:
     /// False once iteration has passed the last variable (or for a failed lookup).
@@ -96,7 +97,7 @@ private:
     std::uint32_t depth_ = 0;  // frames in use
     std::int64_t address_ = 0;
     std::uint64_t ordinal_ = 0;
-    std::array<Frame, kMaxGroupDepth + 1> frames_{};
+    std::vector<Frame> frames_;  // [0] the segment root, [d] the group at level d
 };
 
 /// Addresses of every variable of a Document; holds pointers into the Document.
@@ -167,6 +168,8 @@ private:
     mutable std::unique_ptr<std::once_flag> index_once_ = std::make_unique<std::once_flag>();
     mutable std::vector<std::pair<const Element*, std::uint32_t>> by_element_;  // by pointer
     std::uint64_t variable_count_ = 0;
+    std::size_t max_group_depth_ = 0;  // deepest group nesting: the frames a cursor needs
+    Cursor new_cursor() const;
 };
 
 /// The outcome of build_layout(): a layout when there were no errors, and every finding.

@@ -80,9 +80,15 @@ void Cursor::next() {
     var_node_ = kNone;
 }
 
-Cursor Layout::begin() const {
+Cursor Layout::new_cursor() const {
     Cursor c;
     c.layout_ = this;
+    c.frames_.resize(max_group_depth_ + 2);
+    return c;
+}
+
+Cursor Layout::begin() const {
+    Cursor c = new_cursor();
     for (c.segment_ = 0; c.segment_ < segments_.size(); ++c.segment_) {
         c.frames_[0] =
             Cursor::Frame{segments_[c.segment_].root, 0, 0, segments_[c.segment_].origin};
@@ -94,8 +100,7 @@ Cursor Layout::begin() const {
 }
 
 Cursor Layout::at(std::uint64_t ordinal) const {
-    Cursor c;
-    c.layout_ = this;
+    Cursor c = new_cursor();
     if (ordinal >= variable_count_) return c;
     auto seg =
         std::upper_bound(segments_.begin(), segments_.end(), ordinal,
@@ -211,8 +216,7 @@ bool Layout::find_in(Cursor& c, std::uint32_t d, std::int64_t x, std::uint64_t& 
 }
 
 Cursor Layout::find(std::uint32_t space, std::uint64_t address) const {
-    Cursor c;
-    c.layout_ = this;
+    Cursor c = new_cursor();
     if (address >= (std::uint64_t{1} << 32)) return c;
     std::uint64_t budget = kFindBudget;
     for (std::uint32_t s = 0; s < segments_.size(); ++s) {

@@ -4,16 +4,98 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cdi/content_index.hpp"
-#include "cdi/pugixml_tree.hpp"
-#include "cdi/simple_xml_reader.hpp"
-#include "cdi/xml_tree.hpp"
 
 namespace olcb::cdi {
 namespace {
+
+// How pugixml reads a CDI. parse_doctype keeps a DOCTYPE as a node so it can be refused;
+// pugixml never expands entities it does not know, so a billion-laughs DTD costs one linear
+// scan. parse_embed_pcdata stores an element's first text in the element: fewer nodes.
+constexpr unsigned kPugixmlOptions =
+    pugi::parse_default | pugi::parse_doctype | pugi::parse_embed_pcdata;
+
+/// One attribute: its name and its value (entities decoded, whitespace normalised).
+struct XmlAttribute {
+    std::string_view name;
+    std::string_view value;
+};
+
+// The attributes of an element in document order (duplicates kept), as XmlAttribute values.
+class XmlAttributes {
+public:
+    explicit XmlAttributes(pugi::xml_attribute first) : first_(first) {}
+
+    class Iterator {
+    public:
+        explicit Iterator(pugi::xml_attribute at) : at_(at) {}
+        XmlAttribute operator*() const { return {at_.name(), at_.value()}; }
+        Iterator& operator++() {
+            at_ = at_.next_attribute();
+            return *this;
+        }
+        bool operator!=(const Iterator& other) const { return at_ != other.at_; }
+
+    private:
+        pugi::xml_attribute at_;
+    };
+    Iterator begin() const { return Iterator(first_); }
+    static Iterator end() { return Iterator(pugi::xml_attribute()); }
+
+private:
+    pugi::xml_attribute first_;
+};
+
+// An element of the pugixml document as the parser reads it: element children only (text,
+// comments and PIs are skipped), names and texts as views into the document's buffer, source
+// offsets of names. Cheap to copy.
+class XmlElement {
+public:
+    XmlElement() = default;
+    explicit XmlElement(pugi::xml_node node) : node_(node) {}
+
+    explicit operator bool() const { return static_cast<bool>(node_); }
+    std::string_view name() const { return node_.name(); }
+    // The first text directly inside the element ("" when none).
+    std::string_view text() const { return node_.child_value(); }
+    // Byte offset of the name in the source: pugixml parses in place and never moves a name.
+    std::size_t offset() const {
+        const std::ptrdiff_t offset = node_.offset_debug();
+        return offset < 0 ? 0 : static_cast<std::size_t>(offset);
+    }
+    XmlElement first_child() const { return forward(node_.first_child()); }
+    XmlElement last_child() const {
+        pugi::xml_node n = node_.last_child();
+        while (n && n.type() != pugi::node_element) n = n.previous_sibling();
+        return XmlElement(n);
+    }
+    XmlElement next_sibling() const { return forward(node_.next_sibling()); }
+    XmlAttributes attributes() const { return XmlAttributes(node_.first_attribute()); }
+    // The first attribute with this name.
+    std::optional<XmlAttribute> attribute(std::string_view name) const {
+        for (pugi::xml_attribute a = node_.first_attribute(); a; a = a.next_attribute()) {
+            const char* candidate = a.name();
+            if (std::strncmp(candidate, name.data(), name.size()) == 0 &&
+                candidate[name.size()] == '\0') {
+                return XmlAttribute{{candidate, name.size()}, a.value()};
+            }
+        }
+        return std::nullopt;
+    }
+
+private:
+    static XmlElement forward(pugi::xml_node n) {
+        while (n && n.type() != pugi::node_element) n = n.next_sibling();
+        return XmlElement(n);
+    }
+
+    pugi::xml_node node_;
+};
 
 constexpr WideInt kTwoPow31 = WideInt{1} << 31;
 constexpr WideInt kTwoPow32 = WideInt{1} << 32;
@@ -68,8 +150,9 @@ std::string str(std::string_view text) {
     return std::string(text);
 }
 
-// A CDI needs about kMaxGroupDepth + 8 levels; anything far deeper is hostile.
-constexpr std::size_t kMaxXmlDepth = 2 * kMaxGroupDepth + 16;
+// A CDI needs about kMaxGroupDepth + 8 levels (cdi, segment, the groups, a variable, its map,
+// relation, value); anything deeper is refused before the model is built.
+constexpr std::size_t kMaxXmlDepth = kMaxGroupDepth + 16;
 
 // Finds the first element (document order) nested deeper than kMaxXmlDepth. pugixml's own
 // traversal is iterative and stays inside the library, so it costs a few instructions a node.
@@ -192,8 +275,7 @@ private:
     // The last element of e's subtree in document order, and how deep below e it is.
     static std::pair<XmlElement, int> last_descendant(XmlElement e) {
         int depth = 0;
-        for (XmlElement c = e.first_child(); c; c = e.first_child()) {
-            for (XmlElement n = c.next_sibling(); n; n = n.next_sibling()) c = n;
+        for (XmlElement c = e.last_child(); c; c = e.last_child()) {
             e = c;
             ++depth;
         }
@@ -204,6 +286,17 @@ private:
     XmlElement parent_;
     XmlElement last_;
     std::uint32_t next_ = 0;
+};
+
+// A <segment> or <group> whose data children parse_data_tree is reading.
+struct OpenContainer {
+    XmlElement parent;
+    std::vector<Element>* out = nullptr;  // where its data elements go
+    std::size_t first = 0;                // its slice of pending_ is [first, end)
+    std::size_t next = 0;
+    std::size_t end = 0;
+    std::size_t depth = 0;    // group depth of its children
+    bool drop_owner = false;  // the group itself is refused: drop it once its children are read
 };
 
 class Parser {
@@ -239,31 +332,41 @@ private:
     std::optional<WideInt> int_text(XmlElement node, XmlElement parent);
     std::optional<double> float_text(XmlElement node, XmlElement parent);
 
-    bool read_with_pugixml(std::string_view bytes, pugi::xml_document& xml, XmlTree& tree);
+    XmlElement read_xml(std::string& buffer, pugi::xml_document& xml);
     void read_declaration(std::string_view text, Document& doc);
     void parse_identification(XmlElement node, Document& doc);
     void parse_acdi(XmlElement node, Document& doc);
     void parse_segment(XmlElement node, std::uint32_t content_index, Document& doc);
     Link parse_link(XmlElement node);
     void parse_map(XmlElement node, Map& map);
+    void parse_relation(XmlElement node, MapEntry& entry);
     void parse_hints(XmlElement node, Element& element);
-    void parse_data_children(XmlElement parent, std::vector<Element>& out, std::size_t depth);
+    void open_container(XmlElement parent, std::vector<Element>& out, std::size_t depth,
+                        bool drop_owner);
+    void parse_data_tree(XmlElement segment, std::vector<Element>& out);
+    bool read_data_attributes(XmlElement node, Element& element, std::optional<WideInt>* size,
+                              bool* bad_size);
     bool parse_data_element(XmlElement node, ElementKind kind, std::size_t depth, Element& element);
-    void parse_group_body(XmlElement node, Element& group, std::size_t depth);
+    void parse_group_body(XmlElement node, Element& group);
     void parse_variable_body(XmlElement node, Element& element);
+    bool parse_value_child(XmlElement node, XmlElement child, std::string_view tag,
+                           Element& element);
+    bool parse_action_child(XmlElement node, XmlElement child, std::string_view tag,
+                            Element& element);
     bool read_size(XmlElement node, std::optional<WideInt> size, Element& element);
 
     Diagnostics& diagnostics_;
     LineCounter* lines_ = nullptr;
     std::string_view text_;              // the source, for the nodes between elements
-    std::vector<PendingChild> pending_;  // parse_data_children's work list, one slice per depth
+    std::vector<PendingChild> pending_;  // the open containers' children, one slice each
+    std::vector<OpenContainer> open_;    // parse_data_tree's stack, outermost first
     bool truncated_ = false;
 };
 
 std::optional<WideInt> Parser::int_attribute(XmlElement node, std::string_view name, WideInt lo,
                                              WideInt hi, bool* bad) {
-    const XmlAttribute* attr = node.attribute(name);
-    if (attr == nullptr) return std::nullopt;
+    const std::optional<XmlAttribute> attr = node.attribute(name);
+    if (!attr) return std::nullopt;
     return int_value(node, *attr, lo, hi, bad);
 }
 
@@ -287,8 +390,8 @@ std::optional<WideInt> Parser::int_value(XmlElement node, const XmlAttribute& at
 }
 
 bool Parser::bool_attribute(XmlElement node, std::string_view name) {
-    const XmlAttribute* attr = node.attribute(name);
-    if (attr == nullptr) return false;
+    const std::optional<XmlAttribute> attr = node.attribute(name);
+    if (!attr) return false;
     std::string_view text = trim_xml_space(attr->value);
     if (text == "yes" || text == "true" || text == "1") return true;
     if (text == "no" || text == "false" || text == "0") return false;
@@ -315,38 +418,35 @@ std::optional<double> Parser::float_text(XmlElement node, XmlElement parent) {
     return value;
 }
 
-// Reads a document that read_simple_xml declines: reports what makes it unusable (malformed
-// XML, a DTD, no root, nesting too deep) and returns false, or fills tree. A root other than
-// <cdi> is left to the caller: the tree then holds that root alone.
-bool Parser::read_with_pugixml(std::string_view bytes, pugi::xml_document& xml, XmlTree& tree) {
+// Parses the buffer in place and returns the <cdi> root, or reports what makes the document
+// unusable (malformed XML, a DTD, no root, another root, nesting too deep) and returns none.
+XmlElement Parser::read_xml(std::string& buffer, pugi::xml_document& xml) {
     const auto line = [this](pugi::xml_node node) -> std::uint32_t {
-        const std::ptrdiff_t offset = node.offset_debug();
-        return offset < 0 ? 0 : lines_->line_of(static_cast<std::size_t>(offset));
+        return lines_->line_of(XmlElement(node).offset());
     };
-    pugi::xml_parse_result parsed =
-        xml.load_buffer(bytes.data(), bytes.size(), kPugixmlOptions, pugi::encoding_utf8);
+    const pugi::xml_parse_result parsed =
+        xml.load_buffer_inplace(buffer.data(), buffer.size(), kPugixmlOptions, pugi::encoding_utf8);
     if (!parsed) {
         const std::size_t offset = parsed.offset < 0 ? 0 : static_cast<std::size_t>(parsed.offset);
-        report(Severity::kError, lines_->line_of(std::min(offset, bytes.size())),
+        report(Severity::kError, lines_->line_of(std::min(offset, buffer.size())),
                std::string("malformed XML: ") + parsed.description());
-        return false;
+        return {};
     }
     for (pugi::xml_node child : xml.children()) {
         if (child.type() == pugi::node_doctype) {
             report(Severity::kError, line(child),
                    "DOCTYPE/DTD (and entity declarations) are not allowed in a CDI");
-            return false;
+            return {};
         }
     }
-    pugi::xml_node root = xml.document_element();
+    const XmlElement root(xml.document_element());
     if (!root) {
         report(Severity::kError, 0, "no root element");
-        return false;
+        return {};
     }
-    if (std::strcmp(root.name(), "cdi") != 0) {
-        tree.close(
-            tree.open(static_cast<std::size_t>(root.offset_debug()), std::strlen(root.name())));
-        return true;
+    if (!name_is(root, "cdi")) {
+        error(root, "root element is <" + str(root.name()) + ">, expected <cdi>");
+        return {};
     }
     DepthWalker walker;
     xml.traverse(walker);
@@ -354,10 +454,9 @@ bool Parser::read_with_pugixml(std::string_view bytes, pugi::xml_document& xml, 
         report(
             Severity::kError, line(deep),
             "XML elements nested deeper than " + std::to_string(kMaxXmlDepth) + " levels; refused");
-        return false;
+        return {};
     }
-    copy_pugixml_elements(root, tree);
-    return true;
+    return root;
 }
 
 void Parser::read_declaration(std::string_view text, Document& doc) {
@@ -375,11 +474,28 @@ void Parser::read_declaration(std::string_view text, Document& doc) {
 
 Link Parser::parse_link(XmlElement node) {
     Link link;
-    const XmlAttribute* ref = node.attribute("ref");
-    if (ref != nullptr) link.ref = ref->value;
+    const std::optional<XmlAttribute> ref = node.attribute("ref");
+    if (ref) link.ref = ref->value;
     link.text = node.text();
-    if (ref == nullptr) warning(node, "<link> without a ref attribute");
+    if (!ref) warning(node, "<link> without a ref attribute");
     return link;
+}
+
+// The first <property> and the first <value> of a <relation>, in one pass over it.
+void Parser::parse_relation(XmlElement node, MapEntry& entry) {
+    XmlElement property;
+    XmlElement value;
+    for (XmlElement part = node.first_child(); part; part = part.next_sibling()) {
+        const std::string_view part_tag = part.name();
+        if (!property && is(part_tag, "property")) {
+            property = part;
+        } else if (!value && is(part_tag, "value")) {
+            value = part;
+        }
+    }
+    if (!property || !value) warning(node, "<relation> without <property> and <value>");
+    if (property) entry.property = property.text();
+    if (value) entry.value = value.text();
 }
 
 void Parser::parse_map(XmlElement node, Map& map) {
@@ -391,23 +507,7 @@ void Parser::parse_map(XmlElement node, Map& map) {
             map.description = child.text();
         } else if (is(tag, "relation")) {
             if (map.entries.empty()) map.entries.reserve(count_children(node, "relation"));
-            // The first <property> and the first <value>, in one pass over the relation.
-            XmlElement property;
-            XmlElement value;
-            for (XmlElement part = child.first_child(); part; part = part.next_sibling()) {
-                const std::string_view part_tag = part.name();
-                if (!property && is(part_tag, "property")) {
-                    property = part;
-                } else if (!value && is(part_tag, "value")) {
-                    value = part;
-                }
-            }
-            if (!property || !value) {
-                warning(child, "<relation> without <property> and <value>");
-            }
-            MapEntry& entry = map.entries.emplace_back();
-            if (property) entry.property = property.text();
-            if (value) entry.value = value.text();
+            parse_relation(child, map.entries.emplace_back());
         } else {
             warning(child, "unknown element <" + str(tag) + "> in <map> ignored");
         }
@@ -494,7 +594,7 @@ void Parser::parse_segment(XmlElement node, std::uint32_t content_index, Documen
     segment.pos.line = line(node);
     segment.content_index = content_index;
     bool bad = false;
-    if (node.attribute("space") == nullptr) {
+    if (!node.attribute("space")) {
         error(node, "<segment> without the required space attribute");
     } else if (auto v = int_attribute(node, "space", 0, 255, &bad)) {
         segment.space = static_cast<std::uint32_t>(*v);
@@ -503,7 +603,7 @@ void Parser::parse_segment(XmlElement node, std::uint32_t content_index, Documen
     if (auto v = int_attribute(node, "origin", -kTwoPow31, kTwoPow32 - 1, &bad)) {
         segment.origin = static_cast<std::int64_t>(*v);
     }
-    for (const XmlAttribute& attr : node.attributes()) {
+    for (const XmlAttribute attr : node.attributes()) {
         if (attr.name != "space" && attr.name != "origin" && !is_namespace_attribute(attr.name)) {
             warning(node, "attribute '" + str(attr.name) + "' of <segment> ignored");
         }
@@ -517,15 +617,17 @@ void Parser::parse_segment(XmlElement node, std::uint32_t content_index, Documen
             segment.link = parse_link(child);
         }
     }
-    parse_data_children(node, segment.children, 1);
+    parse_data_tree(node, segment.children);
     doc.segments.push_back(std::move(segment));
 }
 
-// Reads the data elements among the children of a <segment> or <group>; other children are
-// the caller's (name, description, ...) or unknown elements without size, skipped with a warning.
-// One pass classifies the children so the output is reserved exactly: Elements are built in
-// place, because moving one costs. Nested calls stack their entries above this call's.
-void Parser::parse_data_children(XmlElement parent, std::vector<Element>& out, std::size_t depth) {
+// Classifies the data elements among the children of a <segment> or <group> (depth: that of
+// the children) onto pending_ and opens it on the stack; other children are the caller's (name,
+// description, ...) or unknown elements without size, warned about when their turn comes. out
+// is reserved exactly, so Elements are built in place (moving one costs) and never move while
+// their own children are read.
+void Parser::open_container(XmlElement parent, std::vector<Element>& out, std::size_t depth,
+                            bool drop_owner) {
     const bool in_group = name_is(parent, "group");
     const std::size_t first = pending_.size();
     std::size_t count = 0;
@@ -535,26 +637,47 @@ void Parser::parse_data_children(XmlElement parent, std::vector<Element>& out, s
         const std::string_view tag = child.name();
         if (is_own_child(tag, in_group)) continue;  // the caller's
         std::optional<ElementKind> kind = known_kind(tag);
-        if (!kind && child.attribute("size") != nullptr) kind = ElementKind::kUnknown;
+        if (!kind && child.attribute("size")) kind = ElementKind::kUnknown;
         if (kind) ++count;
         pending_.push_back({child, kind, content_index});
     }
-    const std::size_t end = pending_.size();
     out.reserve(out.size() + count);
-    for (std::size_t i = first; i < end; ++i) {
-        const PendingChild child = pending_[i];  // a copy: nested calls may grow pending_
+    open_.push_back({parent, &out, first, first, pending_.size(), depth, drop_owner});
+}
+
+// Reads every data element below a <segment> in document order, depth first, with an explicit
+// stack instead of recursion: nesting costs heap in proportion to the input, never the call
+// stack. A group refused for its attributes is still read through (its children's findings are
+// reported), then dropped.
+void Parser::parse_data_tree(XmlElement segment, std::vector<Element>& out) {
+    open_container(segment, out, 1, false);
+    while (!open_.empty()) {
+        OpenContainer& top = open_.back();
+        if (top.next == top.end) {
+            pending_.resize(top.first);
+            const bool drop = top.drop_owner;
+            open_.pop_back();
+            if (drop) open_.back().out->pop_back();
+            continue;
+        }
+        const PendingChild child = pending_[top.next++];  // a copy: open_container grows pending_
+        const XmlElement parent = top.parent;
+        const std::size_t depth = top.depth;
+        std::vector<Element>& siblings = *top.out;
         if (!child.kind) {
             warning(child.node, "unknown element <" + str(child.node.name()) + "> in <" +
                                     str(parent.name()) + "> has no size attribute; skipped");
             continue;
         }
-        Element& element = out.emplace_back();
+        Element& element = siblings.emplace_back();
         element.content_index = child.content_index;
-        if (!parse_data_element(child.node, *child.kind, depth, element)) {
-            out.pop_back();
+        const bool ok = parse_data_element(child.node, *child.kind, depth, element);
+        if (element.kind == ElementKind::kGroup && depth <= kMaxGroupDepth) {
+            open_container(child.node, element.children, depth + 1, !ok);
+        } else if (!ok) {
+            siblings.pop_back();
         }
     }
-    pending_.resize(first);
 }
 
 bool Parser::read_size(XmlElement node, std::optional<WideInt> size, Element& element) {
@@ -588,25 +711,22 @@ bool Parser::read_size(XmlElement node, std::optional<WideInt> size, Element& el
     return true;
 }
 
-bool Parser::parse_data_element(XmlElement node, ElementKind kind, std::size_t depth,
-                                Element& element) {
-    element.kind = kind;
-    element.tag = node.name();
-    element.pos.line = line(node);
+// One pass over a data element's attributes; offset is xs:int, but [2^31, 2^32) is OpenMRN's
+// unsigned rendering of a negative value and is kept verbatim for the layout to judge. Returns
+// false when an attribute other than size is bad; size goes to *size (*bad_size when bad).
+bool Parser::read_data_attributes(XmlElement node, Element& element, std::optional<WideInt>* size,
+                                  bool* bad_size) {
+    const ElementKind kind = element.kind;
     const bool group = kind == ElementKind::kGroup;
     bool bad = false;
-    bool bad_size = false;
-    std::optional<WideInt> size;
-    // One pass over the attributes; offset is xs:int, but [2^31, 2^32) is OpenMRN's unsigned
-    // rendering of a negative value and is kept verbatim for the layout to judge.
-    for (const XmlAttribute& attr : node.attributes()) {
+    for (const XmlAttribute attr : node.attributes()) {
         const std::string_view name = attr.name;
         if (is(name, "offset")) {
             if (auto v = int_value(node, attr, -kTwoPow31, kTwoPow32 - 1, &bad)) {
                 element.offset = static_cast<std::int64_t>(*v);
             }
         } else if (!group && is(name, "size")) {
-            size = int_value(node, attr, 1, kTwoPow32, &bad_size);
+            *size = int_value(node, attr, 1, kTwoPow32, bad_size);
         } else if (group && is(name, "replication")) {
             if (auto v = int_value(node, attr, 1, kTwoPow31 - 1, &bad)) {
                 element.replication = static_cast<std::uint64_t>(*v);
@@ -620,21 +740,34 @@ bool Parser::parse_data_element(XmlElement node, ElementKind kind, std::size_t d
                               "> is not in the CDI schema; ignored");
         }
     }
-    if (group) {
+    return !bad;
+}
+
+// Reads a data element's attributes and own children; a group's data children are
+// parse_data_tree's. False when the element is refused.
+bool Parser::parse_data_element(XmlElement node, ElementKind kind, std::size_t depth,
+                                Element& element) {
+    element.kind = kind;
+    element.tag = node.name();
+    element.pos.line = line(node);
+    bool bad_size = false;
+    std::optional<WideInt> size;
+    bool ok = read_data_attributes(node, element, &size, &bad_size);
+    if (kind == ElementKind::kGroup) {
         if (depth > kMaxGroupDepth) {
             error(node, "groups nested deeper than " + std::to_string(kMaxGroupDepth) +
                             " levels; refused");
             return false;
         }
-        parse_group_body(node, element, depth);
+        parse_group_body(node, element);
     } else {
-        if (bad_size || !read_size(node, size, element)) bad = true;
+        if (bad_size || !read_size(node, size, element)) ok = false;
         parse_variable_body(node, element);
     }
-    return !bad;
+    return ok;
 }
 
-void Parser::parse_group_body(XmlElement node, Element& group, std::size_t depth) {
+void Parser::parse_group_body(XmlElement node, Element& group) {
     for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
         const std::string_view tag = child.name();
         if (is(tag, "name")) {
@@ -649,15 +782,54 @@ void Parser::parse_group_body(XmlElement node, Element& group, std::size_t depth
             parse_hints(child, group);
         }
     }
-    parse_data_children(node, group.children, depth + 1);
+}
+
+// The children of a variable that hold a value (<min>, <max>, <default>, the action's
+// texts): false when tag is none of those this kind has.
+bool Parser::parse_value_child(XmlElement node, XmlElement child, std::string_view tag,
+                               Element& element) {
+    const ElementKind kind = element.kind;
+    const bool integer = kind == ElementKind::kInt || kind == ElementKind::kBit;
+    if (integer && is(tag, "min")) {
+        element.int_min = int_text(child, node);
+    } else if (integer && is(tag, "max")) {
+        element.int_max = int_text(child, node);
+    } else if (integer && is(tag, "default")) {
+        element.int_default = int_text(child, node);
+    } else if (kind == ElementKind::kFloat && is(tag, "min")) {
+        element.float_min = float_text(child, node);
+    } else if (kind == ElementKind::kFloat && is(tag, "max")) {
+        element.float_max = float_text(child, node);
+    } else if (kind == ElementKind::kFloat && is(tag, "default")) {
+        element.float_default = float_text(child, node);
+    } else if ((kind == ElementKind::kString || kind == ElementKind::kEventId) &&
+               is(tag, "default")) {
+        element.text_default = std::string(child.text());
+    } else if (kind == ElementKind::kAction) {
+        return parse_action_child(node, child, tag, element);
+    } else {
+        return false;
+    }
+    return true;
+}
+
+bool Parser::parse_action_child(XmlElement node, XmlElement child, std::string_view tag,
+                                Element& element) {
+    if (is(tag, "buttonText")) {
+        set_text(element.button_text, child.text());
+    } else if (is(tag, "dialogText")) {
+        set_text(element.dialog_text, child.text());
+    } else if (is(tag, "value")) {
+        element.action_value = int_text(child, node);
+    } else {
+        return false;
+    }
+    return true;
 }
 
 void Parser::parse_variable_body(XmlElement node, Element& element) {
     const ElementKind kind = element.kind;
-    const bool integer = kind == ElementKind::kInt || kind == ElementKind::kBit;
-    const bool floating = kind == ElementKind::kFloat;
-    const bool text = kind == ElementKind::kString || kind == ElementKind::kEventId;
-    const bool action = kind == ElementKind::kAction;
+    const bool mappable = kind != ElementKind::kAction && kind != ElementKind::kBlob;
     for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
         const std::string_view tag = child.name();
         if (is(tag, "name")) {
@@ -670,29 +842,9 @@ void Parser::parse_variable_body(XmlElement node, Element& element) {
             element.link = parse_link(child);
         } else if (is(tag, "hints")) {
             parse_hints(child, element);
-        } else if (is(tag, "map") && !action && kind != ElementKind::kBlob) {
+        } else if (is(tag, "map") && mappable) {
             parse_map(child, element.map.emplace());
-        } else if (integer && is(tag, "min")) {
-            element.int_min = int_text(child, node);
-        } else if (integer && is(tag, "max")) {
-            element.int_max = int_text(child, node);
-        } else if (integer && is(tag, "default")) {
-            element.int_default = int_text(child, node);
-        } else if (floating && is(tag, "min")) {
-            element.float_min = float_text(child, node);
-        } else if (floating && is(tag, "max")) {
-            element.float_max = float_text(child, node);
-        } else if (floating && is(tag, "default")) {
-            element.float_default = float_text(child, node);
-        } else if (text && is(tag, "default")) {
-            element.text_default = std::string(child.text());
-        } else if (action && is(tag, "buttonText")) {
-            set_text(element.button_text, child.text());
-        } else if (action && is(tag, "dialogText")) {
-            set_text(element.dialog_text, child.text());
-        } else if (action && is(tag, "value")) {
-            element.action_value = int_text(child, node);
-        } else {
+        } else if (!parse_value_child(node, child, tag, element)) {
             warning(child,
                     "unknown element <" + str(tag) + "> in <" + str(node.name()) + "> ignored");
         }
@@ -722,25 +874,17 @@ std::optional<Document> Parser::run(std::string_view bytes) {
         return std::nullopt;
     }
 
-    // The plain XML of nearly every CDI is read directly; anything else goes through pugixml,
-    // which also reports what is wrong. Both give the same tree. xml outlives tree: the tree
-    // may hold views of pugixml's text.
+    // pugixml parses a copy in place (it rewrites texts as it decodes them); the nodes between
+    // elements are counted in the original. buffer and xml live as long as the walk over them.
+    std::string buffer(bytes);
     pugi::xml_document xml;
-    XmlTree tree(bytes);
-    if (!read_simple_xml(bytes, kMaxXmlDepth, tree)) {
-        tree.clear();
-        if (!read_with_pugixml(bytes, xml, tree)) return std::nullopt;
-    }
+    const XmlElement root = read_xml(buffer, xml);
+    if (!root) return std::nullopt;
     text_ = bytes;
-    const XmlElement root = tree.root();
-    if (!name_is(root, "cdi")) {
-        error(root, "root element is <" + str(root.name()) + ">, expected <cdi>");
-        return std::nullopt;
-    }
 
     Document doc;
     read_declaration(bytes, doc);
-    for (const XmlAttribute& attr : root.attributes()) {
+    for (const XmlAttribute attr : root.attributes()) {
         const std::size_t colon = attr.name.find(':');
         const std::string_view local =
             colon == std::string_view::npos ? attr.name : attr.name.substr(colon + 1);

@@ -17,8 +17,9 @@ struct ParseResult {
     Diagnostics diagnostics;
 };
 
-/// Deepest group nesting accepted; deeper documents are refused before any recursion.
-inline constexpr std::size_t kMaxGroupDepth = 64;
+/// Deepest group nesting accepted. Every walk over groups (parser, layout, rules, renderers) is
+/// iterative, so this bounds no stack: it refuses hostile nesting with a clear diagnostic.
+inline constexpr std::size_t kMaxGroupDepth = 1024;
 
 /// Parses CDI bytes as a node serves them; document is empty when diagnostics has errors.
 ParseResult parse(std::string_view bytes);

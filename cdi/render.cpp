@@ -4,6 +4,8 @@
 #include <cinttypes>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace olcb::cdi {
 
@@ -58,7 +60,7 @@ public:
                  << ", space " << s.space << ", origin " << s.origin << "\n";
             text(1, s.description);
             if (s.link) line(1, "link: " + s.link->text + " <" + s.link->ref + ">");
-            for (const Element& e : s.children) element(1, e);
+            elements(1, s.children);
         }
     }
 
@@ -75,6 +77,7 @@ private:
             line(depth + 1, entry.property + " = " + entry.value);
     }
 
+    // One element and what belongs to it, its children excepted.
     void element(int depth, const Element& e) {
         auto placement = layout_.placement(e);
         std::string where = placement ? "@" + hex_address(placement->address) + " " : "";
@@ -112,7 +115,25 @@ private:
         if (!hints.empty()) line(depth + 1, "hints: " + hints);
         if (e.dialog_text) line(depth + 1, "dialog: " + *e.dialog_text);
         if (e.map) map(depth + 1, *e.map);
-        for (const Element& child : e.children) element(depth + 1, child);
+    }
+
+    // The elements under a segment in document order, each group's children below it, with an
+    // explicit stack rather than recursion.
+    void elements(int depth, const std::vector<Element>& top) {
+        std::vector<std::pair<const Element*, const Element*>> open;
+        open.emplace_back(top.data(), top.data() + top.size());
+        while (!open.empty()) {
+            auto& [next, end] = open.back();
+            if (next == end) {
+                open.pop_back();
+                continue;
+            }
+            const Element& e = *next++;
+            element(depth + static_cast<int>(open.size()) - 1, e);
+            if (!e.children.empty()) {
+                open.emplace_back(e.children.data(), e.children.data() + e.children.size());
+            }
+        }
     }
 
     static std::string format_double(double v) {

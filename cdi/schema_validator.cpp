@@ -149,7 +149,9 @@ DocPtr parse_document(std::string_view bytes, Diagnostics& out) {
     ParseState state;
     parser->_private = &state;
     parser->sax->internalSubset = refuse_doctype;
-    const int options = XML_PARSE_NONET | XML_PARSE_BIG_LINES;
+    // XML_PARSE_HUGE lifts libxml2's nesting limit (256 levels), which a valid CDI of deeply
+    // nested groups passes; the input stays bounded by kMaxCdiBytes and entities are refused.
+    const int options = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_HUGE;
     DocPtr doc(xmlCtxtReadMemory(parser, bytes.data(), static_cast<int>(bytes.size()), "cdi.xml",
                                  nullptr, options));
     const bool well_formed = parser->wellFormed != 0;

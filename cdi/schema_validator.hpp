@@ -18,7 +18,7 @@ enum class SchemaVersion : std::uint8_t { kV1_0, kV1_1, kV1_2, kV1_3, kV1_4 };
 inline constexpr SchemaVersion kNewestSchema = SchemaVersion::kV1_4;
 
 /// Inputs larger than this are refused unparsed (space 0xFF of real nodes holds a few 10 KB).
-inline constexpr std::size_t kMaxCdiBytes = 16 * 1024 * 1024;
+inline constexpr std::size_t kMaxCdiBytes = std::size_t{16} * 1024 * 1024;
 
 /// "1.0" ... "1.4".
 std::string_view schema_version_name(SchemaVersion version);

@@ -9,12 +9,11 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace olcb::cdi {
 namespace {
-
-// Deeper nesting than this is a hostile input, not a CDI; stop before the stack suffers.
-constexpr std::size_t kMaxCheckedDepth = 256;
 
 std::string float_text(double value) {
     if (value == 0.0) value = 0.0;  // folds -0.0 so equal values print equally
@@ -140,14 +139,35 @@ private:
                 label + ": space " + std::to_string(segment.space) +
                     " is not a valid memory space (0 to 255)");
         }
-        for (const Element& child : segment.children) check_element(child, 1);
+        check_tree(segment.children);
     }
 
-    void check_element(const Element& e, std::size_t depth) {
+    // Every element under a segment in document order, depth first, with an explicit stack:
+    // nesting costs heap in proportion to the model, never the call stack.
+    void check_tree(const std::vector<Element>& top) {
+        std::vector<std::pair<const Element*, const Element*>> open;
+        open.emplace_back(top.data(), top.data() + top.size());
+        while (!open.empty()) {
+            auto& [next, end] = open.back();
+            if (next == end) {
+                open.pop_back();
+                continue;
+            }
+            const Element& e = *next++;
+            check_element(e);
+            if (e.kind == ElementKind::kGroup && !e.children.empty()) {
+                open.emplace_back(e.children.data(), e.children.data() + e.children.size());
+            }
+        }
+    }
+
+    // One element's own rules; a group's children are check_tree's.
+    void check_element(const Element& e) {
         check_hints(e);
         switch (e.kind) {
             case ElementKind::kGroup:
-                check_group(e, depth);
+                if (e.replication < 1)
+                    error(e, "replication 0 is not valid; it must be at least 1");
                 break;
             case ElementKind::kInt:
                 check_int(e);
@@ -172,16 +192,6 @@ private:
             case ElementKind::kBit:
                 break;
         }
-    }
-
-    void check_group(const Element& e, std::size_t depth) {
-        if (e.replication < 1) error(e, "replication 0 is not valid; it must be at least 1");
-        if (depth >= kMaxCheckedDepth) {
-            error(e, "groups nested more than " + std::to_string(kMaxCheckedDepth) +
-                         " deep; the contents were not checked");
-            return;
-        }
-        for (const Element& child : e.children) check_element(child, depth + 1);
     }
 
     void check_hints(const Element& e) {

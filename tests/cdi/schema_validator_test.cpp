@@ -33,9 +33,9 @@ std::string cdi(const std::string& location, const std::string& body) {
     return text;
 }
 
-const std::string kPlainBody = "<int size=\"1\"><name>A</name></int>\n";
-const std::string kFloatBody = "<float size=\"4\"><name>F</name></float>\n";
-const std::string kBitBody = "<bit><name>B</name></bit>\n";
+constexpr const char* kPlainBody = "<int size=\"1\"><name>A</name></int>\n";
+constexpr const char* kFloatBody = "<float size=\"4\"><name>F</name></float>\n";
+constexpr const char* kBitBody = "<bit><name>B</name></bit>\n";
 
 auto error_at(std::uint32_t line, const std::string& text) {
     return AllOf(Field(&Diagnostic::severity, Severity::kError), Field(&Diagnostic::line, line),
@@ -251,6 +251,7 @@ TEST(ValidateSchema, GivesTheSameAnswerFromManyThreads) {
     const std::string good = cdi(location_of(3), kPlainBody);
     const std::string bad = cdi(location_of(4), "<int size=\"3\"/>\n");
     std::vector<std::thread> threads;
+    threads.reserve(4);
     std::vector<int> failures(4, 0);
     for (int t = 0; t < 4; ++t) {
         threads.emplace_back([&, t] {
