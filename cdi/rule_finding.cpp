@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "base/utf8.hpp"
 #include "cdi/string_codec.hpp"
 #include "cdi/validator.hpp"
 
@@ -33,7 +34,7 @@ RuleFinding finding(std::string_view id, RuleStatus status, std::string message,
 
 std::string clip(std::string_view text) {
     if (text.size() <= kMaxQuote) return std::string(text);
-    return std::string(truncate_utf8(text, kMaxQuote)) + "...";
+    return std::string(base::truncate_utf8(text, kMaxQuote)) + "...";
 }
 
 std::string quoted(std::string_view text) {
@@ -64,7 +65,7 @@ RuleFinding no_bom(std::string_view text) {
 
 // CDI standard §5: "The bytes encode UTF-8 characters."
 RuleFinding utf8(std::string_view text) {
-    const std::optional<std::size_t> bad = find_invalid_utf8(text);
+    const std::optional<std::size_t> bad = base::find_invalid_utf8(text);
     if (!bad) return finding("cdi.utf8", RuleStatus::kPass, "valid UTF-8");
     const std::uint32_t line = line_at(text, *bad);
     return finding(

@@ -17,17 +17,6 @@ namespace olcb::cdi {
 /// Largest <string> size the codec allocates for; a bigger size attribute is refused, not trusted.
 inline constexpr std::uint64_t kMaxStringSize = std::uint64_t{1} << 20;
 
-/// Offset of the first byte that does not start a well-formed UTF-8 sequence (overlong forms,
-/// surrogates and code points above U+10FFFF are ill-formed); nullopt when `text` is valid.
-std::optional<std::size_t> find_invalid_utf8(std::string_view text);
-
-/// True when `text` is well-formed UTF-8.
-bool is_valid_utf8(std::string_view text);
-
-/// The longest prefix of `text` of at most `max_bytes` bytes that does not end inside a UTF-8
-/// sequence.
-std::string_view truncate_utf8(std::string_view text, std::size_t max_bytes);
-
 /// What the bytes of a <string> hold.
 struct DecodedString {
     std::string text;         ///< the bytes before the first NUL (all bytes when there is none)
@@ -40,7 +29,8 @@ DecodedString decode_string(std::span<const std::uint8_t> bytes);
 
 /// The `size` bytes of `text`: the text, a NUL, NUL padding. Errors: size 0 or above
 /// kMaxStringSize, a NUL inside the text, and in strict mode a text longer than size - 1 bytes or
-/// invalid UTF-8. Lenient mode cuts a long text with truncate_utf8 and writes invalid UTF-8 as is.
+/// invalid UTF-8. Lenient mode cuts a long text with base::truncate_utf8 and writes invalid UTF-8
+/// as is.
 CodecResult<std::vector<std::uint8_t>> encode_string(std::string_view text, std::uint64_t size,
                                                      CodecMode mode = CodecMode::kStrict);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/utf8.hpp"
 #include "cdi/event_id_text.hpp"
 #include "cdi/float_codec.hpp"
 #include "cdi/int_codec.hpp"
@@ -127,7 +128,7 @@ CodecStatus check_string(const Element& e, const std::string& v, std::uint64_t s
         return CodecError{"text contains a NUL byte at offset " + std::to_string(nul) + " for " +
                           label(e)};
     }
-    if (const auto bad = find_invalid_utf8(v)) {
+    if (const auto bad = base::find_invalid_utf8(v)) {
         return CodecError{"text is not valid UTF-8 (byte " + std::to_string(*bad) + ") for " +
                           label(e)};
     }
@@ -287,7 +288,7 @@ CodecResult<Value> decode(const Element& element, std::span<const std::uint8_t> 
                     return about(element, "string has no NUL terminator within its " +
                                               std::to_string(*size) + " bytes");
                 }
-                if (const auto bad = find_invalid_utf8(s.text)) {
+                if (const auto bad = base::find_invalid_utf8(s.text)) {
                     return about(element,
                                  "string is not valid UTF-8 (byte " + std::to_string(*bad) + ")");
                 }

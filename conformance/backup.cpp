@@ -7,8 +7,10 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
+
+#include "base/error_codes.hpp"
+#include "base/file.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -107,8 +109,9 @@ bool SafetyBackup::capture_available(MemoryAccess& memory,
         if (got.ok) {
             std::snprintf(buf, sizeof buf, "%zu of %u bytes came back", got.data.size(), r.length);
         } else {
-            std::snprintf(buf, sizeof buf, "read failed with 0x%04X%s", got.error,
-                          got.error == 0x2010 ? " (timed out)" : "");
+            std::snprintf(
+                buf, sizeof buf, "read failed with 0x%04X%s", got.error,
+                got.error == base::to_u16(base::ErrorCode::kTimeout) ? " (timed out)" : "");
         }
         missing.emplace_back(r, buf);
     }
@@ -166,12 +169,44 @@ bool SafetyBackup::is_safety_backup(const std::string& text) {
     return text.rfind(kHeader, 0) == 0;
 }
 
-std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::string& error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = "cannot open " + path + ": " + std::strerror(errno);
+namespace {
+
+// "range SPACE ADDRESS LENGTH HEX": one range of a safety backup; nullopt with `why` when not.
+std::optional<BackupRange> parse_range_line(const std::string& line, std::string& why) {
+    unsigned space = 0;
+    unsigned long address = 0;
+    std::size_t length = 0;
+    int used = 0;
+    if (std::sscanf(line.c_str(), "range %u %lx %zu %n", &space, &address, &length, &used) != 3 ||
+        space > 255 || address > 0xFFFFFFFFul || length > kMaxRangeBytes) {
+        why = "malformed range line";
         return std::nullopt;
     }
+    const std::string hex = line.substr(static_cast<std::size_t>(used));
+    if (hex.size() != length * 2) {
+        why = "range length does not match its bytes";
+        return std::nullopt;
+    }
+    BackupRange r{static_cast<std::uint8_t>(space), static_cast<std::uint32_t>(address), {}};
+    r.bytes.reserve(length);
+    for (std::size_t i = 0; i < length; ++i) {
+        const int hi = hex_digit(hex[2 * i]);
+        const int lo = hex_digit(hex[2 * i + 1]);
+        if (hi < 0 || lo < 0) {
+            why = "bad hex digit";
+            return std::nullopt;
+        }
+        r.bytes.push_back(static_cast<std::uint8_t>(hi << 4 | lo));
+    }
+    return r;
+}
+
+}  // namespace
+
+std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::string& error) {
+    const auto text = base::read_file(path, error);
+    if (!text) return std::nullopt;
+    std::istringstream in(*text);
     std::string line;
     if (!std::getline(in, line) || line.rfind(kHeader, 0) != 0) {
         error = path + " is not an lcc-conform safety backup";
@@ -194,26 +229,10 @@ std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::str
         } else if (line == "end") {
             ended = true;
         } else if (line.rfind("range ", 0) == 0) {
-            unsigned space = 0;
-            unsigned long address = 0;
-            std::size_t length = 0;
-            int used = 0;
-            if (std::sscanf(line.c_str(), "range %u %lx %zu %n", &space, &address, &length,
-                            &used) != 3 ||
-                space > 255 || address > 0xFFFFFFFFul || length > kMaxRangeBytes) {
-                return bad("malformed range line");
-            }
-            std::string hex = line.substr(static_cast<std::size_t>(used));
-            if (hex.size() != length * 2) return bad("range length does not match its bytes");
-            BackupRange r{
-                static_cast<std::uint8_t>(space), static_cast<std::uint32_t>(address), {}};
-            r.bytes.reserve(length);
-            for (std::size_t i = 0; i < length; ++i) {
-                int hi = hex_digit(hex[2 * i]), lo = hex_digit(hex[2 * i + 1]);
-                if (hi < 0 || lo < 0) return bad("bad hex digit");
-                r.bytes.push_back(static_cast<std::uint8_t>(hi << 4 | lo));
-            }
-            backup.ranges_.push_back(std::move(r));
+            std::string why;
+            auto range = parse_range_line(line, why);
+            if (!range) return bad(why);
+            backup.ranges_.push_back(std::move(*range));
         } else {
             return bad("unknown line");
         }

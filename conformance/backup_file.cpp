@@ -1,10 +1,6 @@
 #include "conformance/backup_file.hpp"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
-
+#include "base/file.hpp"
 #include "conformance/backup_csv.hpp"
 #include "conformance/backup_values.hpp"
 
@@ -53,14 +49,9 @@ BackupFile parse_backup_file(std::string_view text) {
 }
 
 bool load_backup_file(const std::string& path, BackupFile& file, std::string& error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = "cannot read " + path + ": " + std::strerror(errno);
-        return false;
-    }
-    std::ostringstream buf;
-    buf << in.rdbuf();
-    file = parse_backup_file(buf.str());
+    const auto text = base::read_file(path, error);
+    if (!text) return false;
+    file = parse_backup_file(*text);
     if (file.records.empty() && file.errors.empty()) {
         error = path + " holds no key=value line";
         return false;

@@ -1,11 +1,10 @@
 #include "conformance/config_backup.hpp"
 
-#include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <ostream>
 #include <sstream>
 
+#include "base/file.hpp"
 #include "cdi/parser.hpp"
 #include "conformance/backup_csv.hpp"
 #include "conformance/report.hpp"
@@ -66,14 +65,13 @@ bool plan_on_node(Session& session, const std::string& node_id, const BackupFile
 }
 
 bool read_text_file(const std::string& path, std::string& text, std::ostream& err) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        err << "lcc-conform: cannot read " << path << ": " << std::strerror(errno) << "\n";
+    std::string error;
+    auto bytes = base::read_file(path, error);
+    if (!bytes) {
+        err << "lcc-conform: " << error << "\n";
         return false;
     }
-    std::ostringstream buf;
-    buf << in.rdbuf();
-    text = buf.str();
+    text = std::move(*bytes);
     return true;
 }
 

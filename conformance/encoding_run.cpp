@@ -53,7 +53,8 @@ std::string code_text(const AccessResult& r) {
     if (r.error == 0) return r.ok ? "no data" : "no error code";
     char buf[16];
     std::snprintf(buf, sizeof buf, "0x%04X", r.error);
-    return r.error == 0x2010 ? std::string(buf) + " (timed out)" : buf;
+    return r.error == base::to_u16(base::ErrorCode::kTimeout) ? std::string(buf) + " (timed out)"
+                                                              : buf;
 }
 
 // Findings of one check kind, summarised into one CheckResult.
@@ -438,7 +439,7 @@ CheckResult EncodingRun::snip_follows() {
     } else {
         // The variable's own read-back: SNIP reports the user name from space 251.
         auto name = hooks_.snip_user_name();
-        const AccessResult unanswered{false, 0x2010, {}};
+        const AccessResult unanswered{false, base::to_u16(base::ErrorCode::kTimeout), {}};
         if (!name && !step("asking SNIP for", key, unanswered)) return c;
         c.expected = show_node_text(kSnipTestName);
         c.seen = name ? show_node_text(*name, true, name->size()) : "no SNIP reply";

@@ -3,18 +3,14 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "base/error_codes.hpp"
 #include "conformance/runner.hpp"
-#include "openlcb/error_codes.hpp"
 
 namespace olcb::conform {
 namespace {
 
 // How long the node is given to answer one Verify Node ID.
 constexpr Duration kPingTimeout = std::chrono::seconds(2);
-
-bool temporary(std::uint16_t code) {
-    return (code & 0xF000) == 0x2000;
-}
 
 std::string seconds_text(Duration d) {
     char buf[32];
@@ -37,7 +33,8 @@ void NodeWatch::rebase() {
 
 std::optional<NodeIncident> NodeWatch::after(const AccessStep& step) {
     const AccessResult& r = *step.result;
-    const bool failed = !r.ok && (r.error == error_code::kTimeout || temporary(r.error));
+    const bool failed = !r.ok && (r.error == base::to_u16(base::ErrorCode::kTimeout) ||
+                                  base::is_temporary(r.error));
     auto incident = judge(step.what + " " + step.key, failed);
     if (incident) {
         incident->key = step.key;

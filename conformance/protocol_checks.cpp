@@ -102,38 +102,6 @@ std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& nod
     return out;
 }
 
-bool is_valid_utf8(std::span<const std::uint8_t> b) {
-    std::size_t i = 0;
-    while (i < b.size()) {
-        const std::uint8_t c = b[i];
-        std::size_t n = 0;
-        std::uint32_t cp = 0;
-        if (c < 0x80) {
-            ++i;
-            continue;
-        } else if ((c & 0xE0) == 0xC0) {
-            n = 1;
-            cp = c & 0x1F;
-        } else if ((c & 0xF0) == 0xE0) {
-            n = 2;
-            cp = c & 0x0F;
-        } else if ((c & 0xF8) == 0xF0) {
-            n = 3;
-            cp = c & 0x07;
-        } else {
-            return false;
-        }
-        for (std::size_t k = 1; k <= n; ++k) {
-            if (i + k >= b.size() || (b[i + k] & 0xC0) != 0x80) return false;
-            cp = cp << 6 | (b[i + k] & 0x3F);
-        }
-        static constexpr std::uint32_t kMin[] = {0, 0x80, 0x800, 0x10000};
-        if (cp < kMin[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
-        i += n + 1;
-    }
-    return true;
-}
-
 std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
                                              const ProtocolOptions& options, CheckContext& ctx) {
     // The node's measured latency widens every window; none gets shorter than asked.

@@ -41,7 +41,4 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
 std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& node,
                                            CheckContext& ctx);
 
-/// True when bytes are valid UTF-8 (no overlongs, surrogates or values past U+10FFFF).
-bool is_valid_utf8(std::span<const std::uint8_t> bytes);
-
 }  // namespace olcb::conform

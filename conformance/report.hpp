@@ -9,14 +9,15 @@
 #include <string_view>
 #include <vector>
 
+#include "base/utf8.hpp"
 #include "conformance/check_result.hpp"
 
 namespace olcb::conform {
 
-/// Node text made safe for terminals, JSON and XML: every byte that is not part of valid UTF-8
-/// becomes U+FFFD, control characters (C0, DEL, C1) become '?', and the non-characters U+FFFE
-/// and U+FFFF (not allowed in XML) become U+FFFD.
-std::string printable(std::string_view text);
+/// Node text made safe for terminals, JSON and XML (base/utf8.hpp): every byte that is not part
+/// of valid UTF-8 becomes U+FFFD, control characters (C0, DEL, C1) become '?', and the
+/// non-characters U+FFFE and U+FFFF (not allowed in XML) become U+FFFD.
+using base::printable;
 
 /// Node-supplied bytes for a message: at most max_bytes of them (cut on a UTF-8 boundary, "..."
 /// marking the cut), printable(), in double quotes when quote is set, then " (bytes 62 61 FF)"

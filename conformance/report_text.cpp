@@ -3,36 +3,12 @@
 #include <ostream>
 #include <span>
 
-#include "cdi/string_codec.hpp"
+#include "base/utf8.hpp"
 #include "conformance/backup.hpp"
 #include "conformance/report.hpp"
 
 namespace olcb::conform {
 namespace {
-
-// U+FFFD REPLACEMENT CHARACTER in UTF-8.
-constexpr std::string_view kReplacement = "\xEF\xBF\xBD";
-
-// Appends valid UTF-8 with what a terminal would act on (C0 and C1 controls, DEL) as '?' and
-// what XML forbids (U+FFFE, U+FFFF) as U+FFFD.
-void append_valid(std::string& out, std::string_view text) {
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        const auto next = i + 1 < text.size() ? static_cast<unsigned char>(text[i + 1]) : 0;
-        if (c < 0x20 || c == 0x7F) {
-            out.push_back('?');
-        } else if (c == 0xC2 && next >= 0x80 && next <= 0x9F) {
-            out.push_back('?');
-            ++i;
-        } else if (c == 0xEF && next == 0xBF && i + 2 < text.size() &&
-                   (static_cast<unsigned char>(text[i + 2]) & 0xFE) == 0xBE) {
-            out += kReplacement;
-            i += 2;
-        } else {
-            out.push_back(static_cast<char>(c));
-        }
-    }
-}
 
 const char* colour_of(Status status) {
     switch (status) {
@@ -50,22 +26,8 @@ const char* colour_of(Status status) {
 
 }  // namespace
 
-std::string printable(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    // Each byte that starts no valid sequence is one U+FFFD, so the count of bad bytes shows.
-    while (!text.empty()) {
-        const std::size_t valid = cdi::find_invalid_utf8(text).value_or(text.size());
-        append_valid(out, text.substr(0, valid));
-        if (valid == text.size()) break;
-        out += kReplacement;
-        text.remove_prefix(valid + 1);
-    }
-    return out;
-}
-
 std::string show_node_text(std::string_view text, bool quote, std::size_t max_bytes) {
-    const std::string_view shown = cdi::truncate_utf8(text, max_bytes);
+    const std::string_view shown = base::truncate_utf8(text, max_bytes);
     const std::string safe = printable(shown);
     std::string out = quote ? "\"" : "";
     out += safe;

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <variant>
 
+#include "base/error_codes.hpp"
 #include "memory/snip.hpp"
 #include "openlcb/can_defs.hpp"
-#include "openlcb/error_codes.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -229,7 +229,8 @@ void Session::record_read(const NodeInfo& node, std::uint8_t space, std::uint32_
     if (!r.rejected) ++reads_[{node.id.value(), space}];
     const bool data = r.ok && !r.data.empty();
     const bool end =
-        (r.ok && r.data.empty()) || (!r.ok && !r.rejected && r.error == error_code::kOutOfBounds);
+        (r.ok && r.data.empty()) ||
+        (!r.ok && !r.rejected && r.error == base::to_u16(base::ErrorCode::kOutOfBounds));
     if (data || end) {
         // A short reply that ended here: this read tells whether the space really ended.
         auto [first, last] = open_short_reads_.equal_range({node.id.value(), space, address});
@@ -444,7 +445,7 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     const std::uint16_t alias = alias_of(node);
     auto id = link_.stack().send_datagram(alias, payload, sent_at);
     if (!id) {
-        result.error = error_code::kTemporaryError;
+        result.error = base::to_u16(base::ErrorCode::kTemporary);
         result.rejected = true;
         return result;
     }
@@ -493,7 +494,7 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     }
     if (!reply_index) {
         result.timed_out = true;
-        result.error = error_code::kTimeout;
+        result.error = base::to_u16(base::ErrorCode::kTimeout);
         return result;
     }
     const Event& ev = messages_[*reply_index];
@@ -544,7 +545,9 @@ MemResult Session::read_range(const NodeInfo& node, memory::Space space, std::ui
         total.temporary_rejects += r.temporary_rejects;
         total.reply_latency = std::max(total.reply_latency, r.reply_latency);
         if (!r.ok) {
-            if (!r.rejected && !r.timed_out && r.error == error_code::kOutOfBounds) break;
+            if (!r.rejected && !r.timed_out &&
+                r.error == base::to_u16(base::ErrorCode::kOutOfBounds))
+                break;
             total.ok = false;
             total.error = r.error;
             total.rejected = r.rejected;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "openlcb/error_codes.hpp"
+#include "base/error_codes.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -22,7 +22,8 @@ AccessResult SessionMemory::read(std::uint8_t space, std::uint32_t address, std:
     MemResult r = session_.read_range(node_, static_cast<memory::Space>(space), address,
                                       static_cast<std::uint32_t>(count), false);
     if (!r.ok) return to_access(r);
-    if (r.data.empty() && count != 0) return {false, error_code::kOutOfBounds, {}};
+    if (r.data.empty() && count != 0)
+        return {false, base::to_u16(base::ErrorCode::kOutOfBounds), {}};
     return {true, 0, std::move(r.data)};
 }
 

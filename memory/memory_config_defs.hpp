@@ -7,6 +7,8 @@
 #include <optional>
 #include <string_view>
 
+#include "base/error_codes.hpp"
+
 namespace olcb::memory {
 
 /// Datagram content type (byte 0) of every Memory Configuration payload.
@@ -111,76 +113,12 @@ inline constexpr std::uint8_t kReadOnly = 0x01;
 inline constexpr std::uint8_t kLowAddressPresent = 0x02;  ///< a 4-byte lowest address follows
 }  // namespace space_flags
 
-/// Error codes memory configuration uses (MessageNetworkS table plus 0x1081..0x1083).
-enum class ErrorCode : std::uint16_t {
-    kNone = 0x0000,                ///< no information
-    kPermanent = 0x1000,           ///< permanent error, unspecified
-    kSourceNotPermitted = 0x1020,  ///< source not permitted
-    kNotFound = 0x1030,            ///< not found
-    kNotImplemented = 0x1040,      ///< not implemented
-    kSubcommandUnknown = 0x1041,   ///< unknown memory-config command
-    kCommandUnknown = 0x1042,      ///< datagram type / command unknown
-    kInvalidArguments = 0x1080,    ///< e.g. read count 0 or > 64
-    kSpaceUnknown = 0x1081,        ///< address space unknown
-    kOutOfBounds = 0x1082,         ///< address out of bounds
-    kReadOnly = 0x1083,            ///< write to a read-only space
-    kTemporary = 0x2000,           ///< temporary error, resend OK
-    kTimeout = 0x2010,             ///< timeout
-    kBufferUnavailable = 0x2020,   ///< destination busy
-    kTransferError = 0x2080,       ///< ill-formed transfer
-};
-
-/// The raw 16-bit value of an error code.
-constexpr std::uint16_t to_u16(ErrorCode code) {
-    return static_cast<std::uint16_t>(code);
-}
-
-/// True for codes with the permanent flag (0x1000) set.
-constexpr bool is_permanent(ErrorCode code) {
-    return (to_u16(code) & 0x1000) != 0;
-}
-
-/// True for codes with the temporary flag (0x2000) set: the request may be resent.
-constexpr bool is_temporary(ErrorCode code) {
-    return (to_u16(code) & 0x2000) != 0;
-}
-
-/// Short English name of a known error code, "" for unknown ones.
-constexpr std::string_view error_name(ErrorCode code) {
-    switch (code) {
-        case ErrorCode::kNone:
-            return "no information";
-        case ErrorCode::kPermanent:
-            return "permanent error";
-        case ErrorCode::kSourceNotPermitted:
-            return "source not permitted";
-        case ErrorCode::kNotFound:
-            return "not found";
-        case ErrorCode::kNotImplemented:
-            return "not implemented";
-        case ErrorCode::kSubcommandUnknown:
-            return "subcommand unknown";
-        case ErrorCode::kCommandUnknown:
-            return "command unknown";
-        case ErrorCode::kInvalidArguments:
-            return "invalid arguments";
-        case ErrorCode::kSpaceUnknown:
-            return "address space unknown";
-        case ErrorCode::kOutOfBounds:
-            return "address out of bounds";
-        case ErrorCode::kReadOnly:
-            return "write to read-only space";
-        case ErrorCode::kTemporary:
-            return "temporary error";
-        case ErrorCode::kTimeout:
-            return "timeout";
-        case ErrorCode::kBufferUnavailable:
-            return "buffer unavailable";
-        case ErrorCode::kTransferError:
-            return "transfer error";
-    }
-    return "";
-}
+/// Error codes memory configuration uses: the project's one table (base/error_codes.hpp).
+using base::error_name;
+using base::ErrorCode;
+using base::is_permanent;
+using base::is_temporary;
+using base::to_u16;
 
 /// The raw byte of a space.
 constexpr std::uint8_t to_u8(Space space) {

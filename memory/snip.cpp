@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "base/utf8.hpp"
+
 namespace olcb::memory {
 namespace {
 
@@ -50,17 +52,7 @@ void append_string(std::vector<std::uint8_t>& out, std::string_view text, std::s
 }  // namespace
 
 std::string_view clamp_utf8(std::string_view text, std::size_t max_bytes) {
-    text = text.substr(0, text.find('\0'));
-    if (text.size() <= max_bytes) return text;
-    std::size_t cut = max_bytes;
-    // A UTF-8 sequence is at most 4 bytes, so at most 3 continuation bytes are dropped; invalid
-    // UTF-8 beyond that is cut as bytes.
-    for (int step = 0; step < 3 && cut > 0; ++step) {
-        if ((static_cast<unsigned char>(text[cut]) & 0xC0) != 0x80) break;
-        --cut;
-    }
-    if ((static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) cut = max_bytes;
-    return text.substr(0, cut);
+    return base::truncate_utf8(text.substr(0, text.find('\0')), max_bytes);
 }
 
 std::vector<std::uint8_t> encode_snip(const Snip& snip) {

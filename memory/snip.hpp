@@ -41,7 +41,7 @@ struct Snip {
 };
 
 /// The longest prefix of text before its first NUL that fits max_bytes without splitting a
-/// UTF-8 sequence.
+/// UTF-8 sequence (base::truncate_utf8 of the text before the NUL).
 std::string_view clamp_utf8(std::string_view text, std::size_t max_bytes);
 
 /// Encodes a SNIP payload: version bytes 4 and 2, each string clamped to its maximum (NUL

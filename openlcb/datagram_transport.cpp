@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
+#include "base/error_codes.hpp"
 #include "openlcb/addressed_framing.hpp"
 #include "openlcb/can_defs.hpp"
-#include "openlcb/error_codes.hpp"
 #include "openlcb/mti.hpp"
 
 namespace olcb {
@@ -114,7 +114,7 @@ bool DatagramSender::on_frame(const CanFrame& frame, TimePoint now) {
         if (mti != to_u16(Mti::kDatagram)) return false;  // about some other message of ours
     }
     Entry& e = entries_[*index];
-    if (error_code::is_temporary(code) && e.attempts <= config_.max_resends) {
+    if (base::is_temporary(code) && e.attempts <= config_.max_resends) {
         if (config_.resend_delay <= Duration::zero()) {
             transmit(e, now);
         } else {
@@ -134,7 +134,8 @@ void DatagramSender::poll(TimePoint now) {
             transmit(e, now);
         } else if (e.phase == Phase::kWaitingAck && now >= e.deadline) {
             // finish() may start a later entry, which sits after i: keep scanning from i.
-            finish(i, DatagramOutcome::Status::kTimedOut, error_code::kTimeout, 0, now);
+            finish(i, DatagramOutcome::Status::kTimedOut, base::to_u16(base::ErrorCode::kTimeout),
+                   0, now);
             continue;
         }
         ++i;
@@ -240,10 +241,10 @@ void DatagramReceiver::on_frame(const CanFrame& frame, TimePoint now) {
         discarding_[src] = false;  // whatever was being skipped is over
         std::uint16_t code = 0;
         if (slot && !slot->complete) {
-            code = error_code::kFirstBeforePreviousFinished;
+            code = base::to_u16(base::ErrorCode::kFirstBeforePreviousFinished);
             erase(src);
         } else if (slot || slots_.size() >= config_.max_buffers) {
-            code = error_code::kBufferUnavailable;
+            code = base::to_u16(base::ErrorCode::kBufferUnavailable);
         }
         if (code != 0) {
             send_reject(src, code);
@@ -260,13 +261,13 @@ void DatagramReceiver::on_frame(const CanFrame& frame, TimePoint now) {
         return;
     }
     if (!slot || slot->complete) {
-        send_reject(src, error_code::kMiddleOrLastWithoutFirst);
+        send_reject(src, base::to_u16(base::ErrorCode::kMiddleOrLastWithoutFirst));
         if (!last) discarding_[src] = true;
         return;
     }
     if (slot->data.size() + frame.len > datagram::kMaxSize) {
         erase(src);
-        send_reject(src, error_code::kPermanentError);
+        send_reject(src, base::to_u16(base::ErrorCode::kPermanent));
         if (!last) discarding_[src] = true;
         return;
     }

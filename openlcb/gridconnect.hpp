@@ -103,8 +103,8 @@ private:
             overflow_ = false;
             len_ = 0;
             buf_[len_++] = c;
-        } else if (!in_frame_) {
-            return;  // garbage or whitespace between frames
+        } else if (!in_frame_ || c == ' ' || c == '\t' || c == '\r' || c == '\n') {
+            return;  // garbage between frames; whitespace is tolerated inside a frame too
         } else if (c == ';') {
             in_frame_ = false;
             if (overflow_ || len_ + 1 > kMaxFrameText) {
@@ -113,8 +113,6 @@ private:
             }
             buf_[len_++] = c;
             deliver(parse_frame(std::string_view(buf_, len_)), on_frame);
-        } else if (c == ' ' || c == '\t' || c == '\r' || c == '\n') {
-            return;  // tolerated inside a frame too
         } else if (len_ < kMaxFrameText) {
             buf_[len_++] = c;
         } else {

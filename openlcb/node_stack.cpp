@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <utility>
 
+#include "base/error_codes.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
 #include "openlcb/mti.hpp"
 
 namespace olcb {
@@ -315,7 +315,8 @@ void NodeStack::on_datagram_frame(const CanFrame& frame, TimePoint now) {
         if (config_.builtins.reject_datagrams_without_handler &&
             (format == can::FrameFormat::kDatagramOnly ||
              format == can::FrameFormat::kDatagramLast)) {
-            send_oir(src, error_code::kUnknownMtiOrTransport, to_u16(Mti::kDatagram));
+            send_oir(src, base::to_u16(base::ErrorCode::kUnknownMtiOrTransport),
+                     to_u16(Mti::kDatagram));
         }
         return;
     }
@@ -324,7 +325,8 @@ void NodeStack::on_datagram_frame(const CanFrame& frame, TimePoint now) {
         if (on_datagram_) {
             on_datagram_(*d);
         } else {
-            receiver_.reject(d->source_alias, error_code::kUnknownMtiOrTransport);
+            receiver_.reject(d->source_alias,
+                             base::to_u16(base::ErrorCode::kUnknownMtiOrTransport));
         }
     }
     take_frames(receiver_);  // owner calls made inside the handler collected for themselves
@@ -335,7 +337,8 @@ void NodeStack::dispatch(const Message& msg) {
     const bool handled = on_message_ && on_message_(msg);
     if (!handled && msg.destination && config_.builtins.reject_unknown_addressed &&
         !never_rejected(to_u16(msg.mti))) {
-        send_oir(msg.source.alias, error_code::kUnknownMtiOrTransport, to_u16(msg.mti));
+        send_oir(msg.source.alias, base::to_u16(base::ErrorCode::kUnknownMtiOrTransport),
+                 to_u16(msg.mti));
     }
     collect();
 }

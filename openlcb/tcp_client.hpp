@@ -19,8 +19,9 @@ struct TcpClientOptions {
     std::chrono::milliseconds max_backoff{5000};     ///< the delay never grows past this
     unsigned backoff_factor = 2;                     ///< delay multiplier per failed attempt
     unsigned max_attempts = 0;  ///< consecutive failed connects before giving up; 0 = never
-    std::size_t max_queue_bytes = 256 * 1024;  ///< unsent output beyond this drops the connection
-    bool drop_echoes = true;  ///< drop frames that echo our own (hubs that echo; EchoFilter)
+    std::size_t max_queue_bytes =
+        std::size_t{256} * 1024;  ///< unsent output beyond this drops the connection
+    bool drop_echoes = true;      ///< drop frames that echo our own (hubs that echo; EchoFilter)
 };
 
 /// Delay before reconnect attempt `failures` + 1: initial * factor^failures, capped at max_backoff.

@@ -17,12 +17,13 @@ namespace olcb {
 
 /// Limits of one TcpHubServer.
 struct TcpHubOptions {
-    std::size_t max_client_queue_bytes = 256 * 1024;  ///< output bytes waiting per client
-    std::size_t max_clients = 64;                     ///< connections beyond are closed
-    std::size_t max_clients_per_address = 48;         ///< per remote address; beyond are closed
+    std::size_t max_client_queue_bytes =
+        std::size_t{256} * 1024;               ///< output bytes waiting per client
+    std::size_t max_clients = 64;              ///< connections beyond are closed
+    std::size_t max_clients_per_address = 48;  ///< per remote address; beyond are closed
     /// A client's output queue above this pauses reading from every client until it drains
     /// (capped at half of max_client_queue_bytes).
-    std::size_t pause_above_bytes = 64 * 1024;
+    std::size_t pause_above_bytes = std::size_t{64} * 1024;
     /// A queue above the pause level this long marks its client a slow reader: it no longer
     /// pauses the others, and is dropped when its queue overflows.
     std::chrono::milliseconds slow_reader_grace{500};

@@ -249,12 +249,8 @@ std::optional<CtlInvocation> parse_ctl_arguments(Args args, const fs::path& cwd,
         error = "give HOST:PORT and a command";
         return std::nullopt;
     }
-    const auto where = parse_host_port(positional[0], error);
+    const auto where = base::parse_host_port(positional[0], error, base::PortZero::kRefused);
     if (!where) return std::nullopt;
-    if (where->port == 0) {
-        error = "port 0 is not a port";
-        return std::nullopt;
-    }
     out.where = *where;
     const Args rest = Args(positional).subspan(2);
     for (const auto& [name, build] : kBuilders) {

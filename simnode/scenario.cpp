@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_set>
 
+#include "base/file.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/schema_validator.hpp"
 #include "openlcb/asio.hpp"
@@ -385,8 +385,8 @@ public:
                         " bytes, over the limit of " + std::to_string(cdi::kMaxCdiBytes) +
                         " (16 MiB)");
         }
-        const std::string* cdi = read_cdi(cdi_path);
-        if (!cdi) return fail(where + ": cannot read CDI file " + cdi_path.string());
+        const std::string* cdi = read_cdi(cdi_path, why);
+        if (!cdi) return fail(where + ": CDI file: " + why);
         fs::path root = path_of(keys, "image-dir");
         if (root.empty()) root = default_root;
 
@@ -540,15 +540,12 @@ private:
         return false;
     }
 
-    const std::string* read_cdi(const fs::path& path) {
+    const std::string* read_cdi(const fs::path& path, std::string& error) {
         const auto key = path.string();
         if (const auto it = cdis_.find(key); it != cdis_.end()) return &it->second;
-        std::ifstream in(path, std::ios::binary);
-        if (!in) return nullptr;
-        std::ostringstream text;
-        text << in.rdbuf();
-        if (in.bad()) return nullptr;
-        return &cdis_.emplace(key, text.str()).first->second;
+        auto text = base::read_file(path, error);
+        if (!text) return nullptr;
+        return &cdis_.emplace(key, std::move(*text)).first->second;
     }
 
     // Identity keys given override the CDI's <identification>; the rest come from it.
@@ -626,38 +623,6 @@ fs::path find_scenario(const fs::path& given, std::span<const fs::path> default_
 
 }  // namespace
 
-std::string HostPort::to_string() const {
-    const bool v6 = host.find(':') != std::string::npos;
-    return (v6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
-}
-
-std::optional<HostPort> parse_host_port(std::string_view text, std::string& error) {
-    HostPort hp;
-    std::string_view port_text = text;
-    if (const auto colon = text.rfind(':'); colon != std::string_view::npos) {
-        std::string_view host = text.substr(0, colon);
-        if (host.size() >= 2 && host.front() == '[' && host.back() == ']') {
-            host = host.substr(1, host.size() - 2);
-        }
-        if (host.empty()) {
-            error = "'" + std::string(text) + "' has an empty host";
-            return std::nullopt;
-        }
-        hp.host = std::string(host);
-        port_text = text.substr(colon + 1);
-    }
-    unsigned port = 0;
-    const auto [ptr, ec] =
-        std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
-    if (port_text.empty() || ec != std::errc() || ptr != port_text.data() + port_text.size() ||
-        port > 65535) {
-        error = "'" + std::string(text) + "' is not HOST:PORT (port 0..65535)";
-        return std::nullopt;
-    }
-    hp.port = static_cast<std::uint16_t>(port);
-    return hp;
-}
-
 std::string help_text() {
     std::ostringstream out;
     out << "usage: simnode [--scenario] [FILE.ini] [OPTIONS]\n"
@@ -699,16 +664,14 @@ std::optional<Arguments> parse_arguments(std::span<const std::string> args,
     }
     Raw file_raw;
     if (!file.empty()) {
-        std::ifstream in(file, std::ios::binary);
-        if (!in) {
-            error = "cannot read scenario file " + file.string();
+        const auto text = base::read_file(file, error);
+        if (!text) {
+            error = "scenario file: " + error;
             return std::nullopt;
         }
-        std::ostringstream text;
-        text << in.rdbuf();
         std::error_code ec;
-        fs::path base = fs::absolute(file, ec).parent_path();
-        auto raw = parse_ini(text.str(), base, file.string(), error);
+        const fs::path dir = fs::absolute(file, ec).parent_path();
+        auto raw = parse_ini(*text, dir, file.string(), error);
         if (!raw) return std::nullopt;
         file_raw = std::move(*raw);
     }

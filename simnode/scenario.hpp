@@ -10,23 +10,15 @@
 #include <string_view>
 #include <vector>
 
+#include "base/host_port.hpp"
 #include "simnode/sim_node.hpp"
 
 namespace olcb::simnode {
 
-/// A TCP address as HOST:PORT.
-struct HostPort {
-    std::string host = "127.0.0.1";  ///< numeric address; 127.0.0.1 when only a port is given
-    std::uint16_t port = 0;          ///< 0 lets the system pick a free port (listen only)
-
-    /// "HOST:PORT".
-    std::string to_string() const;
-    /// Same host and port.
-    friend bool operator==(const HostPort&, const HostPort&) = default;
-};
-
-/// Parses "HOST:PORT", "[V6]:PORT" or a bare "PORT" (host 127.0.0.1); nullopt plus a sentence.
-std::optional<HostPort> parse_host_port(std::string_view text, std::string& error);
+/// A TCP address as HOST:PORT (base/host_port.hpp); simnode's hosts are numeric addresses.
+using base::HostPort;
+/// Parses "HOST:PORT", "[V6]:PORT", "HOST" (port 12021) or a bare "PORT" (host 127.0.0.1).
+using base::parse_host_port;
 
 /// Everything one simnode process runs.
 struct Scenario {

@@ -7,10 +7,10 @@
 #include <utility>
 #include <variant>
 
+#include "base/error_codes.hpp"
 #include "cdi/schema_validator.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -280,7 +280,7 @@ void SimNode::answer_late(const Message& msg) {
     Message oir;
     oir.mti = Mti::kOptionalInteractionRejected;
     oir.destination = NodeHandle{msg.source.id, msg.source.alias};
-    const auto code = error_code::kUnknownMtiOrTransport;
+    const auto code = base::to_u16(base::ErrorCode::kUnknownMtiOrTransport);
     const auto mti = static_cast<std::uint16_t>(msg.mti);
     oir.payload = {static_cast<std::uint8_t>(code >> 8), static_cast<std::uint8_t>(code & 0xFF),
                    static_cast<std::uint8_t>(mti >> 8), static_cast<std::uint8_t>(mti & 0xFF)};
@@ -450,11 +450,11 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
     const std::uint16_t src = d.source_alias;
     if (counters_.temporary_rejects < config_.faults.reject_temporary) {
         ++counters_.temporary_rejects;
-        stack_.reject_datagram(src, error_code::kBufferUnavailable);
+        stack_.reject_datagram(src, base::to_u16(base::ErrorCode::kBufferUnavailable));
         return;
     }
     if (d.payload.empty() || d.payload[0] != memory::kDatagramType) {
-        stack_.reject_datagram(src, error_code::kCommandUnknown);
+        stack_.reject_datagram(src, base::to_u16(base::ErrorCode::kCommandUnknown));
         return;
     }
     memory::Decision decision = decide(src, d.payload);

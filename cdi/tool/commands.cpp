@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -10,6 +9,8 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
+#include "base/file.hpp"
+#include "base/utf8.hpp"
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/render.hpp"
@@ -45,22 +46,10 @@ std::vector<std::string> files_of(const po::variables_map& vm) {
                                  : std::vector<std::string>{};
 }
 
-// A CDI's bytes as a terminal line shows them: each invalid UTF-8 sequence as U+FFFD, control
-// characters (a name's newline or tab would break a line or a column) as '?'.
+// A CDI's bytes as a terminal line shows them: invalid UTF-8 as U+FFFD, control characters (a
+// name's newline or tab would break a line or a column, a C1 CSI would drive the terminal) as '?'.
 std::string display(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    while (!text.empty()) {
-        const std::size_t bad = find_invalid_utf8(text).value_or(text.size());
-        for (const char c : text.substr(0, bad)) {
-            const auto u = static_cast<unsigned char>(c);
-            out.push_back(u < 0x20 || u == 0x7F ? '?' : c);
-        }
-        if (bad == text.size()) break;
-        out += "\xEF\xBF\xBD";
-        text.remove_prefix(bad + 1);
-    }
-    return out;
+    return base::printable(text);
 }
 
 // Reads, parses and lays out one CDI; prints every finding to stderr and returns nullopt on
@@ -72,12 +61,12 @@ struct Loaded {
 
 std::optional<Loaded> load(const std::string& path) {
     std::string error;
-    auto bytes = read_file(path, error);
+    auto bytes = base::read_file(path, error);
     if (!bytes) {
-        std::cerr << path << ": error: " << error << "\n";
+        std::cerr << "error: " << display(error) << "\n";
         return std::nullopt;
     }
-    if (const auto bad = find_invalid_utf8(*bytes)) {
+    if (const auto bad = base::find_invalid_utf8(*bytes)) {
         const std::string_view before = std::string_view(*bytes).substr(0, *bad);
         const auto line = 1 + std::count(before.begin(), before.end(), '\n');
         std::cerr << display(path) << ":" << line << ": warning: invalid UTF-8 at offset " << *bad
@@ -156,21 +145,6 @@ std::string details_text(const Element& e) {
 
 }  // namespace
 
-std::optional<std::string> read_file(const std::string& path, std::string& error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = "cannot open file";
-        return std::nullopt;
-    }
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) {
-        error = "read error";
-        return std::nullopt;
-    }
-    return std::move(buffer).str();
-}
-
 // One finding the way lcc-conform's text report shows the check: "FILE:LINE: FAIL id: message",
 // expected and seen under it; cdi.valid's diagnostics follow as FILE:LINE: error|warning lines.
 void print_finding(const std::string& path, const RuleFinding& f) {
@@ -193,9 +167,9 @@ int run_validate(const std::vector<std::string>& args) {
     int status = kExitOk;
     for (const auto& path : files) {
         std::string error;
-        auto bytes = read_file(path, error);
+        auto bytes = base::read_file(path, error);
         if (!bytes) {
-            std::cout << display(path) << ": error: " << error << "\n";
+            std::cout << "error: " << display(error) << "\n";
             status = kExitErrors;
             continue;
         }

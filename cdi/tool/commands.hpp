@@ -21,7 +21,4 @@ int run_layout(const std::vector<std::string>& args);
 /// `lcc-cdi render [--html] FILE`.
 int run_render(const std::vector<std::string>& args);
 
-/// The whole content of a file, or nullopt with `error` set.
-std::optional<std::string> read_file(const std::string& path, std::string& error);
-
 }  // namespace olcb::cdi::tool

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/host_port.hpp"
 #include "conformance/check_registry.hpp"
 #include "conformance/config_backup.hpp"
 #include "conformance/link.hpp"
@@ -72,23 +73,13 @@ NodeId pick_tool_id(const po::variables_map& vm, std::string& error) {
 
 std::unique_ptr<Link> open_link(const po::variables_map& vm, NodeId tool, std::string& error) {
     if (vm.count("connect")) {
-        std::string spec = vm["connect"].as<std::string>();
-        auto colon = spec.rfind(':');
-        if (colon == std::string::npos) {
-            error = "--connect wants host:port";
+        const auto where =
+            base::parse_host_port(vm["connect"].as<std::string>(), error, base::PortZero::kRefused);
+        if (!where) {
+            error = "--connect " + error;
             return nullptr;
         }
-        int port = 0;
-        try {
-            port = std::stoi(spec.substr(colon + 1));
-        } catch (...) {
-            port = -1;
-        }
-        if (port <= 0 || port > 65535) {
-            error = "bad port in --connect " + spec;
-            return nullptr;
-        }
-        return connect_tcp(spec.substr(0, colon), static_cast<std::uint16_t>(port), tool, error);
+        return connect_tcp(where->host, where->port, tool, error);
     }
     if (vm.count("socketcan"))
         return open_socketcan(vm["socketcan"].as<std::string>(), tool, error);
@@ -125,7 +116,8 @@ std::string transport_arguments(const po::variables_map& vm) {
 
 po::options_description transport_options() {
     po::options_description o("where the node is");
-    o.add_options()("connect", po::value<std::string>(), "GridConnect TCP hub, host:port")(
+    o.add_options()("connect", po::value<std::string>(),
+                    "GridConnect TCP hub, HOST[:PORT] (12021)")(
         "serial", po::value<std::string>(), "USB/serial GridConnect adapter, e.g. /dev/ttyACM0")(
         "baud", po::value<unsigned>()->default_value(115200), "serial bit rate")(
         "flow-control", po::value<std::string>()->default_value("none"),

@@ -15,7 +15,7 @@ namespace {
 using memory::Space;
 
 constexpr std::uint8_t kAcdiUser = 0xFB;
-constexpr std::uint16_t kReadOnly = 0x1083;
+constexpr std::uint16_t kReadOnly = base::to_u16(base::ErrorCode::kReadOnly);
 
 MemResult read_version(CheckRun& run) {
     MemResult r = run.session().read(run.node(), Space::kAcdiUser, 0, 1);

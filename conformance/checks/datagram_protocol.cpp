@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/error_codes.hpp"
 #include "conformance/checks/checks.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/datagram_defs.hpp"
@@ -37,14 +38,11 @@ struct Answer {
     std::uint16_t code = 0;  // Rejected: the error code (missing bits read as 0)
 };
 
-bool is_permanent(std::uint16_t code) {
-    return (code & 0xF000) == 0x1000;
-}
-bool is_temporary(std::uint16_t code) {
-    return (code & 0xF000) == 0x2000;
-}
+using base::is_permanent;
+using base::is_temporary;
+
 bool is_out_of_order(std::uint16_t code) {
-    return (code & 0xFFF0) == 0x2040;
+    return (code & 0xFFF0) == base::to_u16(base::ErrorCode::kOutOfOrder);
 }
 
 // What came, in words; a reject without a code says so instead of "0x0000".
@@ -126,7 +124,7 @@ SizeVerdict unknown_type_answer(CheckRun& run, std::size_t size) {
         const std::vector<Answer> a = send_raw(run, datagram_frames(run, data), false);
         if (a.empty()) return {Status::kFail, what + "no answer", true};
         if (a[0].ok) return {Status::kWarn, what + "Datagram Received OK"};
-        if (a[0].code == 0x1042) return {};
+        if (a[0].code == base::to_u16(base::ErrorCode::kCommandUnknown)) return {};
         if (is_permanent(a[0].code)) return {Status::kPass, what + "rejected " + hex(a[0].code)};
         // A busy node may ask for the datagram again.
         if (!is_temporary(a[0].code)) return {Status::kFail, what + describe(a[0])};
@@ -187,7 +185,8 @@ std::pair<Status, std::string> lone_frame_answer(CheckRun& run, FrameFormat form
         return {Status::kFail, what + ": answered " + std::to_string(a.size()) + " times"};
     if (a[0].ok || is_permanent(a[0].code) || a[0].code == 0)
         return {Status::kFail, what + ": " + describe(a[0])};
-    if (a[0].code == 0x2041) return {Status::kPass, ""};
+    if (a[0].code == base::to_u16(base::ErrorCode::kMiddleOrLastWithoutFirst))
+        return {Status::kPass, ""};
     // Another temporary code still tells the sender to resend; 0x2041 says why.
     const Status st = is_out_of_order(a[0].code) ? Status::kPass : Status::kWarn;
     return {st, what + ": " + describe(a[0]) + " (0x2041 names the case)"};

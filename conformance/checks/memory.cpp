@@ -135,8 +135,8 @@ void memory_unknown_space(CheckRun& run) {
     while (used.count(unknown)) ++unknown;
     const MemResult& u =
         run.note(run.session().read(run.node(), static_cast<Space>(unknown), 0, 8));
-    const Refusal refused =
-        judge_refusal(u, "read of unknown space " + std::to_string(unknown), 0x1081);
+    const Refusal refused = judge_refusal(u, "read of unknown space " + std::to_string(unknown),
+                                          base::to_u16(base::ErrorCode::kSpaceUnknown));
     run.out().judge(refused.pass, refused.message, "0x1081", refused.seen);
 }
 
@@ -181,8 +181,8 @@ void memory_readonly_refused(CheckRun& run) {
         const std::vector<std::uint8_t> byte = r.data;
         const MemResult& w =
             run.note(run.session().write(run.node(), static_cast<Space>(sp), 0, byte));
-        const Refusal refused =
-            judge_refusal(w, "write to read-only space " + std::to_string(sp), 0x1083);
+        const Refusal refused = judge_refusal(w, "write to read-only space " + std::to_string(sp),
+                                              base::to_u16(base::ErrorCode::kReadOnly));
         run.out(sp).judge(refused.pass, refused.message, "0x1083", refused.seen);
     }
 }

@@ -24,7 +24,7 @@ constexpr std::uint8_t kCdiSpace = 0xFF;
 constexpr std::uint8_t kConfigSpace = 0xFD;
 constexpr std::uint8_t kAcdiManufacturer = 0xFC;
 constexpr std::uint8_t kAcdiUser = 0xFB;
-constexpr std::uint16_t kOutOfBounds = 0x1082;
+constexpr std::uint16_t kOutOfBounds = base::to_u16(base::ErrorCode::kOutOfBounds);
 // OlcbChecker mc60 reads this far past the highest address of 0xFD, 64 bytes in the byte-6 form.
 constexpr std::uint32_t kFarPastEnd = 0x100;
 constexpr std::uint8_t kFarCount = 64;

@@ -1,7 +1,7 @@
 // SNIP: its version bytes, and its strings against the ACDI spaces and the CDI.
 #include <initializer_list>
 
-#include "cdi/string_codec.hpp"
+#include "base/utf8.hpp"
 #include "conformance/checks/checks.hpp"
 #include "conformance/report.hpp"
 #include "memory/acdi.hpp"
@@ -45,7 +45,7 @@ void snip_version_bytes(CheckRun& run) {
 void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what) {
     std::vector<const NamedText*> bad;
     for (const NamedText& t : texts)
-        if (!cdi::is_valid_utf8(t.text)) bad.push_back(&t);
+        if (!base::is_valid_utf8(t.text)) bad.push_back(&t);
     if (bad.empty()) return run.out().pass(what);
     // The bytes themselves, in hex: what U+FFFD stands for is what the firmware author needs.
     const auto shown = [](const NamedText& t) {

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <system_error>
 
-#include "cdi/string_codec.hpp"
+#include "base/utf8.hpp"
 #include "simnode/audit/audit_context.hpp"
 
 namespace olcb::simnode::audit {
@@ -56,24 +56,9 @@ std::array<std::size_t, 3> count_levels(const FindingLog& log) {
     return n;
 }
 
-// Text a reader can show: control characters as '?', and bytes that are not UTF-8 as '?'
-// (a client's bad string must not make the report unreadable).
-std::string printable(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    while (!text.empty()) {
-        const auto bad = cdi::find_invalid_utf8(text);
-        const std::size_t good = bad ? *bad : text.size();
-        for (const char c : text.substr(0, good)) {
-            const auto u = static_cast<unsigned char>(c);
-            out.push_back(u < 0x20 || u == 0x7F ? '?' : c);
-        }
-        if (!bad) break;
-        out.push_back('?');
-        text.remove_prefix(good + 1);
-    }
-    return out;
-}
+// Text a reader can show (base/utf8.hpp): control characters as '?', bytes that are not UTF-8
+// as U+FFFD (a client's bad string must not make the report unreadable).
+using base::printable;
 
 // "1.234567 s client 0x12C (02.01.0D.00.00.01, 127.0.0.1:4567) -> node 05.01.01.01.22.00: ..."
 std::string finding_line(const Finding& f) {

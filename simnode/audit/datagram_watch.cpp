@@ -4,9 +4,9 @@
 #include <chrono>
 #include <string>
 
+#include "base/error_codes.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
 #include "openlcb/mti.hpp"
 #include "simnode/audit/audit_limits.hpp"
 
@@ -218,7 +218,7 @@ void DatagramWatch::on_node_answer(Pair& p, const CanFrame& frame, TimePoint now
     // forbids a resend.
     const std::uint16_t code = static_cast<std::uint16_t>((frame.len > 2 ? frame.data[2] << 8 : 0) |
                                                           (frame.len > 3 ? frame.data[3] : 0));
-    p.last->answer = error_code::is_permanent(code) ? Answer::kPermanent : Answer::kTemporary;
+    p.last->answer = base::is_permanent(code) ? Answer::kPermanent : Answer::kTemporary;
 }
 
 void DatagramWatch::on_node_datagram_frame(Pair& p, const CanFrame& frame, TimePoint now) {

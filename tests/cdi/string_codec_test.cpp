@@ -20,7 +20,6 @@ Bytes encoded(std::string_view text, std::uint64_t size, CodecMode mode = CodecM
     return r.ok() ? r.value() : Bytes{};
 }
 
-const std::string kE_acute = "\xC3\xA9";           // U+00E9, 2 bytes
 const std::string kEuro = "\xE2\x82\xAC";          // U+20AC, 3 bytes
 const std::string kGrinning = "\xF0\x9F\x98\x80";  // U+1F600, 4 bytes
 
@@ -59,70 +58,6 @@ TEST(StringCodec, InvalidUtf8StrictErrorLenientRaw) {
     ASSERT_FALSE(r.ok());
     EXPECT_NE(r.error().message.find("not valid UTF-8 (byte 1)"), std::string::npos);
     EXPECT_EQ(encoded(bad, 4, CodecMode::kLenient), (Bytes{'a', 0xFF, 0, 0}));
-}
-
-TEST(StringCodec, TruncateUtf8NeverSplitsASequence) {
-    const std::string two = "a" + kE_acute;    // 3 bytes
-    const std::string three = "a" + kEuro;     // 4 bytes
-    const std::string four = "a" + kGrinning;  // 5 bytes
-    EXPECT_EQ(truncate_utf8(two, 1), "a");
-    EXPECT_EQ(truncate_utf8(two, 2), "a");
-    EXPECT_EQ(truncate_utf8(two, 3), two);
-    EXPECT_EQ(truncate_utf8(three, 2), "a");
-    EXPECT_EQ(truncate_utf8(three, 3), "a");
-    EXPECT_EQ(truncate_utf8(three, 4), three);
-    EXPECT_EQ(truncate_utf8(four, 2), "a");
-    EXPECT_EQ(truncate_utf8(four, 3), "a");
-    EXPECT_EQ(truncate_utf8(four, 4), "a");
-    EXPECT_EQ(truncate_utf8(four, 5), four);
-    EXPECT_EQ(truncate_utf8(four + "b", 5), four);
-    EXPECT_EQ(truncate_utf8(kGrinning, 3), "");
-    EXPECT_EQ(truncate_utf8("abc", 0), "");
-    EXPECT_EQ(truncate_utf8("abc", 100), "abc");
-    for (std::size_t max = 0; max <= 12; ++max) {
-        const std::string mixed = kE_acute + kEuro + kGrinning + "z";
-        const auto cut = truncate_utf8(mixed, max);
-        EXPECT_LE(cut.size(), max);
-        EXPECT_TRUE(is_valid_utf8(cut)) << max;
-        EXPECT_EQ(mixed.compare(0, cut.size(), cut), 0);
-    }
-}
-
-TEST(StringCodec, TruncateUtf8OnInvalidInputStaysBounded) {
-    // A stray continuation byte after a complete sequence: the sequence is kept.
-    EXPECT_EQ(truncate_utf8(kE_acute + "\x80", 2), kE_acute);
-    // Only continuation bytes: nothing sensible to keep whole, never longer than asked.
-    EXPECT_LE(truncate_utf8("\x80\x80\x80\x80\x80", 4).size(), 4u);
-}
-
-TEST(StringCodec, FindsInvalidUtf8) {
-    for (const std::string& ok : {std::string(""), std::string("plain"), kE_acute, kEuro, kGrinning,
-                                  std::string("\xF4\x8F\xBF\xBF"), std::string("\xED\x9F\xBF"),
-                                  std::string("\xEF\xBF\xBD")}) {
-        EXPECT_TRUE(is_valid_utf8(ok)) << ok;
-    }
-    struct Bad {
-        std::string text;
-        std::size_t offset;
-    };
-    for (const Bad& bad : {
-             Bad{"\x80", 0},              // lone continuation
-             Bad{"ab\xC0\x80", 2},        // overlong NUL
-             Bad{"\xC1\xBF", 0},          // overlong
-             Bad{"\xE0\x80\x80", 0},      // overlong 3-byte
-             Bad{"\xF0\x80\x80\x80", 0},  // overlong 4-byte
-             Bad{"\xED\xA0\x80", 0},      // surrogate U+D800
-             Bad{"\xF4\x90\x80\x80", 0},  // above U+10FFFF
-             Bad{"\xF5\x80\x80\x80", 0},  // invalid lead
-             Bad{"\xFF", 0},
-             Bad{"ok\xE2\x82", 2},  // truncated at the end
-             Bad{"\xC3(", 0},       // lead followed by ASCII
-             Bad{"a" + kEuro + "\xF0\x9F\x98", 4},
-         }) {
-        const auto at = find_invalid_utf8(bad.text);
-        ASSERT_TRUE(at.has_value()) << bad.text;
-        EXPECT_EQ(*at, bad.offset) << bad.text;
-    }
 }
 
 TEST(StringCodec, DecodeReadsUpToTheFirstNul) {

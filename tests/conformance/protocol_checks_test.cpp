@@ -385,15 +385,5 @@ TEST(ShortReadChecksTest, SpaceInfoSettlesAShortReplyNothingElseCould) {
     EXPECT_EQ(at_end[0].status, Status::kPass) << dump(at_end);
 }
 
-TEST(Utf8Test, AcceptsValidRejectsInvalid) {
-    const std::vector<std::uint8_t> good = {'a',  0xC3, 0xA9, 0xE2, 0x82,
-                                            0xAC, 0xF0, 0x9F, 0x98, 0x80};
-    EXPECT_TRUE(is_valid_utf8(good));
-    EXPECT_FALSE(is_valid_utf8(std::vector<std::uint8_t>{0xC0, 0xAF}));        // overlong
-    EXPECT_FALSE(is_valid_utf8(std::vector<std::uint8_t>{0xED, 0xA0, 0x80}));  // surrogate
-    EXPECT_FALSE(is_valid_utf8(std::vector<std::uint8_t>{0xE2, 0x82}));        // truncated
-    EXPECT_FALSE(is_valid_utf8(std::vector<std::uint8_t>{0xFF}));
-}
-
 }  // namespace
 }  // namespace olcb::conform

@@ -5,13 +5,14 @@
 // code point and come back as that character, so a restore refuses them as too long.)
 #include <cstdint>
 #include <cstdlib>
+#include <span>
 #include <string>
 #include <string_view>
 
+#include "base/utf8.hpp"
 #include "conformance/backup_csv.hpp"
 #include "conformance/backup_file.hpp"
 #include "conformance/backup_values.hpp"
-#include "conformance/protocol_checks.hpp"
 
 namespace {
 
@@ -30,13 +31,13 @@ std::size_t lines_in(std::string_view text) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     const std::size_t lines = lines_in(text);
-    for (const auto& file : {olcb::conform::parse_backup_file(text),
-                             olcb::conform::parse_backup_csv(text)}) {
+    for (const auto& file :
+         {olcb::conform::parse_backup_file(text), olcb::conform::parse_backup_csv(text)}) {
         for (const auto& r : file.records) check(r.line >= 1 && r.line <= lines);
     }
     const std::string escaped = olcb::conform::escape_backup_text(text);
     check(escaped.find('\n') == std::string::npos && escaped.find('=') == std::string::npos);
-    if (olcb::conform::is_valid_utf8({data, size})) {
+    if (olcb::base::is_valid_utf8(std::span<const std::uint8_t>(data, size))) {
         check(olcb::conform::unescape_backup_text(escaped) == text);
     }
     return 0;

@@ -4,7 +4,7 @@
 
 #include <numeric>
 
-#include "openlcb/error_codes.hpp"
+#include "base/error_codes.hpp"
 #include "openlcb/gc_test_util.hpp"
 
 namespace olcb {
@@ -51,9 +51,10 @@ TEST(DatagramReceiver, OwnerRejectSendsCode) {
     auto r = receiver();
     r.on_frame(gc(":X1A34312CN99;"), t0);
     ASSERT_TRUE(r.pop_datagram());
-    EXPECT_TRUE(r.reject(0x12C, error_code::kCommandUnknown));
+    EXPECT_TRUE(r.reject(0x12C, base::to_u16(base::ErrorCode::kCommandUnknown)));
     EXPECT_EQ(drain(r), (Strings{":X19A48343N012C1042;"}));
-    EXPECT_FALSE(r.reject(0x12C, error_code::kCommandUnknown)) << "nothing held any more";
+    EXPECT_FALSE(r.reject(0x12C, base::to_u16(base::ErrorCode::kCommandUnknown)))
+        << "nothing held any more";
 }
 
 TEST(DatagramReceiver, MultiFrameReassembled) {
@@ -89,8 +90,8 @@ TEST(DatagramReceiver, MiddleWithoutFirstRejected2041) {
     r.on_frame(gc(":X1D34312CN01;"), t0);
     EXPECT_TRUE(drain(r).empty());
     EXPECT_FALSE(r.pop_datagram());
-    EXPECT_TRUE(error_code::is_temporary(0x2041));
-    EXPECT_EQ(0x2041 & 0xFFF0, error_code::kOutOfOrder);
+    EXPECT_TRUE(base::is_temporary(0x2041));
+    EXPECT_EQ(0x2041 & 0xFFF0, base::to_u16(base::ErrorCode::kOutOfOrder));
     // And the next datagram from that source works.
     r.on_frame(gc(":X1A34312CN01;"), t0);
     EXPECT_TRUE(r.pop_datagram());
@@ -323,7 +324,7 @@ TEST(DatagramSender, TimeoutAfterThreeSecondsReported) {
     auto out = s.pop_outcome();
     ASSERT_TRUE(out);
     EXPECT_EQ(out->status, Status::kTimedOut);
-    EXPECT_EQ(out->error_code, error_code::kTimeout);
+    EXPECT_EQ(out->error_code, base::to_u16(base::ErrorCode::kTimeout));
     EXPECT_TRUE(drain(s).empty()) << "a timeout is not resent";
     EXPECT_FALSE(s.on_frame(gc(":X19A28343N012C;"), t0 + 4s)) << "late OK ignored";
 }

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
 #include "openlcb/mti.hpp"
 #include "openlcb/pip.hpp"
 
@@ -47,22 +46,6 @@ TEST(Mti, EveryNameKnownAndDistinct) {
     EXPECT_EQ(names.size(), all.size());
     EXPECT_EQ(mti_name(Mti::kVerifyNodeIdGlobal), "Verify Node ID Global");
     EXPECT_EQ(mti_name(std::uint16_t{0x04F9}), "");
-}
-
-TEST(ErrorCodes, Classes) {
-    using namespace error_code;
-    EXPECT_TRUE(is_temporary(kBufferUnavailable));
-    EXPECT_FALSE(is_permanent(kBufferUnavailable));
-    EXPECT_TRUE(is_temporary(kMiddleOrLastWithoutFirst));
-    EXPECT_TRUE(is_temporary(kFirstBeforePreviousFinished));
-    EXPECT_EQ(kMiddleOrLastWithoutFirst & 0xFFF0, kOutOfOrder);
-    EXPECT_TRUE(is_permanent(kOutOfBounds));
-    EXPECT_TRUE(is_permanent(kPermanentError));
-    EXPECT_FALSE(is_temporary(kNoInformation));
-    EXPECT_FALSE(is_permanent(kNoInformation));
-    EXPECT_EQ(describe(0x1082), "address out of bounds");
-    EXPECT_EQ(describe(0x2099), "temporary error");
-    EXPECT_EQ(describe(0x1099), "permanent error");
 }
 
 TEST(Pip, FactSheetExampleBytes) {

@@ -72,7 +72,9 @@ TEST(ControlClient, OptionsAndUsageErrors) {
     EXPECT_EQ(error_of({"h:1", "read", "N", "253", "zero", "4"}),
               "address 'zero' is not a number (decimal or 0x hex)");
     EXPECT_EQ(error_of({"h:1", "reboot"}), "usage: simnode ctl HOST:PORT reboot NODE");
-    EXPECT_EQ(error_of({"h:0", "list"}), "port 0 is not a port");
+    EXPECT_EQ(error_of({"h:0", "list"}),
+              "'h:0' is not HOST:PORT: port 0 only asks for a free port when listening; give "
+              "1..65535");
     EXPECT_EQ(error_of({"--timeout", "-1", "h:1", "list"}),
               "--timeout '-1' must be seconds, 0 < S <= 3600");
     EXPECT_EQ(error_of({"--verbose", "h:1", "list"}), "unknown option '--verbose'");

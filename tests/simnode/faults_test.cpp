@@ -3,7 +3,7 @@
 
 #include <cstring>
 
-#include "cdi/string_codec.hpp"
+#include "base/utf8.hpp"
 #include "cdi/validator.hpp"
 #include "memory/acdi.hpp"
 #include "memory/snip.hpp"
@@ -38,7 +38,7 @@ TEST_F(FaultTest, SnipInvalidUtf8) {
     const auto user = memory::decode_acdi_user(node_->memory().read(0xFB, 0, 128));
     EXPECT_EQ(user.name, "Test node");  // space 251 keeps the valid name
     EXPECT_EQ(snip.user_name, user.name + "\xFF\xFE");
-    EXPECT_FALSE(cdi::is_valid_utf8(snip.user_name));
+    EXPECT_FALSE(base::is_valid_utf8(snip.user_name));
     EXPECT_EQ(snip.model, "simnode default");  // only the user name is touched
 }
 

@@ -7,7 +7,6 @@
 #include <set>
 
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
 #include "openlcb/node/node_test_util.hpp"
 
 namespace olcb {

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "base/error_codes.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
 #include "openlcb/node/node_test_util.hpp"
 
 namespace olcb {
@@ -281,7 +281,7 @@ TEST_F(NodeStackTest, DatagramHandlerAnswersNowOrLater) {
     EXPECT_EQ(take(), (Strings{":X19A28343N012C80;"}));
     inject(":X1A34312CN2099;");
     ASSERT_EQ(got.size(), 2u);
-    EXPECT_TRUE(stack_.reject_datagram(0x12C, error_code::kSubcommandUnknown));
+    EXPECT_TRUE(stack_.reject_datagram(0x12C, base::to_u16(base::ErrorCode::kSubcommandUnknown)));
     net_.run_for(0ms);
     EXPECT_EQ(take(), (Strings{":X19A48343N012C1041;"}));
     EXPECT_FALSE(stack_.accept_datagram(0x12C)) << "nothing held";
