@@ -81,6 +81,37 @@ memory::SpaceForm other_form(memory::Space space, memory::SpaceForm form) {
 
 }  // namespace
 
+namespace {
+
+// The stack of a node: what it serves, its frame-level faults and its stream transport.
+NodeStackConfig stack_config_for(const NodeConfig& config, ProtocolSet served) {
+    NodeStackConfig sc;
+    sc.node_id = config.node_id;
+    sc.protocols = served;
+    if (config.faults.pip_missing)
+        sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
+    sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
+    sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
+    sc.faults.drop_addressed_in_bursts = config.faults.burst_drops;
+    sc.faults.answer_standard_frames = config.faults.answers_standard_frames;
+    sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
+    sc.streams = config.streams;
+    // Incoming streams are taken (and their data dropped), as OlcbChecker's st checks expect.
+    sc.stream.accept_unsolicited = true;
+    sc.stream.faults =
+        StreamSourceFaults{config.faults.stream_wrong_count, config.faults.stream_no_complete,
+                           config.faults.stream_ignore_proceed, config.faults.stream_exceed_buffer};
+    if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
+        // The stack would answer these at once; the node answers them itself, late.
+        sc.builtins.verify_node_id = false;
+        sc.builtins.protocol_support = false;
+        sc.builtins.reject_unknown_addressed = false;
+    }
+    return sc;
+}
+
+}  // namespace
+
 std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) {
     if (config.node_id.is_zero()) {
         error = "node ID must not be zero";
@@ -141,29 +172,7 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     if (memory->has_acdi()) served.set(Protocol::kAcdi);
     if (config.streams) served.set(Protocol::kStream);
 
-    NodeStackConfig sc;
-    sc.node_id = config.node_id;
-    sc.protocols = served;
-    if (config.faults.pip_missing)
-        sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
-    sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
-    sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
-    sc.faults.drop_addressed_in_bursts = config.faults.burst_drops;
-    sc.faults.answer_standard_frames = config.faults.answers_standard_frames;
-    sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
-    sc.streams = config.streams;
-    // Incoming streams are taken (and their data dropped), as OlcbChecker's st checks expect.
-    sc.stream.accept_unsolicited = true;
-    sc.stream.faults =
-        StreamSourceFaults{config.faults.stream_wrong_count, config.faults.stream_no_complete,
-                           config.faults.stream_ignore_proceed, config.faults.stream_exceed_buffer};
-    if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
-        // The stack would answer these at once; the node answers them itself, late.
-        sc.builtins.verify_node_id = false;
-        sc.builtins.protocol_support = false;
-        sc.builtins.reject_unknown_addressed = false;
-    }
-
+    const NodeStackConfig sc = stack_config_for(config, served);
     return std::unique_ptr<SimNode>(new SimNode(std::move(config), sc, std::move(memory), served));
 }
 
