@@ -104,7 +104,7 @@ struct Rig {
     std::size_t space_size() { return node->memory().space(0xFF)->size(); }
 };
 
-void BM_CdiByStream125k(benchmark::State& state) {
+void cdi_by_stream_125k(benchmark::State& state) {
     double simulated = 0;
     double bound = 0;
     std::uint64_t frames = 0;
@@ -155,9 +155,9 @@ void BM_CdiByStream125k(benchmark::State& state) {
         static_cast<double>(stream::data_frames(bytes, kToolBuffer));
     state.counters["bytes"] = static_cast<double>(bytes);
 }
-BENCHMARK(BM_CdiByStream125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(cdi_by_stream_125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
 
-void BM_CdiByDatagram125k(benchmark::State& state) {
+void cdi_by_datagram_125k(benchmark::State& state) {
     double simulated = 0;
     std::uint64_t frames = 0;
     std::size_t bytes = 0;
@@ -182,7 +182,7 @@ void BM_CdiByDatagram125k(benchmark::State& state) {
     state.counters["frames"] = static_cast<double>(frames);
     state.counters["bytes"] = static_cast<double>(bytes);
 }
-BENCHMARK(BM_CdiByDatagram125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(cdi_by_datagram_125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
 

@@ -29,6 +29,7 @@ std::map<std::string, CheckResult> run_streams(SimBench& b, const ProtocolOption
 
 std::string dump(const std::map<std::string, CheckResult>& m) {
     std::vector<CheckResult> v;
+    v.reserve(m.size());
     for (const auto& [id, r] : m) v.push_back(r);
     return testing::dump(v);
 }
