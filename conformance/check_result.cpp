@@ -45,6 +45,8 @@ std::string_view category_name(Category category) {
             return "node";
         case Category::kEvents:
             return "events";
+        case Category::kStream:
+            return "stream";
     }
     return "?";
 }

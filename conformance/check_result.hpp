@@ -29,12 +29,13 @@ enum class Category : std::uint8_t {
     kLink,    ///< the transport itself (an adapter unplugged, a hub gone): not the node's fault
     kNode,    ///< the node as a whole: it stopped answering or restarted during the run
     kEvents,  ///< event identification (Identify Events, Identify Producer/Consumer)
+    kStream,  ///< memory-config stream reads and the stream transport under them
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
 /// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link",
-/// "node" or "events".
+/// "node", "events" or "stream".
 std::string_view category_name(Category category);
 
 /// One executed check.

@@ -25,6 +25,8 @@ struct ProtocolOptions {
     bool read_only = false;
     /// Upper bound of the CDI download when Space Info gives none.
     std::uint32_t max_cdi_bytes = 1024 * 1024;
+    /// --no-stream: stream checks SKIP and the CDI is read by datagrams only.
+    bool no_stream = false;
     /// --reboot: checks that need a Reset/Reboot (the start-up sequence) may send one.
     bool reboot = false;
     /// --only / --skip / --thorough: which registry entries run.

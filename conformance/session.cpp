@@ -98,6 +98,9 @@ Session::Session(Link& link) : link_(link) {
     stack.set_outcome_handler([this](const DatagramOutcome& o) {
         outcomes_[o.id] = OutcomeRecord{o, link_.now(), ++seq_};
     });
+    stack.set_stream_handler([this](const StreamEvent& e) {
+        if (stream_events_.size() < kMaxMessages) stream_events_.push_back(e);
+    });
     link_.set_frame_observer([this](const CanFrame& f, TimePoint at) {
         if (frames_.size() < kMaxFrames) frames_.push_back(f);
         if (!injecting_) observe(f, at);

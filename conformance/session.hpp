@@ -49,6 +49,40 @@ struct MemResult {
     unsigned temporary_rejects = 0;     ///< 0x2xxx rejects that were retried
 };
 
+/// Buffer lcc-conform grants a node's stream by default: the largest, so a CDI read needs no
+/// Data Proceed round trip (the node's own proposal caps it).
+inline constexpr std::uint16_t kToolStreamBuffer = 0xFFFF;
+/// Read Stream count lcc-conform sends for "to the end": every server cuts a read at the end of
+/// the space, while count 0 (the standard's "to the end") reads nothing on OpenMRN.
+inline constexpr std::uint32_t kStreamToEnd = 0xFFFF'FFFF;
+
+/// How Session::read_stream reads.
+struct StreamReadOptions {
+    std::uint16_t buffer = kToolStreamBuffer;  ///< the most we grant
+    std::uint32_t count = kStreamToEnd;        ///< Read Stream count
+    /// 0: Proceed at once. Otherwise each full buffer is held this long before the Proceed,
+    /// and data arriving meanwhile is counted (a source must wait for Proceed).
+    Duration hold{};
+    memory::SpaceForm form = memory::SpaceForm::kAuto;
+    Duration idle_timeout = std::chrono::seconds(3);  ///< no progress this long: timed out
+};
+
+/// Outcome of one memory-config stream read.
+struct StreamReadResult {
+    MemResult mem;               ///< ok, error, data (the stream's bytes), Datagram OK flags
+    bool initiated = false;      ///< the node sent a Stream Initiate Request we accepted
+    std::uint16_t proposed = 0;  ///< buffer the node proposed
+    std::uint16_t granted = 0;   ///< buffer we granted
+    std::optional<memory::ReadStreamReply> reply;  ///< the Read Stream Reply OK
+    bool completed = false;                        ///< Data Complete arrived
+    std::optional<std::uint32_t> complete_count;   ///< the count it carried
+    std::uint64_t max_in_window = 0;               ///< most bytes between two of our Proceeds
+    std::uint64_t during_hold = 0;  ///< bytes that arrived while a full buffer was held
+    std::uint64_t data_frames = 0;  ///< Data Send frames received
+    std::uint64_t proceeds = 0;     ///< Data Proceed messages we sent
+    Duration elapsed{};             ///< request sent -> Complete (or the end of the wait)
+};
+
 /// What the session has seen of one node.
 struct NodeTrack {
     std::uint16_t alias = 0;            ///< current alias (0: never seen)
@@ -164,6 +198,11 @@ public:
                          std::uint32_t length, bool stop_at_nul,
                          const std::function<void(std::size_t)>& progress = {});
 
+    /// Reads [address, address + count) of space through a memory-config stream (Read Stream,
+    /// Datagram OK, Stream Initiate Request accepted, Read Stream Reply, data, Data Complete).
+    StreamReadResult read_stream(const NodeInfo& node, memory::Space space, std::uint32_t address,
+                                 const StreamReadOptions& options = {});
+
     /// How long to wait for the reply datagram after Datagram Received OK.
     void set_reply_timeout(Duration d) { reply_timeout_ = d; }
     /// How long to wait for the reply datagram after Datagram Received OK.
@@ -198,6 +237,10 @@ private:
 
     MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                        bool always_reply, memory::Message* reply);
+    struct StreamWait;  // session_stream.cpp
+    bool stream_progress(StreamWait& w);
+    void stream_event(StreamWait& w, const StreamEvent& e);
+    void stream_hold(StreamWait& w);
     void observe(const CanFrame& frame, TimePoint at);
     void observe_control(const CanFrame& frame, TimePoint at);
     void set_alias(NodeId id, std::uint16_t alias);
@@ -206,6 +249,8 @@ private:
                      std::uint8_t count, const MemResult& r);
 
     Link& link_;
+    std::vector<StreamEvent> stream_events_;  // every stream event of our stack, in order
+    std::uint8_t next_stream_id_ = 0x40;
     std::vector<Event> messages_;
     std::vector<CanFrame> frames_;
     std::map<std::uint32_t, OutcomeRecord> outcomes_;

@@ -83,6 +83,9 @@ NodeStackConfig tool_stack_config(NodeId tool_id) {
     config.datagram_sender.resend_delay = std::chrono::milliseconds(20);
     // A node that never acks must not stall every later request for the full 3 s.
     config.datagram_sender.ack_timeout = std::chrono::milliseconds(1000);
+    // Stream reads: only streams Session::read_stream announced are accepted.
+    config.streams = true;
+    config.stream.accept_unsolicited = false;
     return config;
 }
 

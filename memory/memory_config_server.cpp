@@ -67,6 +67,8 @@ ConfigOptionsReply MemoryConfigServer::config_options() const {
         reply.available_commands |= available_commands::kAcdiUserRead;
         if (!user->read_only()) reply.available_commands |= available_commands::kAcdiUserWrite;
     }
+    // Stream reads only, as OpenMRN: write_lengths::kStreams would promise stream writes.
+    if (config_.streams) reply.available_commands |= available_commands::kStreamReads;
     reply.write_lengths = write_lengths::kRecommended;
     // Over the spaces actually served; with none, the always-defined high spaces.
     reply.highest_space = Space::kCdi;
@@ -99,6 +101,8 @@ Decision MemoryConfigServer::handle(const Source&, std::span<const std::uint8_t>
                 return on_write(m.space, m.address, m.form, m.data, nullptr);
             } else if constexpr (std::is_same_v<T, WriteUnderMask>) {
                 return on_write(m.space, m.address, m.form, {}, &m.bytes);
+            } else if constexpr (std::is_same_v<T, ReadStream>) {
+                return on_read_stream(m);
             } else if constexpr (std::is_same_v<T, GetConfigOptions>) {
                 return with_reply(config_options());
             } else if constexpr (std::is_same_v<T, GetSpaceInfo>) {
@@ -167,6 +171,44 @@ Decision MemoryConfigServer::on_read(const Read& read) {
     return with_reply(ReadReply{read.space, read.address,
                                 std::vector<std::uint8_t>(buffer.begin(), buffer.begin() + got),
                                 read.form});
+}
+
+Decision MemoryConfigServer::on_read_stream(const ReadStream& read) {
+    if (!config_.streams) return Decision::reject(ErrorCode::kSubcommandUnknown);
+    MemorySpace* s = space(read.space);
+    if (s == nullptr) return Decision::reject(ErrorCode::kSpaceUnknown);
+    const std::uint32_t size = s->size();
+    if (read.address < s->lowest_address() || read.address >= size) {
+        return with_reply(
+            ReadStreamReplyFail{read.space, read.address, ErrorCode::kOutOfBounds, {}, read.form});
+    }
+    const std::uint32_t available = size - read.address;
+    Decision d = Decision::ok_with_reply({}, config_.reply_timeout_exponent);
+    d.effects.stream_read =
+        StreamRead{read.space,
+                   read.address,
+                   read.count == 0 ? available : std::min(read.count, available),
+                   read.count,
+                   read.destination_stream_id,
+                   read.form};
+    return d;
+}
+
+std::vector<std::uint8_t> MemoryConfigServer::stream_reply(const StreamRead& read, std::uint8_t sid,
+                                                           std::uint8_t did) {
+    return encode(ReadStreamReply{read.space, read.address, sid, did, read.count, read.form});
+}
+
+std::vector<std::uint8_t> MemoryConfigServer::stream_fail(const StreamRead& read, ErrorCode code) {
+    return encode(ReadStreamReplyFail{read.space, read.address, code, {}, read.form});
+}
+
+std::vector<std::uint8_t> MemoryConfigServer::stream_data(const StreamRead& read) const {
+    std::vector<std::uint8_t> out(read.length);
+    MemorySpace* s = space(read.space);
+    const std::size_t got = s == nullptr ? 0 : s->read(read.address, out);
+    out.resize(std::min<std::size_t>(got, read.length));
+    return out;
 }
 
 Decision MemoryConfigServer::on_write(Space number, std::uint32_t address, SpaceForm form,

@@ -6,8 +6,12 @@
 //
 // Documented choices (fact sheet 5 and 11):
 //  * read count 0 or > 64, truncated or malformed commands, factory reset naming another node:
-//    Datagram Rejected 0x1080; unknown command, stream commands, replies sent to us, and
-//    freeze / unfreeze / enter bootloader unless enabled: Datagram Rejected 0x1041;
+//    Datagram Rejected 0x1080; unknown command, write streams, read streams unless enabled,
+//    replies sent to us, and freeze / unfreeze / enter bootloader unless enabled: Datagram
+//    Rejected 0x1041;
+//  * Read Stream: the same spaces and bounds as Read (at/after the end: Reply Pending + Read
+//    Stream Reply Fail 0x1082), count 0 = to the end of the space; the owner opens the stream
+//    (SideEffects::stream_read) and sends the reply once the requester accepted it;
 //  * unknown space: Datagram Rejected 0x1081 (no reply); write to a read-only space, or one the
 //    space refuses as read-only (a read-only byte inside it, as 251's version byte): 0x1083;
 //  * read starting at/after the end: Read Reply Fail 0x1082; read running past the end: short
@@ -50,6 +54,19 @@ struct WrittenRange {
     friend bool operator==(const WrittenRange&, const WrittenRange&) = default;
 };
 
+/// A Read Stream the owner must serve: open a stream to the requester (suggesting
+/// destination_stream_id), then send stream_reply() (or stream_fail() when the stream was
+/// refused) and the bytes of [address, address + length) of the space.
+struct StreamRead {
+    Space space = Space::kConfig;
+    std::uint32_t address = 0;
+    std::uint32_t length = 0;  ///< bytes to send (count 0 = to the end, cut at the end)
+    std::uint32_t count = 0;   ///< count as requested (echoed in the reply)
+    std::uint8_t destination_stream_id = 0xFF;
+    SpaceForm form = SpaceForm::kAuto;
+    friend bool operator==(const StreamRead&, const StreamRead&) = default;
+};
+
 /// What the owner must do once the acknowledgement (and any reply) is sent.
 struct SideEffects {
     bool reboot = false;                  ///< restart as after power-up
@@ -58,9 +75,10 @@ struct SideEffects {
     std::optional<WrittenRange> written;  ///< a space was written (e.g. re-advertise events)
     /// New value of the Get Unique ID counter: persist it before sending the reply.
     std::optional<std::uint32_t> unique_id_counter;
-    std::optional<Space> freeze;    ///< Freeze accepted for this space
-    std::optional<Space> unfreeze;  ///< Unfreeze accepted for this space
-    bool enter_bootloader = false;  ///< Enter Bootloader accepted
+    std::optional<Space> freeze;            ///< Freeze accepted for this space
+    std::optional<Space> unfreeze;          ///< Unfreeze accepted for this space
+    bool enter_bootloader = false;          ///< Enter Bootloader accepted
+    std::optional<StreamRead> stream_read;  ///< Read Stream accepted: serve it (see StreamRead)
     friend bool operator==(const SideEffects&, const SideEffects&) = default;
 };
 
@@ -93,6 +111,9 @@ public:
         std::string name;                         ///< optional name in Get Configuration Options
         bool accept_freeze = false;               ///< Freeze/Unfreeze get OK instead of 0x1041
         bool accept_enter_bootloader = false;     ///< Enter Bootloader gets OK instead of 0x1041
+        /// Read Stream is served (Options says "stream reads", 0x1000, as OpenMRN); false
+        /// rejects stream commands 0x1041 as a datagram-only node.
+        bool streams = false;
         /// First Get Unique ID suffix, 0..65536 (persisted by the owner across runs).
         std::uint32_t unique_id_counter = 0;
     };
@@ -120,9 +141,19 @@ public:
     ConfigOptionsReply config_options() const;
     /// Fixed behaviour.
     const Config& config() const { return config_; }
+    /// Serves Read Stream or not (see Config::streams).
+    void set_streams(bool on) { config_.streams = on; }
+    /// The Read Stream Reply datagram for a read served with stream IDs sid/did.
+    static std::vector<std::uint8_t> stream_reply(const StreamRead& read, std::uint8_t sid,
+                                                  std::uint8_t did);
+    /// The Read Stream Reply Fail datagram (the stream could not be opened: code).
+    static std::vector<std::uint8_t> stream_fail(const StreamRead& read, ErrorCode code);
+    /// The bytes a StreamRead sends, read from its space now (fewer if the space shrank).
+    std::vector<std::uint8_t> stream_data(const StreamRead& read) const;
 
 private:
     Decision on_read(const Read& read);
+    Decision on_read_stream(const ReadStream& read);
     Decision on_write(Space number, std::uint32_t address, SpaceForm form,
                       std::span<const std::uint8_t> data, const std::vector<MaskedByte>* mask);
     Decision on_space_info(const GetSpaceInfo& request) const;

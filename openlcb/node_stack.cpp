@@ -23,6 +23,10 @@ constexpr Duration kAmeAnswerWindow = std::chrono::seconds(1);
 // Bounds the skipping of generator states that fold to the alias the node had before.
 constexpr int kMaxSameAliasSkips = 16;
 
+// Stream data is framed only while fewer frames than this wait in the output, so a large window
+// never overflows max_output_frames; the rest follows as the driver drains the output.
+constexpr std::size_t kStreamOutputBudget = 256;
+
 std::optional<TimePoint> earliest(std::optional<TimePoint> a, std::optional<TimePoint> b) {
     if (!a) return b;
     if (!b) return a;
@@ -40,7 +44,8 @@ NodeStack::NodeStack(NodeStackConfig config)
           return c;
       }()),
       sender_(config_.datagram_sender),
-      receiver_(config_.datagram_receiver) {}
+      receiver_(config_.datagram_receiver),
+      streams_(config_.stream) {}
 
 bool NodeStack::never_rejected(std::uint16_t mti) {
     switch (static_cast<Mti>(mti)) {
@@ -111,6 +116,7 @@ void NodeStack::drop_state() {
     receiver_.reset();
     sender_.abort_all();
     sender_.set_alias(0);
+    streams_.reset();
     pending_.clear();
     initialized_ = false;
     started_ = false;
@@ -334,6 +340,12 @@ void NodeStack::on_datagram_frame(const CanFrame& frame, TimePoint now) {
 
 void NodeStack::dispatch(const Message& msg) {
     if (handle_builtin(msg)) return;
+    if (config_.streams && msg.destination && StreamTransport::handles(msg.mti) &&
+        streams_.on_message(msg, now_)) {
+        if (on_message_) on_message_(msg);  // owners may watch stream traffic; it is answered
+        collect();
+        return;
+    }
     const bool handled = on_message_ && on_message_(msg);
     if (!handled && msg.destination && config_.builtins.reject_unknown_addressed &&
         !never_rejected(to_u16(msg.mti))) {
@@ -406,6 +418,7 @@ void NodeStack::poll(TimePoint now) {
     assembler_.poll(now);
     receiver_.poll(now);
     sender_.poll(now);
+    streams_.poll(now);
     collect();
     run_timers(now);
 }
@@ -413,9 +426,12 @@ void NodeStack::poll(TimePoint now) {
 std::optional<TimePoint> NodeStack::next_deadline() const {
     const std::optional<TimePoint> timer =
         timers_.empty() ? std::nullopt : std::optional<TimePoint>(timers_.begin()->first);
+    // Stream data held back by the output budget goes out at the next poll.
+    const std::optional<TimePoint> streams =
+        streams_.has_output() ? std::optional<TimePoint>(now_) : streams_.next_deadline();
     return earliest(earliest(earliest(alias_.next_deadline(), assembler_.next_deadline()),
                              earliest(receiver_.next_deadline(), sender_.next_deadline())),
-                    timer);
+                    earliest(timer, streams));
 }
 
 void NodeStack::schedule(TimePoint at, TimerHandler fn) {
@@ -555,7 +571,55 @@ void NodeStack::collect() {
             if (on_outcome_) on_outcome_(*o);
             progress = true;
         }
+        if (collect_streams()) progress = true;
     }
+}
+
+bool NodeStack::collect_streams() {
+    bool progress = false;
+    while (initialized() && out_.size() - out_head_ < kStreamOutputBudget) {
+        auto m = streams_.pop_message();
+        if (!m) break;
+        m->source = NodeHandle{config_.node_id, alias()};
+        frame_message(*m);
+        progress = true;
+    }
+    while (auto e = streams_.pop_event()) {
+        if (on_stream_) on_stream_(*e);
+        progress = true;
+    }
+    return progress;
+}
+
+std::optional<std::uint32_t> NodeStack::open_stream(NodeHandle dest, std::uint16_t buffer,
+                                                    std::uint8_t suggested_dest_id) {
+    if (!config_.streams || !initialized() || dest.alias == 0) return std::nullopt;
+    auto id = streams_.open(dest, buffer, suggested_dest_id, now_);
+    collect();
+    return id;
+}
+
+bool NodeStack::write_stream(std::uint32_t id, std::span<const std::uint8_t> data) {
+    const bool ok = streams_.write(id, data);
+    collect();
+    return ok;
+}
+
+bool NodeStack::close_stream(std::uint32_t id) {
+    const bool ok = streams_.close(id);
+    collect();
+    return ok;
+}
+
+void NodeStack::expect_stream(std::uint16_t remote_alias, std::uint8_t dest_id,
+                              std::uint16_t max_buffer, bool auto_proceed) {
+    streams_.expect(remote_alias, dest_id, max_buffer, auto_proceed);
+}
+
+bool NodeStack::proceed_stream(std::uint32_t id) {
+    const bool ok = streams_.proceed(id);
+    collect();
+    return ok;
 }
 
 }  // namespace olcb

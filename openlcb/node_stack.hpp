@@ -21,6 +21,7 @@
 #include "openlcb/message.hpp"
 #include "openlcb/node_id.hpp"
 #include "openlcb/pip.hpp"
+#include "openlcb/stream_transport.hpp"
 
 namespace olcb {
 
@@ -75,6 +76,10 @@ struct NodeStackConfig {
     MessageAssemblerConfig assembler;          ///< multi-frame limits (datagrams are ignored)
     NodeBuiltins builtins;                     ///< built-in answers switched on
     NodeStackFaults faults;                    ///< frame-level misbehaviours (none by default)
+    /// Stream transport on: stream messages go to NodeStack::streams() (off: Initiate Request
+    /// gets OIR 0x1043 as from a node without streams).
+    bool streams = false;
+    StreamTransportConfig stream;  ///< limits, timeouts and faults of the stream transport
     /// After an alias conflict took a new alias: send Initialization Complete again (and call
     /// on_initialized). Off by default, as OpenMRN: the node stays Initialized; AMD announces the
     /// new mapping.
@@ -128,6 +133,8 @@ public:
     /// Called when the output goes from empty to non-empty, or a timer was scheduled (for
     /// drivers, which then flush and re-arm; see StackDriver).
     using OutputHandler = std::function<void()>;
+    /// Receives every stream event (opened, data, completed, ...; see StreamEvent).
+    using StreamHandler = std::function<void(const StreamEvent&)>;
     /// An owner timer, called with the time of the poll() that runs it.
     using TimerHandler = std::function<void(TimePoint)>;
 
@@ -151,6 +158,8 @@ public:
     void set_alias_event_handler(AliasEventHandler handler) {
         on_alias_event_ = std::move(handler);
     }
+    /// Sets the stream event handler.
+    void set_stream_handler(StreamHandler handler) { on_stream_ = std::move(handler); }
     /// Sets the output notification (used by the driver running this stack).
     void set_output_handler(OutputHandler handler) { on_output_ = std::move(handler); }
 
@@ -209,6 +218,21 @@ public:
     /// Answers a delivered datagram from src with Datagram Rejected code; false when none from
     /// src was waiting (the reject still goes).
     bool reject_datagram(std::uint16_t src, std::uint16_t code);
+    /// Opens an outgoing stream to dest (see StreamTransport::open); nullopt when streams are off,
+    /// the node is not Initialized or too many streams are open.
+    std::optional<std::uint32_t> open_stream(NodeHandle dest, std::uint16_t buffer,
+                                             std::uint8_t suggested_dest_id);
+    /// Queues bytes on an outgoing stream.
+    bool write_stream(std::uint32_t id, std::span<const std::uint8_t> data);
+    /// Ends an outgoing stream with Data Complete once its bytes went out.
+    bool close_stream(std::uint32_t id);
+    /// Announces an incoming stream (see StreamTransport::expect).
+    void expect_stream(std::uint16_t remote_alias, std::uint8_t dest_id, std::uint16_t max_buffer,
+                       bool auto_proceed = true);
+    /// Sends Data Proceed on an incoming stream (manual proceed).
+    bool proceed_stream(std::uint32_t id);
+    /// The stream transport (counters, faults); change it through the calls above.
+    StreamTransport& streams() { return streams_; }
     /// Next frame to transmit, oldest first.
     std::optional<CanFrame> pop_frame();
     /// Appends every pending frame to out; returns how many.
@@ -272,6 +296,7 @@ private:
         while (auto f = part.pop_frame()) push_frame(*f);
     }
     void collect();
+    bool collect_streams();
     void run_timers(TimePoint now);
     void drop_state();
 
@@ -280,6 +305,7 @@ private:
     MessageAssembler assembler_;
     DatagramSender sender_;
     DatagramReceiver receiver_;
+    StreamTransport streams_;
 
     MessageHandler on_message_;
     DatagramHandler on_datagram_;
@@ -287,6 +313,7 @@ private:
     InitializedHandler on_initialized_;
     AliasEventHandler on_alias_event_;
     OutputHandler on_output_;
+    StreamHandler on_stream_;
 
     bool started_ = false;
     bool initialized_ = false;  // message layer; alias_.permitted() tells the link layer

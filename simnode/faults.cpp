@@ -47,6 +47,10 @@ struct FlagFault {
 constexpr FlagFault kFlagFaults[] = {
     {"snip-mismatch", &FaultSet::snip_mismatch},
     {"snip-invalid-utf8", &FaultSet::snip_invalid_utf8},
+    {"stream-wrong-count", &FaultSet::stream_wrong_count},
+    {"stream-no-complete", &FaultSet::stream_no_complete},
+    {"stream-ignore-proceed", &FaultSet::stream_ignore_proceed},
+    {"stream-exceed-buffer", &FaultSet::stream_exceed_buffer},
     {"acdi-version", &FaultSet::acdi_version},
     {"cdi-unterminated", &FaultSet::cdi_unterminated},
     {"cdi-padding", &FaultSet::cdi_padding},
@@ -279,6 +283,13 @@ const std::vector<FaultInfo>& fault_catalog() {
          "addressed messages dropped while more than 16 frames arrived in the last 10 ms"},
         {"answers-standard-frames", "",
          "every standard (11-bit) frame answered with a Verified Node ID"},
+        {"stream-wrong-count", "",
+         "a stream read's Data Complete counts one byte more than the stream carried"},
+        {"stream-no-complete", "", "a stream read never ends with Data Complete"},
+        {"stream-ignore-proceed", "",
+         "a stream read is sent whole, past the granted buffer, without waiting for Proceed"},
+        {"stream-exceed-buffer", "",
+         "a stream read sends twice the granted buffer before waiting for each Proceed"},
     };
     return catalog;
 }

@@ -65,6 +65,10 @@ struct FaultSet {
     bool duplicate_id_silent = false;       ///< no PCER on a duplicate node ID
     bool burst_drops = false;               ///< addressed messages dropped during frame bursts
     bool answers_standard_frames = false;   ///< any 11-bit frame answered with Verified Node ID
+    bool stream_wrong_count = false;        ///< Data Complete counts one byte more than sent
+    bool stream_no_complete = false;        ///< stream reads never end with Data Complete
+    bool stream_ignore_proceed = false;     ///< sends the whole read without Data Proceed
+    bool stream_exceed_buffer = false;      ///< sends twice the granted buffer per Proceed
     /// Every answer is sent this long after its request arrived (latency=MS[:JITTER]; 0 = off).
     std::chrono::milliseconds latency{0};
     /// Up to this much more, uniformly random per answer, seeded by the node ID.

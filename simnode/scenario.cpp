@@ -34,6 +34,7 @@ constexpr std::string_view kNodeKeys[] = {
     "user-description",
     "fault",
     "watch-variable",
+    "streams",
 };
 // Keys of the whole process (top level only).
 constexpr std::string_view kProcessKeys[] = {"listen",
@@ -151,7 +152,10 @@ po::options_description cli_options() {
         "misbehave as NAME (repeatable; see --list-faults, docs/faults.md)")(
         "watch-variable", po::value<std::string>()->value_name("PATH"),
         "the variable abort-on-value and factory-reset-on-version-change watch, as "
-        "lcc-cdi layout names it (default: the first <int> of space 253)");
+        "lcc-cdi layout names it (default: the first <int> of space 253)")(
+        "streams", po::value<std::string>()->value_name("BOOL"),
+        "serve memory-config stream reads and accept streams (default true; false = "
+        "datagram-only, as a node without stream support)");
     po::options_description transport("Transports and logs (top level)");
     transport.add_options()("listen", po::value<std::string>()->value_name("HOST:PORT"),
                             "run a GridConnect TCP hub (port 0 = any free port; "
@@ -412,6 +416,9 @@ public:
         const std::string* user_name = single(keys, "user-name");
         const std::string* user_description = single(keys, "user-description");
         const std::string* watch = single(keys, "watch-variable");
+        const std::string* streams = single(keys, "streams");
+        const auto streams_on = streams ? parse_bool(*streams) : std::optional<bool>(true);
+        if (!streams_on) return fail(where + ": streams '" + *streams + "' must be true or false");
         for (std::uint64_t k = 0; k < count; ++k) {
             NodeConfig config;
             config.node_id = NodeId(base->value() + k);
@@ -429,6 +436,7 @@ public:
             }
             config.faults = *faults;
             if (watch) config.watch_variable = *watch;
+            config.streams = *streams_on;
             scenario_.nodes.push_back(std::move(config));
         }
         return true;

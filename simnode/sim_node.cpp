@@ -81,6 +81,37 @@ memory::SpaceForm other_form(memory::Space space, memory::SpaceForm form) {
 
 }  // namespace
 
+namespace {
+
+// The stack of a node: what it serves, its frame-level faults and its stream transport.
+NodeStackConfig stack_config_for(const NodeConfig& config, ProtocolSet served) {
+    NodeStackConfig sc;
+    sc.node_id = config.node_id;
+    sc.protocols = served;
+    if (config.faults.pip_missing)
+        sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
+    sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
+    sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
+    sc.faults.drop_addressed_in_bursts = config.faults.burst_drops;
+    sc.faults.answer_standard_frames = config.faults.answers_standard_frames;
+    sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
+    sc.streams = config.streams;
+    // Incoming streams are taken (and their data dropped), as OlcbChecker's st checks expect.
+    sc.stream.accept_unsolicited = true;
+    sc.stream.faults =
+        StreamSourceFaults{config.faults.stream_wrong_count, config.faults.stream_no_complete,
+                           config.faults.stream_ignore_proceed, config.faults.stream_exceed_buffer};
+    if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
+        // The stack would answer these at once; the node answers them itself, late.
+        sc.builtins.verify_node_id = false;
+        sc.builtins.protocol_support = false;
+        sc.builtins.reject_unknown_addressed = false;
+    }
+    return sc;
+}
+
+}  // namespace
+
 std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) {
     if (config.node_id.is_zero()) {
         error = "node ID must not be zero";
@@ -139,24 +170,9 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
                        Protocol::kCdi};
     if (!model->events.empty()) served.set(Protocol::kEventExchange);
     if (memory->has_acdi()) served.set(Protocol::kAcdi);
+    if (config.streams) served.set(Protocol::kStream);
 
-    NodeStackConfig sc;
-    sc.node_id = config.node_id;
-    sc.protocols = served;
-    if (config.faults.pip_missing)
-        sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
-    sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
-    sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
-    sc.faults.drop_addressed_in_bursts = config.faults.burst_drops;
-    sc.faults.answer_standard_frames = config.faults.answers_standard_frames;
-    sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
-    if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
-        // The stack would answer these at once; the node answers them itself, late.
-        sc.builtins.verify_node_id = false;
-        sc.builtins.protocol_support = false;
-        sc.builtins.reject_unknown_addressed = false;
-    }
-
+    const NodeStackConfig sc = stack_config_for(config, served);
     return std::unique_ptr<SimNode>(new SimNode(std::move(config), sc, std::move(memory), served));
 }
 
@@ -169,6 +185,7 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
           memory::MemoryConfigServer::Config c;
           c.node_id = config_.node_id.value();
           c.unique_id_counter = memory_->unique_id_counter();
+          c.streams = config_.streams;
           return c;
       }()),
       served_protocols_(served),
@@ -181,6 +198,7 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
     stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
     stack_.set_initialized_handler([this] { on_initialized(); });
+    stack_.set_stream_handler([this](const StreamEvent& e) { on_stream_event(e); });
 }
 
 SimNode::~SimNode() = default;
@@ -418,8 +436,58 @@ void SimNode::power_up(TimePoint now) {
     startup_events_ = memory_->events();
     ++boot_generation_;
     answer_delay_.reset();
+    stream_reads_.clear();
     // The transport is untouched: TCP clients stay connected and see a fresh start-up.
     stack_.restart(now);
+}
+
+// ---------------- stream reads ----------------
+
+void SimNode::start_stream_read(std::uint16_t src, const memory::StreamRead& read) {
+    // The OK with Reply Pending went out; the reply follows once the requester took the stream.
+    auto id = stack_.open_stream(NodeHandle{NodeId{}, src}, 0, read.destination_stream_id);
+    if (!id) {
+        send_reply(src, memory::MemoryConfigServer::stream_fail(
+                            read, memory::ErrorCode::kBufferUnavailable));
+        return;
+    }
+    stream_reads_[*id] = PendingStreamRead{src, read};
+}
+
+void SimNode::on_stream_event(const StreamEvent& event) {
+    auto it = stream_reads_.find(event.id);
+    if (it == stream_reads_.end()) return;  // an incoming stream: nothing to serve
+    const PendingStreamRead& pending = it->second;
+    switch (event.kind) {
+        case StreamEvent::Kind::kOpened: {
+            send_reply(pending.requester, memory::MemoryConfigServer::stream_reply(
+                                              pending.read, event.source_id, event.dest_id));
+            const std::vector<std::uint8_t> data = server_.stream_data(pending.read);
+            stack_.write_stream(event.id, data);
+            stack_.close_stream(event.id);
+            return;
+        }
+        case StreamEvent::Kind::kRejected:
+        case StreamEvent::Kind::kTimedOut:
+            if (!event.outgoing || event.buffer == 0) {
+                // Never accepted: the requester still waits for the reply datagram.
+                const std::uint16_t silent = event.kind == StreamEvent::Kind::kTimedOut
+                                                 ? error_code::kTimeout
+                                                 : error_code::kBufferUnavailable;
+                const std::uint16_t code = event.code != 0 ? event.code : silent;
+                send_reply(pending.requester,
+                           memory::MemoryConfigServer::stream_fail(
+                               pending.read, static_cast<memory::ErrorCode>(code)));
+            }
+            stream_reads_.erase(it);
+            return;
+        case StreamEvent::Kind::kCompleted:
+        case StreamEvent::Kind::kTerminated:
+            stream_reads_.erase(it);
+            return;
+        default:
+            return;
+    }
 }
 
 void SimNode::schedule_unsolicited(TimePoint at) {
@@ -466,6 +534,7 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
     const bool write_reboot = fx.written && reboot_on_this_write();
     if (write_reboot) decision.reply.clear();  // the OK still says Reply Pending
     send_answer(src, decision);
+    if (fx.stream_read) start_stream_read(src, *fx.stream_read);
 
     if (fx.reboot || fx.factory_reset || write_reboot) {
         if (fx.factory_reset) {

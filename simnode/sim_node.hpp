@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -42,6 +43,9 @@ struct NodeConfig {
     /// Cursor::path() of the variable abort-on-value and factory-reset-on-version-change watch
     /// ("" = the first <int> of space 253).
     std::string watch_variable;
+    /// Streams on (PIP stream bit, Options "stream reads", Read Stream served, incoming streams
+    /// accepted), as an OpenMRN node; false = datagram-only.
+    bool streams = true;
 };
 
 /// Counters of what a node did, for tests and the program's statistics.
@@ -151,6 +155,14 @@ private:
                                     std::span<const std::uint8_t> payload);
     std::vector<std::pair<EventId, EventRole>> advertised_events() const;
     void schedule_unsolicited(TimePoint at);
+    void start_stream_read(std::uint16_t src, const memory::StreamRead& read);
+    void on_stream_event(const StreamEvent& event);
+
+    // A Read Stream waiting for its stream to be accepted, or being sent.
+    struct PendingStreamRead {
+        std::uint16_t requester = 0;
+        memory::StreamRead read;
+    };
 
     NodeConfig config_;
     NodeStack stack_;
@@ -169,6 +181,7 @@ private:
     std::vector<std::uint8_t> watched_snapshot_;    // its bytes when the node was created
     // Event IDs at the last start-up (events-stale-after-write identifies only these).
     std::vector<std::pair<EventId, EventRole>> startup_events_;
+    std::map<std::uint32_t, PendingStreamRead> stream_reads_;  // by stream handle
 };
 
 }  // namespace olcb::simnode

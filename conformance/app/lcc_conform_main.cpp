@@ -138,6 +138,7 @@ po::options_description check_options() {
     o.add_options()("help,h", "this text")("version", "print the program's version and exit")(
         "list", "list every node with its SNIP names, check nothing")(
         "read-only", "never write (encoding checks are skipped)")(
+        "no-stream", "no stream reads: the stream checks SKIP, the CDI is read by datagrams only")(
         "sample", po::value<std::size_t>()->default_value(3),
         "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
         "reboot", "reset the node and check written values persist")(
@@ -347,6 +348,7 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         ProtocolOptions po_opts;
         po_opts.read_only = ro.read_only;
         po_opts.reboot = ro.reboot;
+        po_opts.no_stream = vm.count("no-stream") > 0;
         po_opts.selection = ro.selection;
         return run_protocol_checks(s, n, po_opts, ctx);
     };

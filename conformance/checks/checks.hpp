@@ -120,6 +120,8 @@ std::vector<CheckSpec> acdi_write_checks();
 std::vector<CheckSpec> event_checks();
 /// event_robustness.cpp: event messages a configurable node need not act on (ev60, ev70).
 std::vector<CheckSpec> event_robustness_checks();
+/// stream_checks.cpp: memory-config stream reads (CDI by stream, buffer, Proceed, Complete).
+std::vector<CheckSpec> stream_checks();
 /// Checks the encoding phase produces for events (run = nullptr; events.cpp documents them).
 std::vector<CheckSpec> event_phase_checks();
 /// Disruptive checks that run last of all the protocol checks (frame_bus.cpp,

@@ -127,7 +127,11 @@ INSTANTIATE_TEST_SUITE_P(Faults, FaultTest,
                                            FaultCase{"unsolicited-traffic", Category::kMessage},
                                            FaultCase{"unknown-space-0x1041", Category::kMemory},
                                            FaultCase{"readonly-0x1041", Category::kMemory},
-                                           FaultCase{"snip-invalid-utf8", Category::kSnip}),
+                                           FaultCase{"snip-invalid-utf8", Category::kSnip},
+                                           FaultCase{"stream-wrong-count", Category::kStream},
+                                           FaultCase{"stream-no-complete", Category::kStream},
+                                           FaultCase{"stream-ignore-proceed", Category::kStream},
+                                           FaultCase{"stream-exceed-buffer", Category::kStream}),
                          [](const auto& info) {
                              std::string n = info.param.fault;
                              for (char& c : n)

@@ -36,13 +36,16 @@ struct SimBench {
     std::unique_ptr<Link> link;
     std::unique_ptr<Session> session;
 
-    /// A node with faults (simnode names) serving cdi (default: scenarios/default.xml).
-    explicit SimBench(const std::vector<std::string>& faults = {}, std::string cdi = {}) {
+    /// A node with faults (simnode names) serving cdi (default: scenarios/default.xml), with
+    /// stream support unless streams is false.
+    explicit SimBench(const std::vector<std::string>& faults = {}, std::string cdi = {},
+                      bool streams = true) {
         std::string error;
         simnode::NodeConfig cfg;
         cfg.node_id = kDut;
         cfg.cdi = cdi.empty() ? default_cdi() : std::move(cdi);
         cfg.user_name = "simnode default";
+        cfg.streams = streams;
         auto fs = simnode::parse_faults(faults, error);
         EXPECT_TRUE(fs) << error;
         if (fs) cfg.faults = *fs;

@@ -448,6 +448,37 @@ TEST_F(ServerTest, StreamsRejected1041) {
     expect_reject("20 21 00000000 05", ErrorCode::kSubcommandUnknown);
 }
 
+TEST_F(ServerTest, StreamReadsWhenEnabled) {
+    server_.set_streams(true);
+    // Options: "stream reads" 0x1000 as OpenMRN sends it; no 0x01 (stream writes) in lengths.
+    expect_reply("20 80", "20 82 FE00 E2 FF FB");
+    // The whole CDI (count 0 = to the end): OK with Reply Pending, no reply yet, a StreamRead.
+    Decision d = handle("20 63 00000000 FF 05 00000000");
+    EXPECT_TRUE(d.accepted);
+    EXPECT_TRUE(d.reply_pending);
+    EXPECT_TRUE(d.reply.empty());
+    ASSERT_TRUE(d.effects.stream_read);
+    const StreamRead read = *d.effects.stream_read;
+    EXPECT_EQ(read, (StreamRead{Space::kCdi, 0, 7, 0, 0x05, SpaceForm::kShort}));
+    EXPECT_EQ(server_.stream_data(read), hex("3C6364692F3E00"));  // "<cdi/>" NUL
+    EXPECT_EQ(MemoryConfigServer::stream_reply(read, 0x01, 0x05),
+              hex("20 73 00000000 01 05 00000000"));
+    EXPECT_EQ(MemoryConfigServer::stream_fail(read, ErrorCode::kBufferUnavailable),
+              hex("20 7B 00000000 2020"));
+    // A count past the end is cut there; byte-6 form of 253 is answered in that form.
+    d = handle("20 60 000000F0 FD FF 06 00000100");
+    ASSERT_TRUE(d.effects.stream_read);
+    EXPECT_EQ(d.effects.stream_read->length, 16u);
+    EXPECT_EQ(d.effects.stream_read->count, 0x100u);
+    EXPECT_EQ(MemoryConfigServer::stream_reply(*d.effects.stream_read, 2, 6),
+              hex("20 70 000000F0 FD 02 06 00000100"));
+    // At/after the end fails 0x1082 like a datagram read; unknown space is rejected 0x1081.
+    expect_reply("20 63 00000007 FF 05 00000000", "20 7B 00000007 1082");
+    expect_reject("20 60 00000000 10 FF 05 00000000", ErrorCode::kSpaceUnknown);
+    // Write streams stay unsupported.
+    expect_reject("20 21 00000000 05", ErrorCode::kSubcommandUnknown);
+}
+
 TEST_F(ServerTest, UnknownCommandRejected1041) {
     expect_reject("20 C0", ErrorCode::kSubcommandUnknown);
     expect_reject("20 44 00000000 FD 01", ErrorCode::kSubcommandUnknown);  // reserved bit

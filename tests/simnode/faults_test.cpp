@@ -53,7 +53,7 @@ TEST_F(FaultTest, PipMissingBit) {
     take();
     send_addressed(0x828);
     net_.run_for(10ms);
-    EXPECT_EQ(take(), std::vector<std::string>{":X19668343N012C545000000000;"});
+    EXPECT_EQ(take(), std::vector<std::string>{":X19668343N012C745000000000;"});
     EXPECT_TRUE(node_->served_protocols().has(Protocol::kCdi));
 }
 
@@ -62,7 +62,7 @@ TEST_F(FaultTest, PipMissingAcdiBit) {
     take();
     send_addressed(0x828);
     net_.run_for(10ms);
-    EXPECT_EQ(take(), std::vector<std::string>{":X19668343N012C541800000000;"});
+    EXPECT_EQ(take(), std::vector<std::string>{":X19668343N012C741800000000;"});
 }
 
 TEST_F(FaultTest, CdiUnterminated) {

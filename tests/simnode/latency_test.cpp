@@ -102,7 +102,7 @@ TEST_F(LatencyTest, VerifyPipSnipAndOirAreLate) {
     std::vector<std::string> texts;
     for (const auto& f : seen_) texts.push_back(gridconnect::format(f.frame));
     EXPECT_EQ(texts.front(), ":X19170343N050101012200;");
-    EXPECT_EQ(texts[1], ":X19668343N012C545800000000;");
+    EXPECT_EQ(texts[1], ":X19668343N012C745800000000;");
     EXPECT_EQ(texts.back(), ":X19068343N012C104305EB;");
 }
 

@@ -86,7 +86,8 @@ TEST_F(MemoryConfigTest, SpaceInformation) {
 TEST_F(MemoryConfigTest, ConfigurationOptions) {
     const Answer a = exchange({0x20, 0x80});
     ASSERT_TRUE(a.reply);
-    EXPECT_EQ(*a.reply, (std::vector<std::uint8_t>{0x20, 0x82, 0xEE, 0x00, 0xE2, 0xFF, 0xFB}));
+    // 0x1000 = stream reads (on by default, as OpenMRN sends it).
+    EXPECT_EQ(*a.reply, (std::vector<std::uint8_t>{0x20, 0x82, 0xFE, 0x00, 0xE2, 0xFF, 0xFB}));
 }
 
 TEST_F(MemoryConfigTest, WriteAndReadInShortAndByte6Forms) {
@@ -260,9 +261,9 @@ TEST_F(MemoryConfigTest, MalformedDatagramsGetTheRightRejectCode) {
     EXPECT_EQ(code({0x20, 0x01, 0, 0, 0, 0}), 0x1080);        // write without data
     EXPECT_EQ(code({0x20, 0x09, 0, 0, 0, 0, 0xFF}), 0x1080);  // odd mask/data bytes
     EXPECT_EQ(code({0x20, 0xFF}), 0x1041);                    // unknown command
-    EXPECT_EQ(code({0x20, 0x61, 0, 0, 0, 0, 0xFF, 1, 0, 0, 0, 0}), 0x1041);  // stream read
-    EXPECT_EQ(code({0x30, 0x01}), 0x1042);                                   // other datagram type
-    EXPECT_EQ(code({0x20}), 0x1080);                                         // command missing
+    EXPECT_EQ(code({0x20, 0x21, 0, 0, 0, 0, 1}), 0x1041);     // stream write
+    EXPECT_EQ(code({0x30, 0x01}), 0x1042);                    // other datagram type
+    EXPECT_EQ(code({0x20}), 0x1080);                          // command missing
     // Still serving afterwards.
     EXPECT_EQ(read(0xFD, kMode, 1), (std::vector<std::uint8_t>{2}));
     // 72 bytes of garbage: rejected, no crash.

@@ -72,7 +72,8 @@ TEST_F(ProtocolTest, PipWithAcdiAndEvents) {
     take();
     send_addressed(0x828);
     net_.run_for(10ms);
-    EXPECT_EQ(take(), std::vector<std::string>{":X19668343N012C545800000000;"});
+    // 0x20 = Stream: simnode serves stream reads by default, as an OpenMRN node.
+    EXPECT_EQ(take(), std::vector<std::string>{":X19668343N012C745800000000;"});
 }
 
 TEST_F(ProtocolTest, PipWithoutAcdiOrEvents) {
@@ -89,7 +90,7 @@ TEST_F(ProtocolTest, PipWithoutAcdiOrEvents) {
     net_.run_for(10ms);
     const auto frames = take();
     ASSERT_FALSE(frames.empty());
-    EXPECT_EQ(frames.back(), ":X19668343N012C501800000000;");
+    EXPECT_EQ(frames.back(), ":X19668343N012C701800000000;");
     EXPECT_EQ(node_->memory().space(0xFC), nullptr);
     // The CDI still lays out space 251, so 251 is served as a configuration space.
     EXPECT_NE(node_->memory().space(0xFB), nullptr);

@@ -71,6 +71,21 @@ TEST(ScenarioTest, LogMaxBytesAndWatchVariableFromFileAndCommandLine) {
     EXPECT_NE(error.find("log-max-bytes"), std::string::npos) << error;
 }
 
+TEST(ScenarioTest, StreamsOnByDefaultOffByKeyOrCommandLine) {
+    std::string error;
+    auto s = parse(kOneNode, {}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_TRUE(s->nodes.at(0).streams);
+    s = parse(std::string(kOneNode) + "streams = false\n", {}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_FALSE(s->nodes.at(0).streams);
+    s = parse(kOneNode, {"--streams", "false"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_FALSE(s->nodes.at(0).streams);
+    EXPECT_FALSE(parse(kOneNode, {"--streams", "sometimes"}, error));
+    EXPECT_NE(error.find("streams"), std::string::npos) << error;
+}
+
 TEST(ScenarioTest, AuditFilesFromFileRelativeToItAndFromTheCommandLine) {
     std::string error;
     auto s = parse(std::string(kOneNode) + "audit = out/audit.json\naudit-junit = audit.xml\n", {},

@@ -1,0 +1,237 @@
+// Memory-config stream reads (MemoryConfigurationS §4.6-4.7 over StreamTransportS): the CDI read
+// by stream matches the datagram download; the node waits for Data Proceed, keeps to the buffer
+// lcc-conform granted, ends with a Data Complete of the right count, and refuses a read at the
+// end of the space as a datagram read. A node that does not advertise streams SKIPs them all.
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "conformance/checks/checks.hpp"
+#include "memory/memory_config_defs.hpp"
+
+namespace olcb::conform::checks {
+namespace {
+
+using memory::Space;
+
+constexpr std::uint16_t kOutOfBounds = 0x1082;
+// The windowed read: a small buffer, so a CDI spans several, each held before its Proceed.
+constexpr std::uint16_t kProbeBuffer = 64;
+constexpr std::uint32_t kProbeWindows = 3;
+constexpr Duration kHold = std::chrono::milliseconds(200);
+
+// What the node advertises about streams.
+struct StreamSupport {
+    bool pip = false;      // PIP Stream bit
+    bool options = false;  // Options: stream reads (0x1000) or the stream lengths bit
+    std::string skip;      // why the stream-read checks SKIP ("" = they run)
+};
+
+const StreamSupport& support(CheckRun& run) {
+    if (const auto* s = run.memo<StreamSupport>("stream.support")) return *s;
+    StreamSupport s;
+    const auto& pip = run.pip();
+    s.pip = pip && pip->has(Protocol::kStream);
+    run.config_options();
+    if (const auto& o = run.ctx().options) {
+        s.options = (o->available_commands & memory::available_commands::kStreamReads) != 0 ||
+                    (o->write_lengths & memory::write_lengths::kStreams) != 0;
+    }
+    if (run.options().no_stream) {
+        s.skip = "--no-stream";
+    } else if (!s.pip || !s.options) {
+        s.skip = "node does not advertise streams";
+        if (s.pip) s.skip += " reads (PIP Stream, but Options says no stream reads)";
+    }
+    return run.remember("stream.support", s);
+}
+
+// The whole CDI by stream with the largest buffer (Proceed at once).
+const StreamReadResult& cdi_stream(CheckRun& run) {
+    if (const auto* r = run.memo<StreamReadResult>("stream.cdi")) return *r;
+    StreamReadResult r = run.session().read_stream(run.node(), Space::kCdi, 0);
+    run.tally(r.mem);
+    return run.remember("stream.cdi", std::move(r));
+}
+
+// A read of a few small buffers, each held kHold before lcc-conform's Proceed.
+const StreamReadResult& windowed(CheckRun& run) {
+    if (const auto* r = run.memo<StreamReadResult>("stream.windowed")) return *r;
+    StreamReadOptions o;
+    o.buffer = kProbeBuffer;
+    o.count = kProbeBuffer * kProbeWindows + kProbeBuffer / 2;
+    o.hold = kHold;
+    StreamReadResult r = run.session().read_stream(run.node(), Space::kCdi, 0, o);
+    run.tally(r.mem);
+    return run.remember("stream.windowed", std::move(r));
+}
+
+std::string outcome(const StreamReadResult& r) {
+    if (r.mem.ok) return std::to_string(r.mem.data.size()) + " bytes";
+    std::string s = describe(r.mem);
+    if (!r.initiated) s += ", no Stream Initiate Request";
+    if (r.initiated && !r.completed) s += ", no Data Complete";
+    return s;
+}
+
+// SKIPs (and returns false) when the stream checks cannot run.
+bool runnable(CheckRun& run, Verdict& v) {
+    const StreamSupport& s = support(run);
+    if (!s.skip.empty()) {
+        v.skip(s.skip);
+        return false;
+    }
+    return true;
+}
+
+void stream_advertised(CheckRun& run) {
+    Verdict v = run.out();
+    const StreamSupport& s = support(run);
+    if (run.options().no_stream) return v.skip("--no-stream");
+    if (!s.pip && !s.options) return v.skip("node does not advertise streams");
+    if (s.options && !s.pip) {
+        return v.fail("Options offers stream reads but PIP has no Stream bit",
+                      "PIP Stream bit with Options stream reads", "PIP without Stream");
+    }
+    v.pass(s.options ? "PIP Stream bit and Options stream reads agree"
+                     : "PIP Stream bit; Options offers no stream reads (streams for other uses)");
+}
+
+void stream_cdi_read(CheckRun& run) {
+    Verdict v = run.out();
+    if (!runnable(run, v)) return;
+    const StreamReadResult& r = cdi_stream(run);
+    const std::vector<std::uint8_t>& dg = run.cdi().result.data;
+    if (!r.mem.ok) return v.fail("stream read of the CDI failed", "the CDI", outcome(r));
+    const auto& got = r.mem.data;
+    const bool same = got.size() >= dg.size() && std::equal(dg.begin(), dg.end(), got.begin());
+    if (!same) {
+        const auto diff = std::mismatch(dg.begin(), dg.end(), got.begin(), got.end());
+        const auto at = static_cast<std::size_t>(diff.first - dg.begin());
+        return v.fail(
+            "stream bytes differ from the datagram download at offset " + std::to_string(at),
+            std::to_string(dg.size()) + " datagram bytes",
+            std::to_string(got.size()) + " stream bytes");
+    }
+    v.pass(std::to_string(got.size()) + " bytes by stream (buffer " + std::to_string(r.granted) +
+           "), the " + std::to_string(dg.size()) + " of the datagram download first");
+}
+
+void stream_complete(CheckRun& run) {
+    Verdict v = run.out();
+    if (!runnable(run, v)) return;
+    const StreamReadResult& r = cdi_stream(run);
+    if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
+    if (!r.completed) return v.fail("the stream never ended", "Data Complete", outcome(r));
+    if (!r.reply) return v.fail("no Read Stream Reply OK", "Read Stream Reply OK", outcome(r));
+    const std::size_t n = r.mem.data.size();
+    if (r.complete_count && *r.complete_count != n) {
+        return v.fail("Data Complete's count disagrees with the bytes sent",
+                      std::to_string(n) + " bytes", std::to_string(*r.complete_count));
+    }
+    if (r.reply->count != 0 && r.reply->count < n && r.reply->count != kStreamToEnd) {
+        return v.fail("more bytes than the Read Stream Reply's count", std::to_string(n),
+                      std::to_string(r.reply->count));
+    }
+    v.pass("Data Complete after " + std::to_string(n) + " bytes" +
+           (r.complete_count ? ", count " + std::to_string(*r.complete_count) : ", no count"));
+}
+
+void stream_buffer_negotiation(CheckRun& run) {
+    Verdict v = run.out();
+    if (!runnable(run, v)) return;
+    const StreamReadResult& r = windowed(run);
+    if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
+    if (r.proposed == 0) return v.fail("the node proposed a buffer of 0", "> 0", "0");
+    const std::uint64_t granted = r.granted;
+    if (r.max_in_window > granted) {
+        return v.fail("the node sent more than the granted buffer before a Proceed",
+                      "<= " + std::to_string(granted) + " bytes per Proceed",
+                      std::to_string(r.max_in_window) + " bytes");
+    }
+    v.pass("proposed " + std::to_string(r.proposed) + ", granted " + std::to_string(granted) +
+           ", at most " + std::to_string(r.max_in_window) + " bytes per Proceed");
+}
+
+void stream_proceed(CheckRun& run) {
+    Verdict v = run.out();
+    if (!runnable(run, v)) return;
+    const StreamReadResult& r = windowed(run);
+    if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
+    if (r.during_hold > 0) {
+        return v.fail("data kept coming while a full buffer waited for our Proceed",
+                      "nothing until Data Proceed",
+                      std::to_string(r.during_hold) + " bytes in " + std::to_string(r.proceeds) +
+                          " held buffers");
+    }
+    if (!r.mem.ok) return v.fail("the windowed read did not finish", "Data Complete", outcome(r));
+    const std::vector<std::uint8_t>& dg = run.cdi().result.data;
+    const std::size_t n = std::min(r.mem.data.size(), dg.size());
+    if (!std::equal(r.mem.data.begin(), r.mem.data.begin() + static_cast<std::ptrdiff_t>(n),
+                    dg.begin())) {
+        return v.fail("windowed stream bytes differ from the datagram download", "same bytes",
+                      "different bytes");
+    }
+    v.pass(std::to_string(r.mem.data.size()) + " bytes in buffers of " + std::to_string(r.granted) +
+           ", each held " + std::to_string(kHold.count() / 1'000'000) +
+           " ms: nothing came before our Proceed");
+}
+
+void stream_read_past_end(CheckRun& run) {
+    Verdict v = run.out();
+    if (!runnable(run, v)) return;
+    const SpaceInfo& info = run.space_info(0xFF);
+    if (!info.present) return v.skip("space 0xFF has no Space Info");
+    // Past a too-small highest address the read is inside the space: that check's finding.
+    if (const std::string why = run.highest_too_small(0xFF); !why.empty()) return v.skip(why);
+    const std::uint32_t end = info.highest_address + 1;
+    StreamReadOptions o;
+    o.count = kProbeBuffer;
+    const StreamReadResult r = run.session().read_stream(run.node(), Space::kCdi, end, o);
+    run.tally(r.mem);
+    if (!r.mem.ok && r.mem.error == kOutOfBounds) {
+        return v.pass(std::string("refused 0x1082 at ") + hex(end, 8) +
+                      (r.mem.rejected ? " (Datagram Rejected)" : " (Read Stream Reply Fail)"));
+    }
+    if (r.mem.ok && r.mem.data.empty()) {
+        return v.warn("an empty stream at " + hex(end, 8) +
+                      " instead of Read Stream Reply Fail 0x1082 (a datagram read fails there)");
+    }
+    v.fail("read at highest+1 of 0xFF not refused 0x1082", "0x1082", outcome(r));
+}
+
+}  // namespace
+
+std::vector<CheckSpec> stream_checks() {
+    return {
+        {"stream.advertised", Category::kStream,
+         "MessageNetworkS §3.4.3; MemoryConfigurationS §4.14", "cd20",
+         "PIP Stream bit and Get Configuration Options stream reads (0x1000, or write-lengths "
+         "0x01) agree: Options offering stream reads without the PIP bit fails; neither: SKIP",
+         stream_advertised},
+        {"stream.cdi-read", Category::kStream, "MemoryConfigurationS §4.6, §4.7", "cd20",
+         "Read Stream of 0xFF from 0 to the end (count 0xFFFFFFFF), lcc-conform granting the "
+         "largest buffer: the stream's bytes start with the datagram download, byte for byte",
+         stream_cdi_read},
+        {"stream.complete", Category::kStream, "StreamTransportS §4.6, §6.4", "",
+         "(the same read) Read Stream Reply OK, Data Complete, its count (if any) equals the bytes "
+         "the stream carried",
+         stream_complete},
+        {"stream.buffer-negotiation", Category::kStream, "StreamTransportS §4.2, §6.3", "",
+         "Read Stream of 0xFF granting a 64-byte buffer: the node proposed > 0 and never sends "
+         "more than 64 bytes before lcc-conform's Data Proceed",
+         stream_buffer_negotiation},
+        {"stream.proceed", Category::kStream, "StreamTransportS §6.3", "",
+         "(the same read) each full buffer held 200 ms before the Proceed: no data meanwhile; "
+         "the bytes match the datagram download",
+         stream_proceed},
+        {"stream.read-past-end", Category::kStream, "MemoryConfigurationS §4.6", "",
+         "Read Stream at highest+1 of 0xFF: refused 0x1082 (Read Stream Reply Fail, as a "
+         "datagram read); an empty stream WARNs; data or no answer fails; SKIP \"depends on\" "
+         "the check that found the highest address too small",
+         stream_read_past_end},
+    };
+}
+
+}  // namespace olcb::conform::checks
