@@ -4,7 +4,7 @@
 
 #include "conformance/session.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/error_codes.hpp"
+#include "base/error_codes.hpp"
 
 namespace olcb::conform {
 
@@ -48,7 +48,7 @@ void Session::stream_event(StreamWait& w, const StreamEvent& e) {
         case StreamEvent::Kind::kTerminated:
         case StreamEvent::Kind::kTimedOut:
             w.failed = true;
-            w.result.mem.error = e.code != 0 ? e.code : error_code::kTimeout;
+            w.result.mem.error = e.code != 0 ? e.code : base::to_u16(base::ErrorCode::kTimeout);
             break;
         default:
             break;
@@ -116,7 +116,7 @@ StreamReadResult Session::read_stream(const NodeInfo& node, memory::Space space,
         memory::ReadStream{space, address, 0xFF, w.did, options.count, options.form});
     auto id = link_.stack().send_datagram(w.alias, payload, sent_at);
     if (!id) {
-        w.result.mem.error = error_code::kTemporaryError;
+        w.result.mem.error = base::to_u16(base::ErrorCode::kTemporary);
         w.result.mem.rejected = true;
         return w.result;
     }
@@ -132,7 +132,7 @@ StreamReadResult Session::read_stream(const NodeInfo& node, memory::Space space,
         if (w.failed || (w.result.completed && w.reply_done)) break;
         if (link_.now() - w.last_progress > patience) {
             w.result.mem.timed_out = true;
-            if (w.result.mem.error == 0) w.result.mem.error = error_code::kTimeout;
+            if (w.result.mem.error == 0) w.result.mem.error = base::to_u16(base::ErrorCode::kTimeout);
             break;
         }
     }

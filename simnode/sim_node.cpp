@@ -472,8 +472,8 @@ void SimNode::on_stream_event(const StreamEvent& event) {
             if (!event.outgoing || event.buffer == 0) {
                 // Never accepted: the requester still waits for the reply datagram.
                 const std::uint16_t silent = event.kind == StreamEvent::Kind::kTimedOut
-                                                 ? error_code::kTimeout
-                                                 : error_code::kBufferUnavailable;
+                                                 ? base::to_u16(base::ErrorCode::kTimeout)
+                                                 : base::to_u16(base::ErrorCode::kBufferUnavailable);
                 const std::uint16_t code = event.code != 0 ? event.code : silent;
                 send_reply(pending.requester,
                            memory::MemoryConfigServer::stream_fail(

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "base/error_codes.hpp"
 #include "conformance/checks/checks.hpp"
 #include "memory/memory_config_defs.hpp"
 
@@ -15,7 +16,6 @@ namespace {
 
 using memory::Space;
 
-constexpr std::uint16_t kOutOfBounds = 0x1082;
 // The windowed read: a small buffer, so a CDI spans several, each held before its Proceed.
 constexpr std::uint16_t kProbeBuffer = 64;
 constexpr std::uint32_t kProbeWindows = 3;
@@ -190,7 +190,7 @@ void stream_read_past_end(CheckRun& run) {
     o.count = kProbeBuffer;
     const StreamReadResult r = run.session().read_stream(run.node(), Space::kCdi, end, o);
     run.tally(r.mem);
-    if (!r.mem.ok && r.mem.error == kOutOfBounds) {
+    if (!r.mem.ok && r.mem.error == base::to_u16(base::ErrorCode::kOutOfBounds)) {
         return v.pass(std::string("refused 0x1082 at ") + hex(end, 8) +
                       (r.mem.rejected ? " (Datagram Rejected)" : " (Read Stream Reply Fail)"));
     }
