@@ -20,15 +20,15 @@ Bytes encoded(std::string_view text, std::uint64_t size, CodecMode mode = CodecM
     return r.ok() ? r.value() : Bytes{};
 }
 
-const std::string kEuro = "\xE2\x82\xAC";          // U+20AC, 3 bytes
-const std::string kGrinning = "\xF0\x9F\x98\x80";  // U+1F600, 4 bytes
+const std::string euro = "\xE2\x82\xAC";          // U+20AC, 3 bytes
+const std::string grinning = "\xF0\x9F\x98\x80";  // U+1F600, 4 bytes
 
 TEST(StringCodec, EncodeWritesTextNulAndPadding) {
     EXPECT_EQ(encoded("abc", 6), (Bytes{'a', 'b', 'c', 0, 0, 0}));
     EXPECT_EQ(encoded("", 1), (Bytes{0}));
     EXPECT_EQ(encoded("", 4), (Bytes{0, 0, 0, 0}));
     EXPECT_EQ(encoded("abcd", 5), (Bytes{'a', 'b', 'c', 'd', 0}));  // full length
-    EXPECT_EQ(encoded(kEuro, 4), (Bytes{0xE2, 0x82, 0xAC, 0}));
+    EXPECT_EQ(encoded(euro, 4), (Bytes{0xE2, 0x82, 0xAC, 0}));
 }
 
 TEST(StringCodec, StrictRejectsTooLongText) {
@@ -40,7 +40,7 @@ TEST(StringCodec, StrictRejectsTooLongText) {
 
 TEST(StringCodec, LenientTruncatesOnACharacterBoundary) {
     EXPECT_EQ(encoded("abcde", 5, CodecMode::kLenient), (Bytes{'a', 'b', 'c', 'd', 0}));
-    EXPECT_EQ(encoded("ab" + kEuro, 4, CodecMode::kLenient), (Bytes{'a', 'b', 0, 0}));
+    EXPECT_EQ(encoded("ab" + euro, 4, CodecMode::kLenient), (Bytes{'a', 'b', 0, 0}));
 }
 
 TEST(StringCodec, RejectsBadSizesAndNul) {
@@ -84,7 +84,7 @@ TEST(StringCodec, DecodeReportsUnterminatedAndInvalid) {
 }
 
 TEST(StringCodec, RoundTrip) {
-    for (const std::string& text : {std::string(""), std::string("Node 1"), kGrinning + kEuro}) {
+    for (const std::string& text : {std::string(""), std::string("Node 1"), grinning + euro}) {
         const auto d = decode_string(encoded(text, 16));
         EXPECT_EQ(d.text, text);
         EXPECT_TRUE(d.terminated);
