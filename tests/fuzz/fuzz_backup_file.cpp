@@ -30,8 +30,8 @@ std::size_t lines_in(std::string_view text) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     const std::size_t lines = lines_in(text);
-    for (const auto& file : {olcb::conform::parse_backup_file(text),
-                             olcb::conform::parse_backup_csv(text)}) {
+    for (const auto& file :
+         {olcb::conform::parse_backup_file(text), olcb::conform::parse_backup_csv(text)}) {
         for (const auto& r : file.records) check(r.line >= 1 && r.line <= lines);
     }
     const std::string escaped = olcb::conform::escape_backup_text(text);
