@@ -41,6 +41,29 @@ std::string where(std::uint8_t space, std::uint32_t address) {
     return buf;
 }
 
+// "range SPACE ADDRESS LENGTH HEX" into r; nullptr, or why the line is malformed.
+const char* parse_range(const std::string& line, BackupRange& r) {
+    unsigned space = 0;
+    unsigned long address = 0;
+    std::size_t length = 0;
+    int used = 0;
+    if (std::sscanf(line.c_str(), "range %u %lx %zu %n", &space, &address, &length, &used) != 3 ||
+        space > 255 || address > 0xFFFFFFFFul || length > kMaxRangeBytes) {
+        return "malformed range line";
+    }
+    const std::string hex = line.substr(static_cast<std::size_t>(used));
+    if (hex.size() != length * 2) return "range length does not match its bytes";
+    r = BackupRange{static_cast<std::uint8_t>(space), static_cast<std::uint32_t>(address), {}};
+    r.bytes.reserve(length);
+    for (std::size_t i = 0; i < length; ++i) {
+        const int hi = hex_digit(hex[2 * i]);
+        const int lo = hex_digit(hex[2 * i + 1]);
+        if (hi < 0 || lo < 0) return "bad hex digit";
+        r.bytes.push_back(static_cast<std::uint8_t>(hi << 4 | lo));
+    }
+    return nullptr;
+}
+
 }  // namespace
 
 std::string hex_bytes(std::span<const std::uint8_t> bytes, std::size_t max) {
@@ -194,25 +217,8 @@ std::optional<SafetyBackup> SafetyBackup::load(const std::string& path, std::str
         } else if (line == "end") {
             ended = true;
         } else if (line.rfind("range ", 0) == 0) {
-            unsigned space = 0;
-            unsigned long address = 0;
-            std::size_t length = 0;
-            int used = 0;
-            if (std::sscanf(line.c_str(), "range %u %lx %zu %n", &space, &address, &length,
-                            &used) != 3 ||
-                space > 255 || address > 0xFFFFFFFFul || length > kMaxRangeBytes) {
-                return bad("malformed range line");
-            }
-            std::string hex = line.substr(static_cast<std::size_t>(used));
-            if (hex.size() != length * 2) return bad("range length does not match its bytes");
-            BackupRange r{
-                static_cast<std::uint8_t>(space), static_cast<std::uint32_t>(address), {}};
-            r.bytes.reserve(length);
-            for (std::size_t i = 0; i < length; ++i) {
-                int hi = hex_digit(hex[2 * i]), lo = hex_digit(hex[2 * i + 1]);
-                if (hi < 0 || lo < 0) return bad("bad hex digit");
-                r.bytes.push_back(static_cast<std::uint8_t>(hi << 4 | lo));
-            }
+            BackupRange r;
+            if (const char* why = parse_range(line, r)) return bad(why);
             backup.ranges_.push_back(std::move(r));
         } else {
             return bad("unknown line");
