@@ -88,7 +88,7 @@ struct Bench {
     }
 };
 
-void BM_BackupCan125k(benchmark::State& state, const char* cdi_file) {
+void bm_backup_can_125k(benchmark::State& state, const char* cdi_file) {
     Bench b(cdi_file, true);
     std::size_t lines = 0;
     std::uint64_t reads = 0;
@@ -108,16 +108,16 @@ void BM_BackupCan125k(benchmark::State& state, const char* cdi_file) {
     state.counters["reads"] = static_cast<double>(reads);
     state.counters["variables"] = static_cast<double>(lines - 2);
 }
-BENCHMARK_CAPTURE(BM_BackupCan125k, largest, kLargest)
+BENCHMARK_CAPTURE(bm_backup_can_125k, largest, kLargest)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
-BENCHMARK_CAPTURE(BM_BackupCan125k, most_variables, kMostVariables)
+BENCHMARK_CAPTURE(bm_backup_can_125k, most_variables, kMostVariables)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
 
-void BM_BackupInProcess(benchmark::State& state, const char* cdi_file) {
+void bm_backup_in_process(benchmark::State& state, const char* cdi_file) {
     Bench b(cdi_file, false);
     std::size_t lines = 0;
     for (auto _ : state) {
@@ -128,8 +128,8 @@ void BM_BackupInProcess(benchmark::State& state, const char* cdi_file) {
     }
     state.counters["variables"] = static_cast<double>(lines - 2);
 }
-BENCHMARK_CAPTURE(BM_BackupInProcess, largest, kLargest)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BackupInProcess, most_variables, kMostVariables)
+BENCHMARK_CAPTURE(bm_backup_in_process, largest, kLargest)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(bm_backup_in_process, most_variables, kMostVariables)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -22,7 +22,7 @@ std::vector<olcb::CanFrame> sample_frames() {
     return frames;
 }
 
-void BM_FormatTo(benchmark::State& state) {
+void bm_format_to(benchmark::State& state) {
     const auto frames = sample_frames();
     std::string out;
     out.reserve(64);
@@ -34,9 +34,9 @@ void BM_FormatTo(benchmark::State& state) {
     }
     state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_FormatTo);
+BENCHMARK(bm_format_to);
 
-void BM_FormatString(benchmark::State& state) {
+void bm_format_string(benchmark::State& state) {
     const auto frames = sample_frames();
     std::size_t i = 0;
     for (auto _ : state) {
@@ -45,9 +45,9 @@ void BM_FormatString(benchmark::State& state) {
     }
     state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_FormatString);
+BENCHMARK(bm_format_string);
 
-void BM_ParseFrame(benchmark::State& state) {
+void bm_parse_frame(benchmark::State& state) {
     std::vector<std::string> texts;
     for (const auto& f : sample_frames()) texts.push_back(olcb::gridconnect::format(f));
     std::size_t i = 0;
@@ -57,10 +57,10 @@ void BM_ParseFrame(benchmark::State& state) {
     }
     state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_ParseFrame);
+BENCHMARK(bm_parse_frame);
 
 // Streaming parser over a newline-separated log, fed in 4 KiB chunks like a socket read.
-void BM_ParserFeed(benchmark::State& state) {
+void bm_parser_feed(benchmark::State& state) {
     std::string stream;
     const auto frames = sample_frames();
     constexpr int kFrames = 4096;
@@ -80,7 +80,7 @@ void BM_ParserFeed(benchmark::State& state) {
     state.SetItemsProcessed(state.iterations() * kFrames);
     state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(stream.size()));
 }
-BENCHMARK(BM_ParserFeed);
+BENCHMARK(bm_parser_feed);
 
 }  // namespace
 

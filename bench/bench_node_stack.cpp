@@ -62,7 +62,7 @@ struct BusPair {
     }
 };
 
-void BM_DatagramRoundTrip64(benchmark::State& state) {
+void bm_datagram_round_trip_64(benchmark::State& state) {
     BusPair p;
     if (!p.a.initialized() || !p.b.initialized()) {
         state.SkipWithError("stacks did not initialize");
@@ -90,10 +90,10 @@ void BM_DatagramRoundTrip64(benchmark::State& state) {
     state.counters["round_trips_per_s"] =
         benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_DatagramRoundTrip64);
+BENCHMARK(bm_datagram_round_trip_64);
 
 // The same round trip through SimNetwork (what tests and lcc-conform's in-process mode use).
-void BM_DatagramRoundTrip64SimNetwork(benchmark::State& state) {
+void bm_datagram_round_trip_64_sim_network(benchmark::State& state) {
     SimNetwork net;
     net.set_logging(false);
     NodeStack a(config(0x050101012200));
@@ -114,10 +114,10 @@ void BM_DatagramRoundTrip64SimNetwork(benchmark::State& state) {
     state.counters["round_trips_per_s"] =
         benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_DatagramRoundTrip64SimNetwork);
+BENCHMARK(bm_datagram_round_trip_64_sim_network);
 
 // What each of 1,000 stacks pays for traffic between two other nodes.
-void BM_OnFrameNotForUs(benchmark::State& state) {
+void bm_on_frame_not_for_us(benchmark::State& state) {
     BusPair p;
     const CanFrame frames[] = {
         *gridconnect::parse_frame(":X1A99912CN2043000000004041;"),  // datagram for another alias
@@ -132,19 +132,19 @@ void BM_OnFrameNotForUs(benchmark::State& state) {
     benchmark::DoNotOptimize(p.a.has_output());
     state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_OnFrameNotForUs);
+BENCHMARK(bm_on_frame_not_for_us);
 
 // StackDriver re-arms its timer with the minimum over all stacks once per burst: 1,000 times this.
-void BM_NextDeadlineIdle(benchmark::State& state) {
+void bm_next_deadline_idle(benchmark::State& state) {
     BusPair p;
     for (auto _ : state) benchmark::DoNotOptimize(p.a.next_deadline());
 }
-BENCHMARK(BM_NextDeadlineIdle);
+BENCHMARK(bm_next_deadline_idle);
 
 // 1,000 stacks with distinct first aliases (or all colliding on one) started together on a
 // simulated bus until every one is Initialized and the bus is quiet; wall time per start-up,
 // heap per stack (each stack's alias cache learns all 999 others).
-void BM_ThousandStackStartup(benchmark::State& state) {
+void bm_thousand_stack_startup(benchmark::State& state) {
     const bool colliding = state.range(0) != 0;
     constexpr int kCount = 1000;
     double sim_ms = 0;
@@ -177,11 +177,11 @@ void BM_ThousandStackStartup(benchmark::State& state) {
     state.counters["heap_bytes_per_stack"] = heap_per_stack;
     state.counters["frames"] = static_cast<double>(frames);
 }
-BENCHMARK(BM_ThousandStackStartup)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(bm_thousand_stack_startup)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // 1,000 stacks on one StackDriver (real io_context, InProcessBus): one global Verify Node ID
 // from outside, answered by all 1,000 (each answer also reaches the 999 other stacks).
-void BM_DriverThousandStacksVerifyGlobal(benchmark::State& state) {
+void bm_driver_thousand_stacks_verify_global(benchmark::State& state) {
     constexpr std::size_t kCount = 1000;
     boost::asio::io_context io;
     InProcessBus bus(io);
@@ -229,7 +229,7 @@ void BM_DriverThousandStacksVerifyGlobal(benchmark::State& state) {
     state.counters["frames_per_s"] = benchmark::Counter(
         static_cast<double>(state.iterations() * (kCount + 1)), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_DriverThousandStacksVerifyGlobal)->Unit(benchmark::kMillisecond);
+BENCHMARK(bm_driver_thousand_stacks_verify_global)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

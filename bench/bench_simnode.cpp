@@ -134,7 +134,7 @@ private:
     std::unique_ptr<StackDriver> tool_driver_;
 };
 
-void BM_ReadRoundTripTcp(benchmark::State& state) {
+void bm_read_round_trip_tcp(benchmark::State& state) {
     TcpRig rig(default_cdi());
     for (auto _ : state) {
         rig.reader().start(rig.node_alias(), 0, false);
@@ -148,9 +148,9 @@ void BM_ReadRoundTripTcp(benchmark::State& state) {
     state.counters["round_trips_per_s"] =
         benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_ReadRoundTripTcp)->Unit(benchmark::kMicrosecond)->UseRealTime();
+BENCHMARK(bm_read_round_trip_tcp)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
-void BM_CdiDownloadTcp(benchmark::State& state) {
+void bm_cdi_download_tcp(benchmark::State& state) {
     const std::string cdi = read_file(fs::path(OLCB_SHARED_DIR) / kLargeCdi);
     TcpRig rig(cdi);
     for (auto _ : state) {
@@ -164,7 +164,7 @@ void BM_CdiDownloadTcp(benchmark::State& state) {
     state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * (cdi.size() + 1)));
     state.counters["cdi_bytes"] = static_cast<double>(cdi.size() + 1);
 }
-BENCHMARK(BM_CdiDownloadTcp)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(bm_cdi_download_tcp)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Worst-case bits on the wire one whole-space download needs, by the protocol's frame count:
 // per read a 1-frame request datagram (7 bytes), Datagram Received OK (3 bytes), the reply
@@ -186,7 +186,7 @@ std::uint64_t download_lower_bound_bits(std::size_t bytes) {
     return bits;
 }
 
-void BM_CdiDownloadCan125k(benchmark::State& state) {
+void bm_cdi_download_can_125k(benchmark::State& state) {
     const std::string cdi = read_file(fs::path(OLCB_SHARED_DIR) / kLargeCdi);
     constexpr std::uint32_t kBitrate = 125000;
     double simulated = 0;
@@ -222,11 +222,11 @@ void BM_CdiDownloadCan125k(benchmark::State& state) {
     state.counters["reads"] = static_cast<double>(reads);
     state.counters["cdi_bytes"] = static_cast<double>(cdi.size() + 1);
 }
-BENCHMARK(BM_CdiDownloadCan125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(bm_cdi_download_can_125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // 1,000 nodes of the default CDI, fresh images, one simulated segment (no bit timing): wall time
 // to create them and to bring every one to Initialized, and the memory they take.
-void BM_Startup1000(benchmark::State& state) {
+void bm_startup_1000(benchmark::State& state) {
     const std::string cdi = default_cdi();
     for (auto _ : state) {
         TempDir dir;
@@ -259,7 +259,7 @@ void BM_Startup1000(benchmark::State& state) {
         state.counters["rss_MiB"] = static_cast<double>(simnode::resident_kib() - rss0) / 1024.0;
     }
 }
-BENCHMARK(BM_Startup1000)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(bm_startup_1000)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
 

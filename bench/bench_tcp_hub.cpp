@@ -46,7 +46,7 @@ CanFrame bench_frame(std::uint16_t alias, std::uint32_t seq) {
 
 // Each of three clients sends N frames per iteration; the iteration ends when every client has
 // received the 2N frames of the other two. Items = frames sent (each is delivered twice).
-void BM_TcpHubThreeClients(benchmark::State& state) {
+void bm_tcp_hub_three_clients(benchmark::State& state) {
     const auto n = static_cast<std::uint32_t>(state.range(0));
     boost::asio::io_context io;
     TcpHubServer hub(io);
@@ -81,7 +81,7 @@ void BM_TcpHubThreeClients(benchmark::State& state) {
         for (std::uint32_t seq = 0; seq < n; ++seq) {
             for (std::uint16_t c = 0; c < 3; ++c) clients[c]->send(bench_frame(0x100 + c, seq));
         }
-        target += 2 * n;
+        target += std::uint64_t{2} * n;
         if (!wait([&] {
                 return received[0] >= target && received[1] >= target && received[2] >= target;
             })) {
@@ -93,14 +93,15 @@ void BM_TcpHubThreeClients(benchmark::State& state) {
     state.counters["deliveries_per_s"] = benchmark::Counter(
         static_cast<double>(state.iterations()) * 6 * n, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_TcpHubThreeClients)->Arg(1000)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(bm_tcp_hub_three_clients)->Arg(1000)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // Three ports; each sends N frames, then the bus delivers them all.
-void BM_InProcessBusThreePorts(benchmark::State& state) {
+void bm_in_process_bus_three_ports(benchmark::State& state) {
     const auto n = static_cast<std::uint32_t>(state.range(0));
     InProcessBus bus;
     std::uint64_t received = 0;
     std::vector<Transport*> ports;
+    ports.reserve(3);
     for (int i = 0; i < 3; ++i) {
         ports.push_back(&bus.add_endpoint([&received](const CanFrame&) { ++received; }));
     }
@@ -113,7 +114,7 @@ void BM_InProcessBusThreePorts(benchmark::State& state) {
     benchmark::DoNotOptimize(received);
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 3 * n);
 }
-BENCHMARK(BM_InProcessBusThreePorts)->Arg(1000);
+BENCHMARK(bm_in_process_bus_three_ports)->Arg(1000);
 
 // Runs io until done() or the limit; returns done().
 bool run_io_within(boost::asio::io_context& io, std::chrono::milliseconds limit,
@@ -145,7 +146,7 @@ TcpClientOptions big_queue() {
 
 // One client sends N frames per iteration to one other client through a hub with default
 // options (no rate limit, no bitrate); items = frames delivered.
-void BM_TcpHubOneToAnother(benchmark::State& state) {
+void bm_tcp_hub_one_to_another(benchmark::State& state) {
     const auto n = static_cast<std::uint32_t>(state.range(0));
     boost::asio::io_context io;
     TcpHubServer hub(io);
@@ -174,7 +175,7 @@ void BM_TcpHubOneToAnother(benchmark::State& state) {
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * n);
 }
-BENCHMARK(BM_TcpHubOneToAnother)->Arg(10000)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(bm_tcp_hub_one_to_another)->Arg(10000)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 #ifdef SIMNODE_PATH
 constexpr NodeId kDefaultNode{0x05'01'01'01'22'00ull};
@@ -247,7 +248,7 @@ double seconds(std::chrono::nanoseconds d) {
 // `simnode --bitrate 125000`. Time = first request sent to last reply received (real time).
 // bound = sum of can_frame_time() of every frame that crossed the bus meanwhile, both
 // directions (as the tool saw them: its own and every frame the hub delivered to it).
-void BM_SimnodeCdiDownload125k(benchmark::State& state) {
+void bm_simnode_cdi_download_125k(benchmark::State& state) {
     bench::SimnodeProcess sim({"--bitrate", std::to_string(kBitrate)});
     boost::asio::io_context io;
     Tool tool(io, sim.port(), NodeId(0x02'01'0D'00'00'21ull));
@@ -284,11 +285,14 @@ void BM_SimnodeCdiDownload125k(benchmark::State& state) {
     state.counters["reads"] = static_cast<double>(reads);
     state.counters["cdi_bytes"] = static_cast<double>(bytes);
 }
-BENCHMARK(BM_SimnodeCdiDownload125k)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(bm_simnode_cdi_download_125k)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 // Two tools download the same CDI at once through `simnode --bitrate 125000`: each takes about
 // twice as long as one alone. bound = the bus time of every frame until the later one finished.
-void BM_SimnodeTwoCdiDownloads125k(benchmark::State& state) {
+void bm_simnode_two_cdi_downloads_125k(benchmark::State& state) {
     bench::SimnodeProcess sim({"--bitrate", std::to_string(kBitrate)});
     boost::asio::io_context io;
     Tool a(io, sim.port(), NodeId(0x02'01'0D'00'00'22ull));
@@ -327,7 +331,7 @@ void BM_SimnodeTwoCdiDownloads125k(benchmark::State& state) {
     state.counters["bound_s"] = bound / n;
     state.counters["ratio"] = took_both / bound;
 }
-BENCHMARK(BM_SimnodeTwoCdiDownloads125k)
+BENCHMARK(bm_simnode_two_cdi_downloads_125k)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
@@ -335,7 +339,7 @@ BENCHMARK(BM_SimnodeTwoCdiDownloads125k)
 // One client sends N frames per iteration to another through simnode's hub (no bitrate); the
 // hub's policy lets a client send 20,000 frames/s after a one-second burst (spent before the
 // timed iterations).
-void BM_SimnodeHubOneToAnother(benchmark::State& state) {
+void bm_simnode_hub_one_to_another(benchmark::State& state) {
     const auto n = static_cast<std::uint32_t>(state.range(0));
     bench::SimnodeProcess sim({});
     boost::asio::io_context io;
@@ -367,7 +371,7 @@ void BM_SimnodeHubOneToAnother(benchmark::State& state) {
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * n);
 }
-BENCHMARK(BM_SimnodeHubOneToAnother)
+BENCHMARK(bm_simnode_hub_one_to_another)
     ->Arg(10000)
     ->Iterations(5)
     ->UseRealTime()
@@ -415,7 +419,7 @@ private:
 // or without another client flooding the hub; args: flood (0/1), bitrate (0 = off).
 // Counters: median and worst round trip of the run, and the flood frames per second the hub
 // relayed to the tool meanwhile.
-void BM_SimnodeVerifyRoundTrip(benchmark::State& state) {
+void bm_simnode_verify_round_trip(benchmark::State& state) {
     const bool flood = state.range(0) != 0;
     const auto bitrate = static_cast<std::uint32_t>(state.range(1));
     std::vector<std::string> extra;
@@ -464,7 +468,7 @@ void BM_SimnodeVerifyRoundTrip(benchmark::State& state) {
     state.counters["worst_ms"] = rtt.back() * 1e3;
     state.counters["flood_frames_per_s"] = static_cast<double>(flood_frames) / span;
 }
-BENCHMARK(BM_SimnodeVerifyRoundTrip)
+BENCHMARK(bm_simnode_verify_round_trip)
     ->ArgNames({"flood", "bitrate"})
     ->Args({0, 0})
     ->Args({1, 0})

@@ -57,16 +57,14 @@ struct Columns {
 
 Columns columns_of(const std::vector<std::string>& header) {
     Columns c;
+    const std::pair<std::string_view, std::size_t*> slots[] = {
+        {"key", &c.key},     {"value", &c.value},     {"type", &c.type},
+        {"space", &c.space}, {"address", &c.address}, {"size", &c.size},
+    };
     for (std::size_t i = 0; i < header.size(); ++i) {
-        const std::string& h = header[i];
-        std::size_t* slot = h == "key"       ? &c.key
-                            : h == "value"   ? &c.value
-                            : h == "type"    ? &c.type
-                            : h == "space"   ? &c.space
-                            : h == "address" ? &c.address
-                            : h == "size"    ? &c.size
-                                             : nullptr;
-        if (slot != nullptr) *slot = i;
+        for (const auto& [name, slot] : slots) {
+            if (header[i] == name) *slot = i;
+        }
     }
     return c;
 }

@@ -308,9 +308,14 @@ private:
     void add_stored_result(std::vector<CheckResult>& out) const;
     void add_tally_results(std::vector<CheckResult>& out) const;
     void add_problem_results(std::vector<CheckResult>& out) const;
+    // The probes given a test value before the reset, with the value each must keep.
+    using Written = std::vector<std::pair<const Probe*, Bytes>>;
     CheckResult persistence();
+    bool write_before_reset(Written& set);
+    bool judge_reset(const RebootOutcome& rb, const Written& set, CheckResult& c);
     bool put_back_all();
     CheckResult snip_follows();
+    bool judge_snip_name(const std::string& key, CheckResult& c);
     std::string not_run_reason() const;
 
     MemoryAccess& memory_;
@@ -436,21 +441,27 @@ CheckResult EncodingRun::snip_follows() {
         c.message = "write of the user name to space 251 refused (" + code_text(w) + ")";
         c.expected = "the write accepted";
         c.seen = "refused with " + code_text(w);
-    } else {
-        // The variable's own read-back: SNIP reports the user name from space 251.
-        auto name = hooks_.snip_user_name();
-        const AccessResult unanswered{false, base::to_u16(base::ErrorCode::kTimeout), {}};
-        if (!name && !step("asking SNIP for", key, unanswered)) return c;
-        c.expected = show_node_text(kSnipTestName);
-        c.seen = name ? show_node_text(*name, true, name->size()) : "no SNIP reply";
-        c.status = name && *name == kSnipTestName ? Status::kPass : Status::kFail;
-        c.message = c.status == Status::kPass ? "SNIP user name follows a write to space 251"
-                    : name                    ? "SNIP user name does not follow space 251"
-                                              : "no SNIP reply after writing the user name";
-        if (c.status == Status::kPass) c.expected.clear(), c.seen.clear();
+    } else if (!judge_snip_name(key, c)) {
+        return c;
     }
     put_back_all();
     return c;
+}
+
+// The variable's own read-back: SNIP reports the user name from space 251. False when the node
+// stopped answering.
+bool EncodingRun::judge_snip_name(const std::string& key, CheckResult& c) {
+    auto name = hooks_.snip_user_name();
+    const AccessResult unanswered{false, base::to_u16(base::ErrorCode::kTimeout), {}};
+    if (!name && !step("asking SNIP for", key, unanswered)) return false;
+    c.expected = show_node_text(kSnipTestName);
+    c.seen = name ? show_node_text(*name, true, name->size()) : "no SNIP reply";
+    c.status = name && *name == kSnipTestName ? Status::kPass : Status::kFail;
+    c.message = c.status == Status::kPass ? "SNIP user name follows a write to space 251"
+                : name                    ? "SNIP user name does not follow space 251"
+                                          : "no SNIP reply after writing the user name";
+    if (c.status == Status::kPass) c.expected.clear(), c.seen.clear();
+    return true;
 }
 
 CheckResult EncodingRun::persistence() {
@@ -464,22 +475,8 @@ CheckResult EncodingRun::persistence() {
         c.message = not_run_reason();
         return c;
     }
-    // Test values go only into unprotected variables: a protected one (a stack's own version
-    // byte) changed across a reset can make the node wipe its whole configuration.
-    std::vector<std::pair<const Probe*, Bytes>> set;  // probe, the value it must keep
-    for (const auto& [p, original] : tested_) {
-        if (!p->protection.empty()) continue;
-        for (const auto& [label, bytes] : test_writes(*p)) {
-            if (bytes == original) continue;
-            last_label_ = label;
-            last_bytes_ = bytes;
-            in_flight_.push_back({p->space, p->address, original, p->key});
-            AccessResult w = memory_.write(p->space, p->address, bytes);
-            if (!step("writing (before the reset)", p->key, w)) return c;
-            if (w.ok) set.emplace_back(p, bytes);
-            break;
-        }
-    }
+    Written set;
+    if (!write_before_reset(set)) return c;
     if (set.empty()) {
         c.message = "no unprotected variable took a test value";
         put_back_all();
@@ -491,36 +488,63 @@ CheckResult EncodingRun::persistence() {
         c.message = not_run_reason();
         return c;
     }
+    if (!judge_reset(rb, set, c)) return c;
+    put_back_all();
+    return c;
+}
+
+// Test values go only into unprotected variables: a protected one (a stack's own version byte)
+// changed across a reset can make the node wipe its whole configuration. False when writing
+// stops.
+bool EncodingRun::write_before_reset(Written& set) {
+    for (const auto& [p, original] : tested_) {
+        if (!p->protection.empty()) continue;
+        for (const auto& [label, bytes] : test_writes(*p)) {
+            if (bytes == original) continue;
+            last_label_ = label;
+            last_bytes_ = bytes;
+            in_flight_.push_back({p->space, p->address, original, p->key});
+            AccessResult w = memory_.write(p->space, p->address, bytes);
+            if (!step("writing (before the reset)", p->key, w)) return false;
+            if (w.ok) set.emplace_back(p, bytes);
+            break;
+        }
+    }
+    return true;
+}
+
+// The verdict on what the reset did to the values set; false when the node stopped answering.
+bool EncodingRun::judge_reset(const RebootOutcome& rb, const Written& set, CheckResult& c) {
     if (rb.rejected != 0) {
         char code[8];
         std::snprintf(code, sizeof code, "0x%04X", rb.rejected);
         c.message = std::string("Reset/Reboot rejected with ") + code + "; persistence not tested";
-    } else if (!rb.back) {
+        return true;
+    }
+    if (!rb.back) {
         c.status = Status::kFail;
         c.message = "no Initialization Complete after Reset/Reboot";
         c.expected = "Initialization Complete after 20 A9";
         c.seen = "none while lcc-conform waited";
-    } else {
-        Tally t;
-        for (const auto& [p, bytes] : set) {
-            ++t.values;
-            AccessResult r = memory_.read(p->space, p->address, p->size);
-            if (!step("reading back after the reset", p->key, r)) return c;
-            if (!r.ok || r.data != bytes) {
-                t.fail(p->key + ": value written before the reset was lost", hex_bytes(bytes),
-                       r.ok ? hex_bytes(r.data) : "error " + code_text(r));
-            }
-        }
-        c.status = t.failures ? Status::kFail : Status::kPass;
-        c.message = t.failures
-                        ? std::to_string(t.failures) + " of " + std::to_string(t.values) +
-                              " variables lost their value on reset; first: " + t.first_message
-                        : std::to_string(t.values) + " written values survived a reset";
-        c.expected = t.expected;
-        c.seen = t.seen;
+        return true;
     }
-    put_back_all();
-    return c;
+    Tally t;
+    for (const auto& [p, bytes] : set) {
+        ++t.values;
+        AccessResult r = memory_.read(p->space, p->address, p->size);
+        if (!step("reading back after the reset", p->key, r)) return false;
+        if (!r.ok || r.data != bytes) {
+            t.fail(p->key + ": value written before the reset was lost", hex_bytes(bytes),
+                   r.ok ? hex_bytes(r.data) : "error " + code_text(r));
+        }
+    }
+    c.status = t.failures ? Status::kFail : Status::kPass;
+    c.message = t.failures ? std::to_string(t.failures) + " of " + std::to_string(t.values) +
+                                 " variables lost their value on reset; first: " + t.first_message
+                           : std::to_string(t.values) + " written values survived a reset";
+    c.expected = t.expected;
+    c.seen = t.seen;
+    return true;
 }
 
 }  // namespace

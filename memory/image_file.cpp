@@ -155,6 +155,120 @@ std::optional<Record> decode(std::span<const std::uint8_t> bytes, std::size_t im
 
 }  // namespace journal
 
+namespace {
+
+// The files ImageFile::open() works on, and what it learns from them. The image closes first,
+// the journal (and its lock) after it.
+struct Opening {
+    explicit Opening(const std::filesystem::path& image) : path(image) {}
+
+    const std::filesystem::path& path;
+    std::filesystem::path dir;
+    std::filesystem::path journal_path;
+    Fd dir_fd;
+    Fd journal_fd;
+    Fd image_fd;
+    std::vector<std::uint8_t> bytes;  // the image's content, its size from the start
+    std::uint64_t sequence = 0;       // the journal record's, 0 without one
+};
+
+// Opens the image's directory and its journal, locked; an error sentence on failure.
+std::string open_journal(Opening& o) {
+    o.dir = o.path.parent_path();
+    if (o.dir.empty()) o.dir = ".";
+    o.dir_fd.reset(::open(o.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+    if (o.dir_fd.get() < 0) return errno_text("cannot open image directory", o.dir);
+    o.journal_path = o.path;
+    o.journal_path += ".journal";
+    o.journal_fd.reset(::open(o.journal_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644));
+    if (o.journal_fd.get() < 0) return errno_text("cannot open journal", o.journal_path);
+    // Two writers of one image would interleave journal records; the lock dies with the process.
+    if (::flock(o.journal_fd.get(), LOCK_EX | LOCK_NB) != 0) {
+        return errno == EWOULDBLOCK ? "image " + o.path.string() + " is in use by another process"
+                                    : errno_text("cannot lock", o.journal_path);
+    }
+    return {};
+}
+
+// Creates the missing image from init and opens it.
+std::string create_fresh(Opening& o, const ImageFile::Initialiser& init) {
+    // A journal without its image belongs to an image that no longer exists.
+    if (::ftruncate(o.journal_fd.get(), 0) != 0 || !sync_data(o.journal_fd.get())) {
+        return errno_text("cannot clear journal", o.journal_path);
+    }
+    if (init) init(o.bytes);
+    if (auto error = create_image(o.path, o.dir_fd.get(), o.bytes); !error.empty()) return error;
+    o.image_fd.reset(::open(o.path.c_str(), O_RDWR | O_CLOEXEC));
+    if (o.image_fd.get() < 0) return errno_text("cannot open image", o.path);
+    return {};
+}
+
+// Reads the existing image, which must be a regular file of exactly the size asked for.
+std::string read_image(Opening& o) {
+    struct stat st {};
+    if (::fstat(o.image_fd.get(), &st) != 0) return errno_text("cannot stat image", o.path);
+    if (!S_ISREG(st.st_mode)) return "image " + o.path.string() + " is not a regular file";
+    const std::size_t size = o.bytes.size();
+    if (static_cast<std::uint64_t>(st.st_size) != size) {
+        return "image " + o.path.string() + " has " + std::to_string(st.st_size) +
+               " bytes, expected " + std::to_string(size);
+    }
+    if (pread_all(o.image_fd.get(), o.bytes, 0) != static_cast<ssize_t>(size)) {
+        return errno_text("cannot read image", o.path);
+    }
+    return {};
+}
+
+std::string read_journal(const Opening& o, std::vector<std::uint8_t>& raw) {
+    struct stat jst {};
+    if (::fstat(o.journal_fd.get(), &jst) != 0) {
+        return errno_text("cannot stat journal", o.journal_path);
+    }
+    // Read no more than the largest record an image of this size can have.
+    const std::uint64_t limit = journal::kHeaderSize + o.bytes.size() + journal::kTrailerSize;
+    raw.resize(static_cast<std::size_t>(std::min<std::uint64_t>(jst.st_size, limit)));
+    const ssize_t got = pread_all(o.journal_fd.get(), raw, 0);
+    if (got < 0) return errno_text("cannot read journal", o.journal_path);
+    raw.resize(static_cast<std::size_t>(got));
+    return {};
+}
+
+// Makes the journal's record durable in the image, writing it again when the image lacks it.
+std::string apply_record(Opening& o, const journal::Record& record, JournalState& state) {
+    o.sequence = record.sequence;
+    const auto target = std::span(o.bytes).subspan(record.offset, record.data.size());
+    if (std::equal(target.begin(), target.end(), record.data.begin())) {
+        // The bytes may sit only in the page cache (killed before the image sync): make them
+        // durable before a later write overwrites the record that could repair them.
+        if (!sync_data(o.image_fd.get())) return errno_text("cannot sync image", o.path);
+        state = JournalState::kAlreadyApplied;
+        return {};
+    }
+    if (!pwrite_all(o.image_fd.get(), record.data, record.offset) || !sync_data(o.image_fd.get())) {
+        return errno_text("cannot replay journal into", o.path);
+    }
+    std::copy(record.data.begin(), record.data.end(), target.begin());
+    state = JournalState::kReplayed;
+    return {};
+}
+
+// Reads the existing image and replays its journal into it.
+std::string load_existing(Opening& o, JournalState& state) {
+    if (auto error = read_image(o); !error.empty()) return error;
+    std::vector<std::uint8_t> raw;
+    if (auto error = read_journal(o, raw); !error.empty()) return error;
+    if (auto record = journal::decode(raw, o.bytes.size())) {
+        if (auto error = apply_record(o, *record, state); !error.empty()) return error;
+    } else if (!raw.empty()) {
+        state = JournalState::kDiscarded;
+    }
+    // The journal may have just been created: make its directory entry durable.
+    if (::fsync(o.dir_fd.get()) != 0) return errno_text("cannot sync directory", o.dir);
+    return {};
+}
+
+}  // namespace
+
 ImageFile::ImageFile(std::filesystem::path path, int image_fd, int journal_fd,
                      std::vector<std::uint8_t> bytes, std::uint64_t sequence)
     : path_(std::move(path)),
@@ -180,117 +294,24 @@ ImageOpenResult ImageFile::open(const std::filesystem::path& path, std::size_t s
                        " bytes; at most 2^32 - 1)";
         return result;
     }
-    std::filesystem::path dir = path.parent_path();
-    if (dir.empty()) dir = ".";
-    Fd dir_fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-    if (dir_fd.get() < 0) {
-        result.error = errno_text("cannot open image directory", dir);
-        return result;
-    }
-    std::filesystem::path journal_path = path;
-    journal_path += ".journal";
-    Fd journal_fd(::open(journal_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644));
-    if (journal_fd.get() < 0) {
-        result.error = errno_text("cannot open journal", journal_path);
-        return result;
-    }
-    // Two writers of one image would interleave journal records; the lock dies with the process.
-    if (::flock(journal_fd.get(), LOCK_EX | LOCK_NB) != 0) {
-        result.error = errno == EWOULDBLOCK
-                           ? "image " + path.string() + " is in use by another process"
-                           : errno_text("cannot lock", journal_path);
-        return result;
-    }
-
-    std::vector<std::uint8_t> bytes(size, 0);
-    std::uint64_t sequence = 0;
-    Fd image_fd(::open(path.c_str(), O_RDWR | O_CLOEXEC));
-    if (image_fd.get() < 0 && errno != ENOENT) {
+    Opening o(path);
+    o.bytes.assign(size, 0);
+    result.error = open_journal(o);
+    if (!result.error.empty()) return result;
+    o.image_fd.reset(::open(path.c_str(), O_RDWR | O_CLOEXEC));
+    if (o.image_fd.get() < 0 && errno != ENOENT) {
         result.error = errno_text("cannot open image", path);
         return result;
     }
-    if (image_fd.get() < 0) {
-        // A journal without its image belongs to an image that no longer exists.
-        if (::ftruncate(journal_fd.get(), 0) != 0 || !sync_data(journal_fd.get())) {
-            result.error = errno_text("cannot clear journal", journal_path);
-            return result;
-        }
-        if (init) init(bytes);
-        if (auto error = create_image(path, dir_fd.get(), bytes); !error.empty()) {
-            result.error = std::move(error);
-            return result;
-        }
-        image_fd.reset(::open(path.c_str(), O_RDWR | O_CLOEXEC));
-        if (image_fd.get() < 0) {
-            result.error = errno_text("cannot open image", path);
-            return result;
-        }
-        result.created = true;
+    if (o.image_fd.get() < 0) {
+        result.error = create_fresh(o, init);
+        result.created = result.error.empty();
     } else {
-        struct stat st {};
-        if (::fstat(image_fd.get(), &st) != 0) {
-            result.error = errno_text("cannot stat image", path);
-            return result;
-        }
-        if (!S_ISREG(st.st_mode)) {
-            result.error = "image " + path.string() + " is not a regular file";
-            return result;
-        }
-        if (static_cast<std::uint64_t>(st.st_size) != size) {
-            result.error = "image " + path.string() + " has " + std::to_string(st.st_size) +
-                           " bytes, expected " + std::to_string(size);
-            return result;
-        }
-        if (pread_all(image_fd.get(), bytes, 0) != static_cast<ssize_t>(size)) {
-            result.error = errno_text("cannot read image", path);
-            return result;
-        }
-        struct stat jst {};
-        if (::fstat(journal_fd.get(), &jst) != 0) {
-            result.error = errno_text("cannot stat journal", journal_path);
-            return result;
-        }
-        // Read no more than the largest record an image of this size can have.
-        const std::uint64_t limit = journal::kHeaderSize + size + journal::kTrailerSize;
-        std::vector<std::uint8_t> raw(
-            static_cast<std::size_t>(std::min<std::uint64_t>(jst.st_size, limit)));
-        const ssize_t got = pread_all(journal_fd.get(), raw, 0);
-        if (got < 0) {
-            result.error = errno_text("cannot read journal", journal_path);
-            return result;
-        }
-        raw.resize(static_cast<std::size_t>(got));
-        if (auto record = journal::decode(raw, size)) {
-            sequence = record->sequence;
-            const auto target = std::span(bytes).subspan(record->offset, record->data.size());
-            if (std::equal(target.begin(), target.end(), record->data.begin())) {
-                // The bytes may sit only in the page cache (killed before the image sync): make
-                // them durable before a later write overwrites the record that could repair them.
-                if (!sync_data(image_fd.get())) {
-                    result.error = errno_text("cannot sync image", path);
-                    return result;
-                }
-                result.journal = JournalState::kAlreadyApplied;
-            } else {
-                if (!pwrite_all(image_fd.get(), record->data, record->offset) ||
-                    !sync_data(image_fd.get())) {
-                    result.error = errno_text("cannot replay journal into", path);
-                    return result;
-                }
-                std::copy(record->data.begin(), record->data.end(), target.begin());
-                result.journal = JournalState::kReplayed;
-            }
-        } else if (!raw.empty()) {
-            result.journal = JournalState::kDiscarded;
-        }
-        // The journal may have just been created: make its directory entry durable.
-        if (::fsync(dir_fd.get()) != 0) {
-            result.error = errno_text("cannot sync directory", dir);
-            return result;
-        }
+        result.error = load_existing(o, result.journal);
     }
-    result.image.reset(
-        new ImageFile(path, image_fd.release(), journal_fd.release(), std::move(bytes), sequence));
+    if (!result.error.empty()) return result;
+    result.image.reset(new ImageFile(path, o.image_fd.release(), o.journal_fd.release(),
+                                     std::move(o.bytes), o.sequence));
     return result;
 }
 

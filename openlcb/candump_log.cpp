@@ -26,6 +26,64 @@ std::optional<std::uint64_t> parse_decimal(std::string_view s, std::size_t max_d
     return v;
 }
 
+// "(seconds.micros) " at the start of line, which it then drops.
+std::optional<std::chrono::microseconds> take_timestamp(std::string_view& line) {
+    if (line.size() < 3 || line.front() != '(') return std::nullopt;
+    const auto close = line.find(')');
+    if (close == std::string_view::npos) return std::nullopt;
+    const std::string_view stamp = line.substr(1, close - 1);
+    const auto dot = stamp.find('.');
+    if (dot == std::string_view::npos) return std::nullopt;
+    const auto seconds = parse_decimal(stamp.substr(0, dot), 12);
+    const auto micros = parse_decimal(stamp.substr(dot + 1), 6);
+    if (!seconds || !micros || stamp.size() - dot - 1 != 6) return std::nullopt;
+    line.remove_prefix(close + 1);
+    if (line.empty() || line.front() != ' ') return std::nullopt;
+    line.remove_prefix(1);
+    return std::chrono::microseconds(*seconds * 1'000'000 + *micros);
+}
+
+// Data bytes, optionally separated by '.' as canplayer accepts.
+bool parse_data(std::string_view rest, CanFrame& frame) {
+    std::size_t i = 0;
+    while (i < rest.size()) {
+        if (rest[i] == '.') {
+            ++i;
+            continue;
+        }
+        if (frame.len == 8 || i + 1 >= rest.size()) return false;
+        const int hi = hex_value(rest[i]);
+        const int lo = hex_value(rest[i + 1]);
+        if (hi < 0 || lo < 0) return false;
+        frame.data[frame.len++] = static_cast<std::uint8_t>(hi << 4 | lo);
+        i += 2;
+    }
+    return true;
+}
+
+// "ID#DATA" | "ID#R[len]"
+bool parse_frame(std::string_view text, CanFrame& frame) {
+    const auto hash = text.find('#');
+    if (hash != 3 && hash != 8) return false;
+    std::uint32_t id = 0;
+    for (std::size_t i = 0; i < hash; ++i) {
+        const int v = hex_value(text[i]);
+        if (v < 0) return false;
+        id = id << 4 | static_cast<std::uint32_t>(v);
+    }
+    frame.extended = hash == 8;
+    if (id > (frame.extended ? 0x1FFFFFFFu : 0x7FFu)) return false;  // error frame or junk
+    frame.id = id;
+    const std::string_view rest = text.substr(hash + 1);
+    if (rest.empty() || (rest.front() != 'R' && rest.front() != 'r'))
+        return parse_data(rest, frame);
+    frame.remote = true;
+    if (rest.size() == 1) return true;
+    if (rest.size() != 2 || rest[1] < '0' || rest[1] > '8') return false;
+    frame.len = static_cast<std::uint8_t>(rest[1] - '0');
+    return true;
+}
+
 }  // namespace
 
 std::string format(const CanFrame& frame, std::chrono::microseconds timestamp,
@@ -58,63 +116,18 @@ std::optional<Entry> parse(std::string_view line) {
                              line.back() == '\t')) {
         line.remove_suffix(1);
     }
-    // "(seconds.micros)"
-    if (line.size() < 3 || line.front() != '(') return std::nullopt;
-    const auto close = line.find(')');
-    if (close == std::string_view::npos) return std::nullopt;
-    const std::string_view stamp = line.substr(1, close - 1);
-    const auto dot = stamp.find('.');
-    if (dot == std::string_view::npos) return std::nullopt;
-    const auto seconds = parse_decimal(stamp.substr(0, dot), 12);
-    const auto micros = parse_decimal(stamp.substr(dot + 1), 6);
-    if (!seconds || !micros || stamp.size() - dot - 1 != 6) return std::nullopt;
-    line.remove_prefix(close + 1);
-    if (line.empty() || line.front() != ' ') return std::nullopt;
-    line.remove_prefix(1);
+    Entry entry;
+    const auto stamp = take_timestamp(line);
+    if (!stamp) return std::nullopt;
+    entry.timestamp = *stamp;
     // "iface "
     const auto space = line.find(' ');
     if (space == 0 || space == std::string_view::npos || space > kMaxInterfaceName) {
         return std::nullopt;
     }
-    Entry entry;
-    entry.timestamp = std::chrono::microseconds(*seconds * 1'000'000 + *micros);
     entry.interface = std::string(line.substr(0, space));
     line.remove_prefix(space + 1);
-    // "ID#DATA" | "ID#R[len]"
-    const auto hash = line.find('#');
-    if (hash != 3 && hash != 8) return std::nullopt;
-    std::uint32_t id = 0;
-    for (std::size_t i = 0; i < hash; ++i) {
-        const int v = hex_value(line[i]);
-        if (v < 0) return std::nullopt;
-        id = id << 4 | static_cast<std::uint32_t>(v);
-    }
-    CanFrame& frame = entry.frame;
-    frame.extended = hash == 8;
-    if (id > (frame.extended ? 0x1FFFFFFFu : 0x7FFu)) return std::nullopt;  // error frame or junk
-    frame.id = id;
-    std::string_view rest = line.substr(hash + 1);
-    if (!rest.empty() && (rest.front() == 'R' || rest.front() == 'r')) {
-        frame.remote = true;
-        if (rest.size() == 1) return entry;
-        if (rest.size() != 2 || rest[1] < '0' || rest[1] > '8') return std::nullopt;
-        frame.len = static_cast<std::uint8_t>(rest[1] - '0');
-        return entry;
-    }
-    // Data bytes, optionally separated by '.' as canplayer accepts.
-    std::size_t i = 0;
-    while (i < rest.size()) {
-        if (rest[i] == '.') {
-            ++i;
-            continue;
-        }
-        if (frame.len == 8 || i + 1 >= rest.size()) return std::nullopt;
-        const int hi = hex_value(rest[i]);
-        const int lo = hex_value(rest[i + 1]);
-        if (hi < 0 || lo < 0) return std::nullopt;
-        frame.data[frame.len++] = static_cast<std::uint8_t>(hi << 4 | lo);
-        i += 2;
-    }
+    if (!parse_frame(line, entry.frame)) return std::nullopt;
     return entry;
 }
 

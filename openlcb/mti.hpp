@@ -99,87 +99,59 @@ constexpr unsigned priority(Mti mti) {
     return (to_u16(mti) & mti_bits::kPriority) >> 10;
 }
 
+/// An MTI and its human-readable name.
+struct MtiName {
+    Mti mti;                ///< the message type
+    std::string_view name;  ///< as decoders print it ("Verify Node ID Global")
+};
+
+/// The names of every MTI of the enum, in its order.
+inline constexpr MtiName kMtiNames[] = {
+    {Mti::kInitializationComplete, "Initialization Complete"},
+    {Mti::kInitializationCompleteSimple, "Initialization Complete Simple"},
+    {Mti::kVerifyNodeIdAddressed, "Verify Node ID Addressed"},
+    {Mti::kVerifyNodeIdGlobal, "Verify Node ID Global"},
+    {Mti::kVerifiedNodeId, "Verified Node ID"},
+    {Mti::kVerifiedNodeIdSimple, "Verified Node ID Simple"},
+    {Mti::kOptionalInteractionRejected, "Optional Interaction Rejected"},
+    {Mti::kTerminateDueToError, "Terminate Due To Error"},
+    {Mti::kProtocolSupportInquiry, "Protocol Support Inquiry"},
+    {Mti::kProtocolSupportReply, "Protocol Support Reply"},
+    {Mti::kIdentifyConsumer, "Identify Consumer"},
+    {Mti::kConsumerRangeIdentified, "Consumer Range Identified"},
+    {Mti::kConsumerIdentifiedValid, "Consumer Identified Valid"},
+    {Mti::kConsumerIdentifiedInvalid, "Consumer Identified Invalid"},
+    {Mti::kConsumerIdentifiedReserved, "Consumer Identified Reserved"},
+    {Mti::kConsumerIdentifiedUnknown, "Consumer Identified Unknown"},
+    {Mti::kIdentifyProducer, "Identify Producer"},
+    {Mti::kProducerRangeIdentified, "Producer Range Identified"},
+    {Mti::kProducerIdentifiedValid, "Producer Identified Valid"},
+    {Mti::kProducerIdentifiedInvalid, "Producer Identified Invalid"},
+    {Mti::kProducerIdentifiedReserved, "Producer Identified Reserved"},
+    {Mti::kProducerIdentifiedUnknown, "Producer Identified Unknown"},
+    {Mti::kIdentifyEventsAddressed, "Identify Events Addressed"},
+    {Mti::kIdentifyEventsGlobal, "Identify Events Global"},
+    {Mti::kLearnEvent, "Learn Event"},
+    {Mti::kEventReport, "Producer/Consumer Event Report"},
+    {Mti::kEventReportWithPayload, "Event Report With Payload"},
+    {Mti::kSnipRequest, "Simple Node Ident Info Request"},
+    {Mti::kSnipReply, "Simple Node Ident Info Reply"},
+    {Mti::kDatagram, "Datagram"},
+    {Mti::kDatagramReceivedOk, "Datagram Received OK"},
+    {Mti::kDatagramRejected, "Datagram Rejected"},
+    {Mti::kStreamInitiateRequest, "Stream Initiate Request"},
+    {Mti::kStreamInitiateReply, "Stream Initiate Reply"},
+    {Mti::kStreamDataSend, "Stream Data Send"},
+    {Mti::kStreamDataProceed, "Stream Data Proceed"},
+    {Mti::kStreamDataComplete, "Stream Data Complete"},
+    {Mti::kTractionControlCommand, "Traction Control Command"},
+    {Mti::kTractionControlReply, "Traction Control Reply"},
+};
+
 /// Human-readable name of a known MTI ("Verify Node ID Global"), or "" when unknown.
 constexpr std::string_view mti_name(Mti mti) {
-    switch (mti) {
-        case Mti::kInitializationComplete:
-            return "Initialization Complete";
-        case Mti::kInitializationCompleteSimple:
-            return "Initialization Complete Simple";
-        case Mti::kVerifyNodeIdAddressed:
-            return "Verify Node ID Addressed";
-        case Mti::kVerifyNodeIdGlobal:
-            return "Verify Node ID Global";
-        case Mti::kVerifiedNodeId:
-            return "Verified Node ID";
-        case Mti::kVerifiedNodeIdSimple:
-            return "Verified Node ID Simple";
-        case Mti::kOptionalInteractionRejected:
-            return "Optional Interaction Rejected";
-        case Mti::kTerminateDueToError:
-            return "Terminate Due To Error";
-        case Mti::kProtocolSupportInquiry:
-            return "Protocol Support Inquiry";
-        case Mti::kProtocolSupportReply:
-            return "Protocol Support Reply";
-        case Mti::kIdentifyConsumer:
-            return "Identify Consumer";
-        case Mti::kConsumerRangeIdentified:
-            return "Consumer Range Identified";
-        case Mti::kConsumerIdentifiedValid:
-            return "Consumer Identified Valid";
-        case Mti::kConsumerIdentifiedInvalid:
-            return "Consumer Identified Invalid";
-        case Mti::kConsumerIdentifiedReserved:
-            return "Consumer Identified Reserved";
-        case Mti::kConsumerIdentifiedUnknown:
-            return "Consumer Identified Unknown";
-        case Mti::kIdentifyProducer:
-            return "Identify Producer";
-        case Mti::kProducerRangeIdentified:
-            return "Producer Range Identified";
-        case Mti::kProducerIdentifiedValid:
-            return "Producer Identified Valid";
-        case Mti::kProducerIdentifiedInvalid:
-            return "Producer Identified Invalid";
-        case Mti::kProducerIdentifiedReserved:
-            return "Producer Identified Reserved";
-        case Mti::kProducerIdentifiedUnknown:
-            return "Producer Identified Unknown";
-        case Mti::kIdentifyEventsAddressed:
-            return "Identify Events Addressed";
-        case Mti::kIdentifyEventsGlobal:
-            return "Identify Events Global";
-        case Mti::kLearnEvent:
-            return "Learn Event";
-        case Mti::kEventReport:
-            return "Producer/Consumer Event Report";
-        case Mti::kEventReportWithPayload:
-            return "Event Report With Payload";
-        case Mti::kSnipRequest:
-            return "Simple Node Ident Info Request";
-        case Mti::kSnipReply:
-            return "Simple Node Ident Info Reply";
-        case Mti::kDatagram:
-            return "Datagram";
-        case Mti::kDatagramReceivedOk:
-            return "Datagram Received OK";
-        case Mti::kDatagramRejected:
-            return "Datagram Rejected";
-        case Mti::kStreamInitiateRequest:
-            return "Stream Initiate Request";
-        case Mti::kStreamInitiateReply:
-            return "Stream Initiate Reply";
-        case Mti::kStreamDataSend:
-            return "Stream Data Send";
-        case Mti::kStreamDataProceed:
-            return "Stream Data Proceed";
-        case Mti::kStreamDataComplete:
-            return "Stream Data Complete";
-        case Mti::kTractionControlCommand:
-            return "Traction Control Command";
-        case Mti::kTractionControlReply:
-            return "Traction Control Reply";
+    for (const auto& [known, name] : kMtiNames) {
+        if (known == mti) return name;
     }
     return "";
 }

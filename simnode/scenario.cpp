@@ -359,6 +359,209 @@ public:
 
     bool group(const std::string& name, const Keys& keys, const fs::path& default_root) {
         const std::string where = name.empty() ? "node" : "[node." + name + "]";
+        Group g;
+        if (!ids_of(keys, where, g) || !cdi_of(keys, where, g)) return false;
+        g.root = path_of(keys, "image-dir");
+        if (g.root.empty()) g.root = default_root;
+        if (single(keys, "manufacturer") || single(keys, "model") ||
+            single(keys, "hardware-version") || single(keys, "software-version")) {
+            g.identity = identity_of(*g.cdi, keys);
+        }
+        return faults_of(keys, where, g) && add_nodes(keys, where, g);
+    }
+
+    bool process(const Keys& keys) {
+        using Read = bool (Builder::*)(const std::string& value, const Keys& keys);
+        // In the order they are checked: the first bad key is the one reported. control-remote
+        // comes before control, which needs it.
+        static constexpr std::pair<std::string_view, Read> kReaders[] = {
+            {"listen", &Builder::read_listen},
+            {"connect", &Builder::read_connect},
+            {"socketcan", &Builder::read_socketcan},
+            {"serial", &Builder::read_serial},
+            {"baud", &Builder::read_baud},
+            {"flow-control", &Builder::read_flow_control},
+            {"max-clients", &Builder::read_max_clients},
+            {"max-clients-per-address", &Builder::read_max_clients_per_address},
+            {"idle-timeout", &Builder::read_idle_timeout},
+            {"latency", &Builder::read_latency},
+            {"control-remote", &Builder::read_control_remote},
+            {"control", &Builder::read_control},
+            {"bitrate", &Builder::read_bitrate},
+            {"start-on-connect", &Builder::read_start_on_connect},
+            {"trace", &Builder::read_trace},
+            {"candump", &Builder::read_candump},
+            {"audit", &Builder::read_audit},
+            {"audit-junit", &Builder::read_audit_junit},
+            {"log-max-bytes", &Builder::read_log_max_bytes},
+            {"run-for", &Builder::read_run_for},
+        };
+        for (const auto& [key, read] : kReaders) {
+            if (const auto* v = single(keys, key); v && !(this->*read)(*v, keys)) return false;
+        }
+        return true;
+    }
+
+private:
+    // The process keys' readers (see process()): each one has its key's value.
+    bool read_listen(const std::string& v, const Keys&) {
+        std::string why;
+        scenario_.listen = parse_host_port(v, why);
+        return scenario_.listen || fail("listen: " + why);
+    }
+
+    bool read_connect(const std::string& v, const Keys&) {
+        std::string why;
+        scenario_.connect = parse_host_port(v, why);
+        if (!scenario_.connect) return fail("connect: " + why);
+        return scenario_.connect->port != 0 || fail("connect: port 0 is not a port");
+    }
+
+    bool read_socketcan(const std::string& v, const Keys&) {
+        scenario_.socketcan = v;
+        return true;
+    }
+
+    bool read_serial(const std::string& v, const Keys&) {
+        scenario_.serial = v;
+        return true;
+    }
+
+    bool read_baud(const std::string& v, const Keys&) {
+        unsigned long baud = 0;
+        const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), baud);
+        if (ec != std::errc() || end != v.data() + v.size() || baud == 0 || baud > kMaxBaud) {
+            return fail("baud '" + v + "' must be a bit rate such as 115200");
+        }
+        scenario_.baud = static_cast<unsigned>(baud);
+        return true;
+    }
+
+    bool read_flow_control(const std::string& v, const Keys&) {
+        if (v != "none" && v != "rtscts")
+            return fail("flow-control '" + v + "' must be none or rtscts");
+        scenario_.rtscts = v == "rtscts";
+        return true;
+    }
+
+    bool read_client_limit(std::string_view key, const std::string& v, std::size_t& field) {
+        const auto n = parse_count(v);
+        if (!n) return fail(std::string(key) + " '" + v + "' must be a whole number >= 1");
+        field = static_cast<std::size_t>(*n);
+        return true;
+    }
+
+    bool read_max_clients(const std::string& v, const Keys&) {
+        return read_client_limit("max-clients", v, scenario_.max_clients);
+    }
+
+    bool read_max_clients_per_address(const std::string& v, const Keys&) {
+        return read_client_limit("max-clients-per-address", v, scenario_.max_clients_per_address);
+    }
+
+    bool read_idle_timeout(const std::string& v, const Keys&) {
+        const auto seconds = parse_seconds(v);
+        if (!seconds) return fail("idle-timeout '" + v + "' must be a number of seconds >= 0");
+        scenario_.idle_timeout = *seconds;
+        return true;
+    }
+
+    bool read_latency(const std::string& v, const Keys&) {
+        std::string why;
+        const auto parsed = parse_faults({"latency=" + v}, why);
+        if (!parsed) return fail("latency '" + v + "' must be MS or MS:JITTER (milliseconds)");
+        latency_ = *parsed;
+        scenario_.latency = v;
+        return true;
+    }
+
+    bool read_control_remote(const std::string& v, const Keys&) {
+        const auto on = parse_bool(v);
+        if (!on) return fail("control-remote '" + v + "' must be true or false");
+        scenario_.control_remote = *on;
+        return true;
+    }
+
+    // Control changes every node: it listens where other machines reach it only when told so.
+    bool read_control(const std::string& v, const Keys&) {
+        std::string why;
+        scenario_.control = parse_host_port(v, why);
+        if (!scenario_.control) return fail("control: " + why);
+        boost::system::error_code ec;
+        const auto ip = boost::asio::ip::make_address(scenario_.control->host, ec);
+        if (ec) return fail("control: '" + scenario_.control->host + "' is not a numeric address");
+        if (!ip.is_loopback() && !scenario_.control_remote) {
+            return fail("control: " + scenario_.control->host +
+                        " is not a loopback address; give control-remote = true "
+                        "(--control-remote) to let other machines change the nodes");
+        }
+        return true;
+    }
+
+    bool read_bitrate(const std::string& v, const Keys&) {
+        const auto n = parse_bytes(v);
+        if (!n || (*n != 0 && (*n < kMinBitrate || *n > kMaxBitrate))) {
+            return fail("bitrate '" + v + "' must be 0 (off) or 10000..1000000 bit/s");
+        }
+        scenario_.bitrate = static_cast<std::uint32_t>(*n);
+        return true;
+    }
+
+    bool read_start_on_connect(const std::string& v, const Keys&) {
+        const auto on = parse_bool(v);
+        if (!on) return fail("start-on-connect '" + v + "' must be true or false");
+        scenario_.start_on_connect = *on;
+        return true;
+    }
+
+    // Paths are resolved against the directory of the file that gave them.
+    bool read_trace(const std::string&, const Keys& keys) {
+        scenario_.trace = path_of(keys, "trace");
+        return true;
+    }
+
+    bool read_candump(const std::string&, const Keys& keys) {
+        scenario_.candump = path_of(keys, "candump");
+        return true;
+    }
+
+    bool read_audit(const std::string&, const Keys& keys) {
+        scenario_.audit = path_of(keys, "audit");
+        return true;
+    }
+
+    bool read_audit_junit(const std::string&, const Keys& keys) {
+        scenario_.audit_junit = path_of(keys, "audit-junit");
+        return true;
+    }
+
+    bool read_log_max_bytes(const std::string& v, const Keys&) {
+        const auto n = parse_bytes(v);
+        if (!n) return fail("log-max-bytes '" + v + "' must be a whole number of bytes >= 0");
+        scenario_.log_max_bytes = *n;
+        return true;
+    }
+
+    bool read_run_for(const std::string& v, const Keys&) {
+        const auto seconds = parse_seconds(v);
+        if (!seconds) return fail("run-for '" + v + "' must be a number of seconds >= 0");
+        scenario_.run_for = *seconds;
+        return true;
+    }
+
+    // What a node group's keys say, shared by each of its nodes.
+    struct Group {
+        NodeId base;
+        std::uint64_t count = 1;
+        fs::path cdi_path;
+        const std::string* cdi = nullptr;
+        fs::path root;  // where the nodes' image directories go
+        std::optional<Identity> identity;
+        FaultSet faults;
+    };
+
+    // node-id and count: the group's first node ID and how many follow it.
+    bool ids_of(const Keys& keys, const std::string& where, Group& g) {
         const std::string* id_text = single(keys, "node-id");
         if (!id_text) return fail(where + ": node-id is missing");
         std::string why;
@@ -367,38 +570,39 @@ public:
             return fail(where + ": node-id '" + *id_text +
                         "': " + (why.empty() ? "must not be zero" : why));
         }
-        std::uint64_t count = 1;
+        g.base = *base;
         if (const auto* c = single(keys, "count")) {
             const auto v = parse_count(*c);
             if (!v) {
                 return fail(where + ": count '" + *c + "' must be a whole number 1.." +
                             std::to_string(kMaxCount));
             }
-            count = *v;
+            g.count = *v;
         }
-        if (base->value() + (count - 1) > NodeId::kMask) {
+        if (g.base.value() + (g.count - 1) > NodeId::kMask) {
             return fail(where + ": node IDs run past FF.FF.FF.FF.FF.FF");
         }
-        const fs::path cdi_path = path_of(keys, "cdi");
-        if (cdi_path.empty()) return fail(where + ": cdi is missing");
+        return true;
+    }
+
+    bool cdi_of(const Keys& keys, const std::string& where, Group& g) {
+        g.cdi_path = path_of(keys, "cdi");
+        if (g.cdi_path.empty()) return fail(where + ": cdi is missing");
         std::error_code size_error;
-        const auto size = fs::file_size(cdi_path, size_error);
+        const auto size = fs::file_size(g.cdi_path, size_error);
         if (!size_error && size > cdi::kMaxCdiBytes) {
             // Checked before reading: a 100 MB file would otherwise cost gigabytes to refuse.
-            return fail(where + ": CDI file " + cdi_path.string() + " is " + std::to_string(size) +
-                        " bytes, over the limit of " + std::to_string(cdi::kMaxCdiBytes) +
-                        " (16 MiB)");
+            return fail(where + ": CDI file " + g.cdi_path.string() + " is " +
+                        std::to_string(size) + " bytes, over the limit of " +
+                        std::to_string(cdi::kMaxCdiBytes) + " (16 MiB)");
         }
-        const std::string* cdi = read_cdi(cdi_path, why);
-        if (!cdi) return fail(where + ": CDI file: " + why);
-        fs::path root = path_of(keys, "image-dir");
-        if (root.empty()) root = default_root;
+        std::string why;
+        g.cdi = read_cdi(g.cdi_path, why);
+        return g.cdi || fail(where + ": CDI file: " + why);
+    }
 
-        std::optional<Identity> identity;
-        if (single(keys, "manufacturer") || single(keys, "model") ||
-            single(keys, "hardware-version") || single(keys, "software-version")) {
-            identity = identity_of(*cdi, keys);
-        }
+    // The group's faults; without a latency of its own it takes the process-wide one.
+    bool faults_of(const Keys& keys, const std::string& where, Group& g) {
         std::vector<std::string> fault_list;
         if (const auto it = keys.find("fault"); it != keys.end()) {
             for (const auto& f : it->second.items) {
@@ -412,133 +616,36 @@ public:
             faults->latency = latency_.latency;
             faults->latency_jitter = latency_.latency_jitter;
         }
+        g.faults = *faults;
+        return true;
+    }
 
+    bool add_nodes(const Keys& keys, const std::string& where, const Group& g) {
         const std::string* user_name = single(keys, "user-name");
         const std::string* user_description = single(keys, "user-description");
         const std::string* watch = single(keys, "watch-variable");
         const std::string* streams = single(keys, "streams");
         const auto streams_on = streams ? parse_bool(*streams) : std::optional<bool>(true);
         if (!streams_on) return fail(where + ": streams '" + *streams + "' must be true or false");
-        for (std::uint64_t k = 0; k < count; ++k) {
+        for (std::uint64_t k = 0; k < g.count; ++k) {
             NodeConfig config;
-            config.node_id = NodeId(base->value() + k);
+            config.node_id = NodeId(g.base.value() + k);
             if (!ids_.insert(config.node_id).second) {
                 return fail(where + ": node ID " + config.node_id.to_string() +
                             " is used by another node");
             }
-            config.cdi = *cdi;
-            config.cdi_file = cdi_path;
-            config.image_dir = root / config.node_id.to_string();
-            config.identity = identity;
+            config.cdi = *g.cdi;
+            config.cdi_file = g.cdi_path;
+            config.image_dir = g.root / config.node_id.to_string();
+            config.identity = g.identity;
             if (user_name) config.user_name = expand(*user_name, k + 1, config.node_id);
             if (user_description) {
                 config.user_description = expand(*user_description, k + 1, config.node_id);
             }
-            config.faults = *faults;
+            config.faults = g.faults;
             if (watch) config.watch_variable = *watch;
             config.streams = *streams_on;
             scenario_.nodes.push_back(std::move(config));
-        }
-        return true;
-    }
-
-    bool process(const Keys& keys) {
-        std::string why;
-        if (const auto* v = single(keys, "listen")) {
-            scenario_.listen = parse_host_port(*v, why);
-            if (!scenario_.listen) return fail("listen: " + why);
-        }
-        if (const auto* v = single(keys, "connect")) {
-            scenario_.connect = parse_host_port(*v, why);
-            if (!scenario_.connect) return fail("connect: " + why);
-            if (scenario_.connect->port == 0) return fail("connect: port 0 is not a port");
-        }
-        if (const auto* v = single(keys, "socketcan")) scenario_.socketcan = *v;
-        if (const auto* v = single(keys, "serial")) scenario_.serial = *v;
-        if (const auto* v = single(keys, "baud")) {
-            unsigned long baud = 0;
-            const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), baud);
-            if (ec != std::errc() || end != v->data() + v->size() || baud == 0 || baud > kMaxBaud) {
-                return fail("baud '" + *v + "' must be a bit rate such as 115200");
-            }
-            scenario_.baud = static_cast<unsigned>(baud);
-        }
-        if (const auto* v = single(keys, "flow-control")) {
-            if (*v != "none" && *v != "rtscts") {
-                return fail("flow-control '" + *v + "' must be none or rtscts");
-            }
-            scenario_.rtscts = *v == "rtscts";
-        }
-        for (const auto& [key, field] :
-             {std::pair{"max-clients", &scenario_.max_clients},
-              std::pair{"max-clients-per-address", &scenario_.max_clients_per_address}}) {
-            if (const auto* v = single(keys, key)) {
-                const auto n = parse_count(*v);
-                if (!n) return fail(std::string(key) + " '" + *v + "' must be a whole number >= 1");
-                *field = static_cast<std::size_t>(*n);
-            }
-        }
-        if (const auto* v = single(keys, "idle-timeout")) {
-            const auto seconds = parse_seconds(*v);
-            if (!seconds) return fail("idle-timeout '" + *v + "' must be a number of seconds >= 0");
-            scenario_.idle_timeout = *seconds;
-        }
-        if (const auto* v = single(keys, "latency")) {
-            const auto parsed = parse_faults({"latency=" + *v}, why);
-            if (!parsed) return fail("latency '" + *v + "' must be MS or MS:JITTER (milliseconds)");
-            latency_ = *parsed;
-            scenario_.latency = *v;
-        }
-        if (!control(keys)) return false;
-        if (const auto* v = single(keys, "bitrate")) {
-            const auto n = parse_bytes(*v);
-            if (!n || (*n != 0 && (*n < kMinBitrate || *n > kMaxBitrate))) {
-                return fail("bitrate '" + *v + "' must be 0 (off) or 10000..1000000 bit/s");
-            }
-            scenario_.bitrate = static_cast<std::uint32_t>(*n);
-        }
-        if (const auto* v = single(keys, "start-on-connect")) {
-            const auto on = parse_bool(*v);
-            if (!on) return fail("start-on-connect '" + *v + "' must be true or false");
-            scenario_.start_on_connect = *on;
-        }
-        scenario_.trace = path_of(keys, "trace");
-        scenario_.candump = path_of(keys, "candump");
-        scenario_.audit = path_of(keys, "audit");
-        scenario_.audit_junit = path_of(keys, "audit-junit");
-        if (const auto* v = single(keys, "log-max-bytes")) {
-            const auto n = parse_bytes(*v);
-            if (!n) return fail("log-max-bytes '" + *v + "' must be a whole number of bytes >= 0");
-            scenario_.log_max_bytes = *n;
-        }
-        if (const auto* v = single(keys, "run-for")) {
-            const auto seconds = parse_seconds(*v);
-            if (!seconds) return fail("run-for '" + *v + "' must be a number of seconds >= 0");
-            scenario_.run_for = *seconds;
-        }
-        return true;
-    }
-
-private:
-    // Control changes every node: it listens where other machines reach it only when told so.
-    bool control(const Keys& keys) {
-        if (const auto* v = single(keys, "control-remote")) {
-            const auto on = parse_bool(*v);
-            if (!on) return fail("control-remote '" + *v + "' must be true or false");
-            scenario_.control_remote = *on;
-        }
-        const auto* v = single(keys, "control");
-        if (!v) return true;
-        std::string why;
-        scenario_.control = parse_host_port(*v, why);
-        if (!scenario_.control) return fail("control: " + why);
-        boost::system::error_code ec;
-        const auto ip = boost::asio::ip::make_address(scenario_.control->host, ec);
-        if (ec) return fail("control: '" + scenario_.control->host + "' is not a numeric address");
-        if (!ip.is_loopback() && !scenario_.control_remote) {
-            return fail("control: " + scenario_.control->host +
-                        " is not a loopback address; give control-remote = true "
-                        "(--control-remote) to let other machines change the nodes");
         }
         return true;
     }

@@ -142,243 +142,301 @@ std::unique_ptr<audit::AuditTap> open_audit(boost::asio::io_context& io, const S
     return tap;
 }
 
-int run(const Scenario& scenario) {
-    boost::asio::io_context io;
+// One run of a scenario: the nodes, the segment and every transport bridged onto it, live
+// control and the stop conditions, built in that order (and destroyed in reverse).
+class Runner {
+public:
+    explicit Runner(const Scenario& scenario)
+        : scenario_(scenario), run_timer_(io_), startup_timer_(io_) {}
 
-    std::vector<std::unique_ptr<SimNode>> nodes;
-    nodes.reserve(scenario.nodes.size());
-    for (const auto& config : scenario.nodes) {
-        std::string error;
-        std::error_code ec;
-        if (!config.image_dir.empty() && !fs::create_directories(config.image_dir, ec) && ec) {
-            std::cerr << "simnode: cannot create image directory " << config.image_dir.string()
-                      << ": " << ec.message() << "\n";
-            return kExitRuntime;
+    int run() {
+        if (!create_nodes() || !open_segment()) return kExitRuntime;
+        node_port_ = &add_port({});
+        if (!start_audit() || !open_tap()) return kExitRuntime;
+        open_client();
+        if (!open_socketcan() || !open_serial()) return kExitRuntime;
+        driver_.emplace(io_, audit_ ? audit_->attach(*node_port_, hub_.get()) : *node_port_);
+        for (auto& node : nodes_) driver_->attach(node->stack());
+        // Live control (docs/control.md): changes the nodes from the same io_context.
+        registry_.emplace(nodes_, *driver_);
+        commands_.emplace(*registry_, scenario_);
+        commands_->set_log_handler(say);
+        control_.emplace(io_, *commands_);
+        control_->set_log_handler(say);
+        if (!start_control()) return kExitRuntime;
+        arm_stop();
+        announce();
+        start_nodes();
+        watch_startup();
+        io_.run();
+        finish_audit();
+        say("stopped");
+        return audit_error_.empty() ? 0 : kExitRuntime;
+    }
+
+private:
+    bool create_nodes() {
+        nodes_.reserve(scenario_.nodes.size());
+        for (const auto& config : scenario_.nodes) {
+            std::string error;
+            std::error_code ec;
+            if (!config.image_dir.empty() && !fs::create_directories(config.image_dir, ec) && ec) {
+                std::cerr << "simnode: cannot create image directory " << config.image_dir.string()
+                          << ": " << ec.message() << "\n";
+                return false;
+            }
+            auto node = SimNode::create(config, error);
+            if (!node) {
+                std::cerr << "simnode: node " << config.node_id.to_string() << ": " << error
+                          << "\n";
+                return false;
+            }
+            if (!node->cdi_problem().empty()) {
+                std::cerr << "simnode: warning: node " << config.node_id.to_string()
+                          << " serves a CDI that is not valid: " << node->cdi_problem() << "\n";
+            }
+            nodes_.push_back(std::move(node));
         }
-        auto node = SimNode::create(config, error);
-        if (!node) {
-            std::cerr << "simnode: node " << config.node_id.to_string() << ": " << error << "\n";
-            return kExitRuntime;
-        }
-        if (!node->cdi_problem().empty()) {
-            std::cerr << "simnode: warning: node " << config.node_id.to_string()
-                      << " serves a CDI that is not valid: " << node->cdi_problem() << "\n";
-        }
-        nodes.push_back(std::move(node));
+        return true;
     }
 
     // The segment: a TCP hub when listening, else an in-process bus. Every other transport
     // is bridged onto it through one more port, so all of them can be combined.
-    std::unique_ptr<TcpHubServer> hub;
-    std::unique_ptr<InProcessBus> bus;
-    const auto add_port = [&](FrameHandler handler) -> Transport& {
-        return hub ? hub->add_local_endpoint(std::move(handler))
-                   : bus->add_endpoint(std::move(handler));
-    };
-    if (scenario.listen) {
+    bool open_segment() {
+        if (!scenario_.listen) {
+            bus_ = std::make_unique<InProcessBus>(io_);
+            if (scenario_.bitrate > 0) bus_->enable_timing(scenario_.bitrate);
+            return true;
+        }
         TcpHubOptions options;
-        options.max_clients = scenario.max_clients;
-        options.max_clients_per_address = scenario.max_clients_per_address;
+        options.max_clients = scenario_.max_clients;
+        options.max_clients_per_address = scenario_.max_clients_per_address;
         options.max_client_frames_per_second = kClientFramesPerSecond;
         options.socket_send_buffer_bytes = kHubSendBufferBytes;
         options.idle_timeout = std::chrono::duration_cast<std::chrono::milliseconds>(
-            std::chrono::duration<double>(scenario.idle_timeout));
-        options.bitrate = scenario.bitrate;
-        hub = std::make_unique<TcpHubServer>(io, options);
-        hub->set_log_handler([](const std::string& line) { say("hub: " + line); });
-        if (const auto ec = hub->listen(scenario.listen->host, scenario.listen->port)) {
-            std::cerr << "simnode: cannot listen on " << scenario.listen->to_string() << ": "
+            std::chrono::duration<double>(scenario_.idle_timeout));
+        options.bitrate = scenario_.bitrate;
+        hub_ = std::make_unique<TcpHubServer>(io_, options);
+        hub_->set_log_handler([](const std::string& line) { say("hub: " + line); });
+        if (const auto ec = hub_->listen(scenario_.listen->host, scenario_.listen->port)) {
+            std::cerr << "simnode: cannot listen on " << scenario_.listen->to_string() << ": "
                       << ec.message() << "\n";
-            return kExitRuntime;
+            return false;
         }
-    } else {
-        bus = std::make_unique<InProcessBus>(io);
-        if (scenario.bitrate > 0) bus->enable_timing(scenario.bitrate);
-    }
-    Transport& node_port = add_port({});
-    std::string audit_error;
-    const auto audit = open_audit(io, scenario, nodes, audit_error);
-    if (!audit_error.empty()) {
-        std::cerr << "simnode: audit: " << audit_error << "\n";
-        return kExitRuntime;
+        return true;
     }
 
-    TrafficTap tap;
-    std::string error;
-    if (!scenario.trace.empty() || !scenario.candump.empty()) {
-        if (!tap.open(scenario, error)) {
+    Transport& add_port(FrameHandler handler) {
+        return hub_ ? hub_->add_local_endpoint(std::move(handler))
+                    : bus_->add_endpoint(std::move(handler));
+    }
+
+    bool start_audit() {
+        audit_ = open_audit(io_, scenario_, nodes_, audit_error_);
+        if (audit_error_.empty()) return true;
+        std::cerr << "simnode: audit: " << audit_error_ << "\n";
+        return false;
+    }
+
+    bool open_tap() {
+        if (scenario_.trace.empty() && scenario_.candump.empty()) return true;
+        std::string error;
+        if (!tap_.open(scenario_, error)) {
             std::cerr << "simnode: " << error << "\n";
-            return kExitRuntime;
+            return false;
         }
-        add_port([&tap](const CanFrame& f) { tap.record(f); });
+        add_port([this](const CanFrame& f) { tap_.record(f); });
+        return true;
     }
 
-    std::unique_ptr<TcpClient> client;
-    if (scenario.connect) {
+    void open_client() {
+        if (!scenario_.connect) return;
         // Hundreds of nodes announce their events in one burst at start-up, faster than any
         // socket drains; the default 256 KiB queue would take that for a stalled hub.
         TcpClientOptions options;
         options.max_queue_bytes = kClientQueueBytes;
-        client = std::make_unique<TcpClient>(io, scenario.connect->host, scenario.connect->port,
-                                             options);
-        Transport& port = add_port([&client](const CanFrame& f) { client->send(f); });
-        client->set_handler([&port](const CanFrame& f) { port.send(f); });
-    }
-    std::unique_ptr<socketcan::SocketCanPort> can;
-    if (!scenario.socketcan.empty()) {
-        can = std::make_unique<socketcan::SocketCanPort>(io);
-        if (const auto failed = can->open(scenario.socketcan)) {
-            std::cerr << "simnode: " << failed->message << "\n";
-            return kExitRuntime;
-        }
-        Transport& port = add_port([&can](const CanFrame& f) { can->send(f); });
-        can->set_handler([&port](const CanFrame& f) { port.send(f); });
+        client_ = std::make_unique<TcpClient>(io_, scenario_.connect->host, scenario_.connect->port,
+                                              options);
+        Transport& port = add_port([this](const CanFrame& f) { client_->send(f); });
+        client_->set_handler([&port](const CanFrame& f) { port.send(f); });
     }
 
-    std::unique_ptr<SerialPort> serial;
-    if (!scenario.serial.empty()) {
+    bool open_socketcan() {
+        if (scenario_.socketcan.empty()) return true;
+        can_ = std::make_unique<socketcan::SocketCanPort>(io_);
+        if (const auto failed = can_->open(scenario_.socketcan)) {
+            std::cerr << "simnode: " << failed->message << "\n";
+            return false;
+        }
+        Transport& port = add_port([this](const CanFrame& f) { can_->send(f); });
+        can_->set_handler([&port](const CanFrame& f) { port.send(f); });
+        return true;
+    }
+
+    bool open_serial() {
+        if (scenario_.serial.empty()) return true;
         SerialOptions options;
-        options.baud = scenario.baud;
-        options.rtscts = scenario.rtscts;
-        serial = std::make_unique<SerialPort>(io, scenario.serial, options);
-        if (const auto failed = serial->open()) {
+        options.baud = scenario_.baud;
+        options.rtscts = scenario_.rtscts;
+        serial_ = std::make_unique<SerialPort>(io_, scenario_.serial, options);
+        if (const auto failed = serial_->open()) {
             std::cerr << "simnode: " << *failed << "\n";
-            return kExitRuntime;
+            return false;
         }
         // A lost adapter is reported and reopened; the nodes keep running meanwhile.
-        serial->set_connection_handler([&serial](bool up, const std::string& reason) {
+        serial_->set_connection_handler([this](bool up, const std::string& reason) {
             if (up) {
-                say("serial " + serial->device() + ": open again");
+                say("serial " + serial_->device() + ": open again");
             } else {
                 std::cerr << "simnode: " << reason << "; reopening" << std::endl;
             }
         });
-        Transport& port = add_port([&serial](const CanFrame& f) { serial->send(f); });
-        serial->set_handler([&port](const CanFrame& f) { port.send(f); });
-        say("serial " + scenario.serial + " open at " + std::to_string(scenario.baud) + " baud");
+        Transport& port = add_port([this](const CanFrame& f) { serial_->send(f); });
+        serial_->set_handler([&port](const CanFrame& f) { port.send(f); });
+        say("serial " + scenario_.serial + " open at " + std::to_string(scenario_.baud) + " baud");
+        return true;
     }
 
-    StackDriver driver(io, audit ? audit->attach(node_port, hub.get()) : node_port);
-    for (auto& node : nodes) driver.attach(node->stack());
-    // Live control (docs/control.md): changes the nodes from the same io_context.
-    NodeRegistry registry(nodes, driver);
-    ControlCommands commands(registry, scenario);
-    commands.set_log_handler(say);
-    ControlServer control(io, commands);
-    control.set_log_handler(say);
-    if (scenario.control) {
-        if (const auto ec = control.listen(scenario.control->host, scenario.control->port)) {
-            std::cerr << "simnode: cannot listen for control on " << scenario.control->to_string()
+    bool start_control() {
+        if (!scenario_.control) return true;
+        if (const auto ec = control_->listen(scenario_.control->host, scenario_.control->port)) {
+            std::cerr << "simnode: cannot listen for control on " << scenario_.control->to_string()
                       << ": " << ec.message() << "\n";
-            return kExitRuntime;
+            return false;
         }
+        return true;
     }
 
     // Before the hub closes its clients: what they left open is judged as at the end of the run.
-    const auto finish_audit = [&] {
-        if (!audit) return;
-        std::string failed = audit->finish();  // "" also once it has finished
+    void finish_audit() {
+        if (!audit_) return;
+        std::string failed = audit_->finish();  // "" also once it has finished
         if (failed.empty()) return;
         std::cerr << "simnode: audit: " << failed << std::endl;
-        audit_error = std::move(failed);
-    };
-    const auto stop = [&] {
-        control.stop();
+        audit_error_ = std::move(failed);
+    }
+
+    void stop() {
+        control_->stop();
         finish_audit();
-        if (hub) hub->stop();
-        if (client) client->stop();
-        if (can) can->close();
-        if (serial) serial->close();
-        io.stop();
-    };
-    boost::asio::signal_set signals(io, SIGINT, SIGTERM);
-    signals.async_wait([&](const boost::system::error_code& ec, int) {
-        if (!ec) stop();
-    });
-    boost::asio::steady_timer run_timer(io);
-    if (scenario.run_for) {
-        run_timer.expires_after(std::chrono::duration_cast<Clock::duration>(
-            std::chrono::duration<double>(*scenario.run_for)));
-        run_timer.async_wait([&](const boost::system::error_code& ec) {
+        if (hub_) hub_->stop();
+        if (client_) client_->stop();
+        if (can_) can_->close();
+        if (serial_) serial_->close();
+        io_.stop();
+    }
+
+    // SIGINT, SIGTERM and --run-for end the run.
+    void arm_stop() {
+        signals_.emplace(io_, SIGINT, SIGTERM);
+        signals_->async_wait([this](const boost::system::error_code& ec, int) {
+            if (!ec) stop();
+        });
+        if (!scenario_.run_for) return;
+        run_timer_.expires_after(std::chrono::duration_cast<Clock::duration>(
+            std::chrono::duration<double>(*scenario_.run_for)));
+        run_timer_.async_wait([this](const boost::system::error_code& ec) {
             if (!ec) stop();
         });
     }
 
-    describe_nodes(nodes);
-    // The bit rate follows the address, without a colon: scripts take the port after the last.
-    const std::string paced = scenario.bitrate > 0
-                                  ? " (bus paced at " + std::to_string(scenario.bitrate) + " bit/s)"
-                                  : "";
-    if (hub) {
-        say("listening on " + HostPort{scenario.listen->host, hub->port()}.to_string() + paced);
-    } else if (!paced.empty()) {
-        say("in-process segment" + paced);
+    void announce() {
+        describe_nodes(nodes_);
+        // The bit rate follows the address, without a colon: scripts take the port after the last.
+        const std::string paced =
+            scenario_.bitrate > 0
+                ? " (bus paced at " + std::to_string(scenario_.bitrate) + " bit/s)"
+                : "";
+        if (hub_) {
+            say("listening on " + HostPort{scenario_.listen->host, hub_->port()}.to_string() +
+                paced);
+        } else if (!paced.empty()) {
+            say("in-process segment" + paced);
+        }
+        if (scenario_.control) {
+            say("control on " + HostPort{scenario_.control->host, control_->port()}.to_string());
+        }
     }
-    if (scenario.control) {
-        say("control on " + HostPort{scenario.control->host, control.port()}.to_string());
-    }
-    auto started = Clock::now();
-    bool nodes_started = false;
-    if (scenario.start_on_connect && hub) {
-        // As a node that is itself a TCP server: a new client sees every node's login.
-        hub->set_connection_handler([&](const std::string& remote) {
-            if (!nodes_started) return;
-            say("client " + remote + " connected: every node logs in again (start-on-connect)");
-            const TimePoint now = Clock::now();
-            for (auto& node : nodes) node->relogin(now);
-        });
-    } else if (scenario.start_on_connect) {
-        std::cerr << "simnode: warning: start-on-connect does nothing without listen" << std::endl;
-    }
-    if (client) {
+
+    void start_nodes() {
+        started_ = Clock::now();
+        if (scenario_.start_on_connect && hub_) {
+            // As a node that is itself a TCP server: a new client sees every node's login.
+            hub_->set_connection_handler([this](const std::string& remote) {
+                if (!nodes_started_) return;
+                say("client " + remote + " connected: every node logs in again (start-on-connect)");
+                const TimePoint now = Clock::now();
+                for (auto& node : nodes_) node->relogin(now);
+            });
+        } else if (scenario_.start_on_connect) {
+            std::cerr << "simnode: warning: start-on-connect does nothing without listen"
+                      << std::endl;
+        }
+        if (!client_) {
+            nodes_started_ = true;
+            registry_->start_all();
+            return;
+        }
         // The nodes start once the hub is reached, so the hub's nodes see their alias
         // reservation and can object to a collision.
-        const std::string where = scenario.connect->to_string();
-        client->set_connection_handler([&, where](bool up) {
+        const std::string where = scenario_.connect->to_string();
+        client_->set_connection_handler([this, where](bool up) {
             if (!up) {
                 std::cerr << "simnode: lost the hub " << where << "; reconnecting" << std::endl;
                 return;
             }
             say("connected to hub " + where);
-            if (nodes_started) return;
-            nodes_started = true;
-            started = Clock::now();
-            registry.start_all();
+            if (nodes_started_) return;
+            nodes_started_ = true;
+            started_ = Clock::now();
+            registry_->start_all();
         });
         say("connecting to hub " + where);
-        client->start();
-    } else {
-        nodes_started = true;
-        registry.start_all();
+        client_->start();
     }
 
     // One line once every node holds an alias and sent Initialization Complete: start-up time
     // and memory for scripts and benchmarks.
-    boost::asio::steady_timer startup_timer(io);
-    std::function<void(const boost::system::error_code&)> check_startup =
-        [&](const boost::system::error_code& ec) {
+    void watch_startup() {
+        startup_timer_.expires_after(kStartupPoll);
+        startup_timer_.async_wait([this](const boost::system::error_code& ec) {
             if (ec) return;
             std::size_t ready = 0;
-            for (const auto& node : nodes) ready += node->stack().initialized() ? 1 : 0;
-            if (ready == nodes.size()) {
-                const auto ms =
-                    std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - started)
-                        .count();
-                say(std::to_string(nodes.size()) + " node(s) initialized in " + std::to_string(ms) +
-                    " ms, RSS " + std::to_string(resident_kib() / 1024) + " MiB");
+            for (const auto& node : nodes_) ready += node->stack().initialized() ? 1 : 0;
+            if (ready < nodes_.size()) {
+                watch_startup();
                 return;
             }
-            startup_timer.expires_after(kStartupPoll);
-            startup_timer.async_wait(check_startup);
-        };
-    startup_timer.expires_after(kStartupPoll);
-    startup_timer.async_wait(check_startup);
+            const auto ms =
+                std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - started_)
+                    .count();
+            say(std::to_string(nodes_.size()) + " node(s) initialized in " + std::to_string(ms) +
+                " ms, RSS " + std::to_string(resident_kib() / 1024) + " MiB");
+        });
+    }
 
-    io.run();
-    finish_audit();
-    say("stopped");
-    return audit_error.empty() ? 0 : kExitRuntime;
-}
+    const Scenario& scenario_;
+    boost::asio::io_context io_;
+    std::vector<std::unique_ptr<SimNode>> nodes_;
+    std::unique_ptr<TcpHubServer> hub_;
+    std::unique_ptr<InProcessBus> bus_;
+    Transport* node_port_ = nullptr;
+    std::string audit_error_;
+    std::unique_ptr<audit::AuditTap> audit_;
+    TrafficTap tap_;
+    std::unique_ptr<TcpClient> client_;
+    std::unique_ptr<socketcan::SocketCanPort> can_;
+    std::unique_ptr<SerialPort> serial_;
+    std::optional<StackDriver> driver_;
+    std::optional<NodeRegistry> registry_;
+    std::optional<ControlCommands> commands_;
+    std::optional<ControlServer> control_;
+    std::optional<boost::asio::signal_set> signals_;
+    boost::asio::steady_timer run_timer_;
+    TimePoint started_;
+    bool nodes_started_ = false;
+    boost::asio::steady_timer startup_timer_;
+};
 
 }  // namespace
 
@@ -415,7 +473,7 @@ static int main_checked(int argc, char** argv) {
     }
     // A peer closing its socket must not kill the process.
     ::signal(SIGPIPE, SIG_IGN);
-    return run(parsed->scenario);
+    return Runner(parsed->scenario).run();
 }
 
 int main(int argc, char** argv) {

@@ -166,7 +166,7 @@ struct FakeBench {
     std::unique_ptr<Link> link;
     std::unique_ptr<Session> session;
 
-    explicit FakeBench(NodeStackConfig config) : node(std::move(config)) {
+    explicit FakeBench(NodeStackConfig config) : node(config) {
         net.set_logging(false);
         net.add_stack(node);
         node.start(net.now());

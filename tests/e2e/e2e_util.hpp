@@ -46,6 +46,7 @@ public:
         std::vector<std::string> all{program};
         all.insert(all.end(), args.begin(), args.end());
         std::vector<char*> argv;
+        argv.reserve(all.size() + 1);
         for (auto& a : all) argv.push_back(a.data());
         argv.push_back(nullptr);
         const pid_t pid = ::fork();

@@ -12,12 +12,12 @@ using test::drain;
 using test::gc;
 using Strings = std::vector<std::string>;
 
-const NodeId kNode(0x050101012200);
-const NodeId kRunner(0x02010D000001);
+constexpr NodeId kNode(0x050101012200);
+constexpr NodeId kRunner(0x02010D000001);
 const TimePoint t0{};
 
-const Strings kCid343 = {":X17050343N;", ":X16101343N;", ":X15012343N;", ":X14200343N;"};
-const Strings kCidBd9 = {":X17050BD9N;", ":X16101BD9N;", ":X15012BD9N;", ":X14200BD9N;"};
+const Strings cid_343 = {":X17050343N;", ":X16101343N;", ":X15012343N;", ":X14200343N;"};
+const Strings cid_bd9 = {":X17050BD9N;", ":X16101BD9N;", ":X15012BD9N;", ":X14200BD9N;"};
 
 std::vector<AliasEvent> events(AliasAllocator& a) {
     std::vector<AliasEvent> out;
@@ -40,7 +40,7 @@ TEST(AliasAllocator, StartupSequenceOfWorkedExample) {
     EXPECT_EQ(a.state(), AliasAllocator::State::kIdle);
     EXPECT_FALSE(a.next_deadline());
     a.start(t0);
-    EXPECT_EQ(drain(a), kCid343);
+    EXPECT_EQ(drain(a), cid_343);
     EXPECT_EQ(a.alias(), 0x343);
     EXPECT_EQ(a.state(), AliasAllocator::State::kChecking);
     EXPECT_EQ(a.next_deadline(), t0 + 200ms);
@@ -94,7 +94,7 @@ TEST(AliasAllocator, NonCidHittingActiveAliasSendsAmrAndReallocates) {
     auto a = permitted_node();
     a.on_frame(gc(":X19490343N;"), t0 + 1s);
     Strings expected = {":X10703343N050101012200;"};
-    expected.insert(expected.end(), kCidBd9.begin(), kCidBd9.end());
+    expected.insert(expected.end(), cid_bd9.begin(), cid_bd9.end());
     EXPECT_EQ(drain(a), expected);
     EXPECT_FALSE(a.permitted());
     EXPECT_EQ(a.alias(), 0xBD9);
@@ -111,7 +111,7 @@ TEST(AliasAllocator, NonCidHittingReservedAliasDropsItSilently) {
     drain(a);
     events(a);
     a.on_frame(gc(":X10701343N020000000001;"), t0 + 300ms);  // AMD from someone else
-    EXPECT_EQ(drain(a), kCidBd9) << "no AMR for an alias that was never Permitted";
+    EXPECT_EQ(drain(a), cid_bd9) << "no AMR for an alias that was never Permitted";
     EXPECT_EQ(events(a), (std::vector<AliasEvent>{{AliasEvent::Kind::kConflictRestart, 0x343}}));
     EXPECT_EQ(a.state(), AliasAllocator::State::kChecking);
 }
@@ -123,7 +123,7 @@ TEST_P(TentativeConflict, AnyFrameWithTentativeAliasRestartsWithNextAlias) {
     a.start(t0);
     drain(a);
     a.on_frame(gc(GetParam()), t0 + 150ms);
-    EXPECT_EQ(drain(a), kCidBd9);
+    EXPECT_EQ(drain(a), cid_bd9);
     EXPECT_EQ(a.alias(), 0xBD9);
     EXPECT_EQ(a.attempts(), 2u);
     EXPECT_EQ(a.next_deadline(), t0 + 350ms);
@@ -153,7 +153,7 @@ TEST(AliasAllocator, TransmitErrorDuringCheckRestarts) {
     a.start(t0);
     drain(a);
     a.on_transmit_error(t0 + 1ms);
-    EXPECT_EQ(drain(a), kCidBd9);
+    EXPECT_EQ(drain(a), cid_bd9);
 }
 
 TEST(AliasAllocator, FramesOfOtherAliasesAndNonOpenLcbFramesIgnored) {

@@ -44,6 +44,7 @@ std::vector<std::string> drain(Machine& m) {
 /// GridConnect text of a frame list.
 inline std::vector<std::string> texts(const std::vector<CanFrame>& frames) {
     std::vector<std::string> out;
+    out.reserve(frames.size());
     for (const auto& f : frames) out.push_back(gridconnect::format(f));
     return out;
 }

@@ -259,32 +259,43 @@ private:
         if (!can::is_message(f.id)) return;
         const auto format = can::frame_format(f.id);
         if (can::is_datagram_format(format)) {
-            if (can::dest_alias(f.id) != kClientAlias) return;
-            if (format == can::FrameFormat::kDatagramOnly ||
-                format == can::FrameFormat::kDatagramFirst) {
-                partial_.clear();
-                partial_index_ = index;
-            }
-            partial_.insert(partial_.end(), f.data.begin(), f.data.begin() + f.len);
-            if (format == can::FrameFormat::kDatagramOnly ||
-                format == can::FrameFormat::kDatagramLast) {
-                if (waiting_ && !answer_.reply) {
-                    answer_.reply = partial_;
-                    answer_.reply_at = t;
-                    answer_.reply_index = partial_index_;
-                }
-                if (auto_ack_) {
-                    const std::uint16_t src = can::source_alias(f.id);
-                    port_.send(can::make_frame(
-                        can::message_header(0xA28, kClientAlias),
-                        std::vector<std::uint8_t>{static_cast<std::uint8_t>(src >> 8),
-                                                  static_cast<std::uint8_t>(src & 0xFF), 0}));
-                }
-            }
+            if (can::dest_alias(f.id) == kClientAlias) on_datagram_frame(f, format, t, index);
             return;
         }
         if (format != can::FrameFormat::kGlobalAddressed || f.len < 2) return;
         if (can::addressed_dest(f.data[0], f.data[1]) != kClientAlias) return;
+        on_addressed(f, t, index);
+    }
+
+    // A datagram frame to the client: collected, and once whole the answer awaited (and acked).
+    void on_datagram_frame(const CanFrame& f, can::FrameFormat format, TimePoint t,
+                           std::size_t index) {
+        if (format == can::FrameFormat::kDatagramOnly ||
+            format == can::FrameFormat::kDatagramFirst) {
+            partial_.clear();
+            partial_index_ = index;
+        }
+        partial_.insert(partial_.end(), f.data.begin(), f.data.begin() + f.len);
+        if (format != can::FrameFormat::kDatagramOnly &&
+            format != can::FrameFormat::kDatagramLast) {
+            return;
+        }
+        if (waiting_ && !answer_.reply) {
+            answer_.reply = partial_;
+            answer_.reply_at = t;
+            answer_.reply_index = partial_index_;
+        }
+        if (auto_ack_) {
+            const std::uint16_t src = can::source_alias(f.id);
+            port_.send(can::make_frame(
+                can::message_header(0xA28, kClientAlias),
+                std::vector<std::uint8_t>{static_cast<std::uint8_t>(src >> 8),
+                                          static_cast<std::uint8_t>(src & 0xFF), 0}));
+        }
+    }
+
+    // An addressed message to the client: Datagram Received OK, Datagram Rejected, SNIP reply.
+    void on_addressed(const CanFrame& f, TimePoint t, std::size_t index) {
         const std::uint16_t mti = can::can_mti(f.id);
         if (mti == 0xA28 && waiting_ && !answer_.ok) {
             answer_.ok = true;

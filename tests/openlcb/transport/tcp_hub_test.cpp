@@ -75,6 +75,7 @@ protected:
 TEST_F(TcpHubTest, ThreeClientsSeeEachOthersFramesNeverTheirOwn) {
     std::vector<Inbox> inboxes(3, Inbox(4));
     std::vector<std::unique_ptr<TcpClient>> clients;
+    clients.reserve(inboxes.size());
     for (auto& inbox : inboxes) clients.push_back(connect_client(inbox));
     Inbox local_inbox(4);
     Transport& local = hub->add_local_endpoint([&](const CanFrame& f) { local_inbox.take(f); });
@@ -178,7 +179,7 @@ TEST_F(TcpHubTest, LowercaseAndShortIdFramesAreRelayedReformatted) {
 
 TEST_F(TcpHubTest, StalledClientIsDroppedWhileOthersKeepReceiving) {
     hub.reset();
-    options.max_client_queue_bytes = 64 * 1024;
+    options.max_client_queue_bytes = std::size_t{64} * 1024;
     options.max_client_frames_per_second = 0;  // 10 MB from one client: no rate limit here
     SetUp();
     RawClient stalled(io, hub->port());  // connects, never reads
@@ -191,7 +192,7 @@ TEST_F(TcpHubTest, StalledClientIsDroppedWhileOthersKeepReceiving) {
 
     // 10 MB of GridConnect text from a, paced by b's progress (b must keep up throughout).
     const std::size_t line = gridconnect::format(numbered_frame(0x100, 0)).size() + 1;
-    const std::uint32_t total = static_cast<std::uint32_t>(10 * 1024 * 1024 / line);
+    const std::uint32_t total = static_cast<std::uint32_t>(std::size_t{10} * 1024 * 1024 / line);
     constexpr std::uint32_t kBatch = 2000;
     std::size_t peak_queue = 0;
     for (std::uint32_t sent = 0; sent < total;) {
@@ -220,10 +221,10 @@ TEST_F(TcpHubTest, GarbageFloodDoesNotHarmOtherClients) {
     ASSERT_TRUE(run_until(
         io, [&] { return hub->client_count() == 4 && a->connected() && b->connected(); }));
 
-    std::string noise(10 * 1024 * 1024, '\0');
+    std::string noise(std::size_t{10} * 1024 * 1024, '\0');
     std::mt19937 rng(1234);
     for (char& c : noise) c = static_cast<char>(rng());
-    std::string endless_frame = ":X19490343N" + std::string(10 * 1024 * 1024, 'A');
+    std::string endless_frame = ":X19490343N" + std::string(std::size_t{10} * 1024 * 1024, 'A');
     std::size_t written = 0;
     auto write_all = [&](RawClient& c, const std::string& text) {
         boost::asio::async_write(c.socket, boost::asio::buffer(text),
