@@ -2,7 +2,9 @@
 // Targets: >= 100 MB/s parse+layout, >= 20 M variables/s enumeration, < 10 MB peak for the
 // 10^6-replication document.
 #include <benchmark/benchmark.h>
+
 #include <malloc.h>
+#include "bench/bench_util.hpp"
 
 #include <algorithm>
 #include <cstdlib>
@@ -65,12 +67,7 @@ namespace {
 using namespace olcb::cdi;
 namespace fs = std::filesystem;
 
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using olcb::bench::read_text;
 
 std::string largest_corpus_file() {
     const fs::path dir = fs::path(OLCB_SHARED_DIR) / "corpus" / "cdi";
@@ -83,7 +80,7 @@ std::string largest_corpus_file() {
             best = entry.path();
         }
     }
-    return read_file(best);
+    return read_text(best);
 }
 
 // A realistic ~1 MB CDI without replication (every element written out), so the parser does

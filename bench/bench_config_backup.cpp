@@ -5,6 +5,8 @@
 // it (bench_simnode measures that).
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_util.hpp"
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -32,13 +34,7 @@ constexpr NodeId kToolId{0x05'01'01'01'22'FFull};
 constexpr const char* kLargest = "openlcb_java__nmranet_database_train_node.xml";
 constexpr const char* kMostVariables = "bowties__rrcirkits_signal_lcc_rev_c7c.xml";
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + p.string());
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using olcb::bench::read_text;
 
 // A simnode serving the CDI (RAM images) and a started session that has laid its CDI out.
 struct Bench {
@@ -52,7 +48,7 @@ struct Bench {
     Bench(const char* cdi_file, bool can_timing) {
         simnode::NodeConfig c;
         c.node_id = kNodeId;
-        c.cdi = read_file(fs::path(OLCB_SHARED_DIR) / "corpus" / "cdi" / cdi_file);
+        c.cdi = read_text(fs::path(OLCB_SHARED_DIR) / "corpus" / "cdi" / cdi_file);
         std::string error;
         dut = simnode::SimNode::create(c, error);
         if (!dut) throw std::runtime_error("SimNode::create: " + error);

@@ -3,6 +3,8 @@
 // frame count allows); start-up time and memory of 1,000 nodes on one segment.
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_util.hpp"
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -41,35 +43,12 @@ constexpr NodeId kToolId{0x02'01'0D'00'00'01ull};
 constexpr std::string_view kLargeCdi = "corpus/cdi/bowties__rrcirkits_signal_lcc_rev_c7c.xml";
 constexpr std::size_t kNetworkSize = 1000;
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + p.string());
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using olcb::bench::read_text;
 
 // scenarios/default.xml of the source tree (not from __FILE__: ccache may make it relative).
 std::string default_cdi() {
-    return read_file(fs::path(OLCB_SOURCE_DIR) / "scenarios/default.xml");
+    return read_text(fs::path(OLCB_SOURCE_DIR) / "scenarios/default.xml");
 }
-
-class TempDir {
-public:
-    TempDir() {
-        std::random_device rd;
-        path_ = fs::temp_directory_path() / ("bench-simnode-" + std::to_string(rd()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
 
 std::unique_ptr<SimNode> make_node(NodeId id, const std::string& cdi, const fs::path& dir) {
     NodeConfig c;
@@ -123,7 +102,7 @@ public:
     std::uint16_t node_alias() const { return node_->stack().alias(); }
 
 private:
-    TempDir dir_;
+    olcb::bench::TempDir dir_{"bench-simnode"};
     std::unique_ptr<SimNode> node_;
     boost::asio::io_context io_;
     TcpHubServer hub_;
@@ -151,7 +130,7 @@ void bm_read_round_trip_tcp(benchmark::State& state) {
 BENCHMARK(bm_read_round_trip_tcp)->Unit(benchmark::kMicrosecond)->UseRealTime();
 
 void bm_cdi_download_tcp(benchmark::State& state) {
-    const std::string cdi = read_file(fs::path(OLCB_SHARED_DIR) / kLargeCdi);
+    const std::string cdi = read_text(fs::path(OLCB_SHARED_DIR) / kLargeCdi);
     TcpRig rig(cdi);
     for (auto _ : state) {
         rig.reader().start(rig.node_alias(), 0, true);
@@ -187,12 +166,12 @@ std::uint64_t download_lower_bound_bits(std::size_t bytes) {
 }
 
 void bm_cdi_download_can_125k(benchmark::State& state) {
-    const std::string cdi = read_file(fs::path(OLCB_SHARED_DIR) / kLargeCdi);
+    const std::string cdi = read_text(fs::path(OLCB_SHARED_DIR) / kLargeCdi);
     constexpr std::uint32_t kBitrate = 125000;
     double simulated = 0;
     std::size_t reads = 0;
     for (auto _ : state) {
-        TempDir dir;
+        olcb::bench::TempDir dir{"bench-simnode"};
         auto node = make_node(kNodeId, cdi, dir.path());
         SimNetwork net;
         net.enable_timing(kBitrate);
@@ -229,7 +208,7 @@ BENCHMARK(bm_cdi_download_can_125k)->UseManualTime()->Unit(benchmark::kMilliseco
 void bm_startup_1000(benchmark::State& state) {
     const std::string cdi = default_cdi();
     for (auto _ : state) {
-        TempDir dir;
+        olcb::bench::TempDir dir{"bench-simnode"};
         const long rss0 = simnode::resident_kib();
         const auto t0 = std::chrono::steady_clock::now();
         std::vector<std::unique_ptr<SimNode>> nodes;

@@ -4,6 +4,8 @@
 // every frame the stream read put on the bus (the bound when the bus is never idle).
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_util.hpp"
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -35,30 +37,7 @@ constexpr std::string_view kLargestCdi = "corpus/cdi/openlcb_java__nmranet_datab
 constexpr std::uint16_t kToolBuffer = 0xFFFF;
 constexpr std::uint8_t kDid = 0x40;
 
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + p.string());
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-class TempDir {
-public:
-    TempDir() {
-        std::random_device rd;
-        path_ = fs::temp_directory_path() / ("bench-stream-" + std::to_string(rd()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
+using olcb::bench::read_text;
 
 NodeStackConfig tool_config() {
     NodeStackConfig c;
@@ -70,8 +49,8 @@ NodeStackConfig tool_config() {
 
 // A SimNode with the largest CDI and the tool on one paced bus; every frame is tallied.
 struct Rig {
-    TempDir dir;
-    std::string cdi = read_file(fs::path(OLCB_SHARED_DIR) / kLargestCdi);
+    olcb::bench::TempDir dir{"bench-stream"};
+    std::string cdi = read_text(fs::path(OLCB_SHARED_DIR) / kLargestCdi);
     std::unique_ptr<simnode::SimNode> node;
     SimNetwork net;
     NodeStack tool{tool_config()};

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cdi/boxed.hpp"
@@ -173,5 +174,26 @@ struct Document {
     bool has_xml_declaration = false;  ///< the text starts with <?xml ...?>
     std::string xml_declaration;       ///< the declaration as written, for conformance checks
 };
+
+/// Calls visit(element, depth) for every element under `top` in document order, a group before
+/// its children (depth 0 = top level). An explicit stack instead of recursion: nesting costs
+/// heap in proportion to the model, never the call stack.
+template <typename Visit>
+void walk_elements(const std::vector<Element>& top, Visit&& visit) {
+    std::vector<std::pair<const Element*, const Element*>> open;
+    open.emplace_back(top.data(), top.data() + top.size());
+    while (!open.empty()) {
+        auto& [next, end] = open.back();
+        if (next == end) {
+            open.pop_back();
+            continue;
+        }
+        const Element& e = *next++;
+        visit(e, open.size() - 1);
+        if (!e.children.empty()) {
+            open.emplace_back(e.children.data(), e.children.data() + e.children.size());
+        }
+    }
+}
 
 }  // namespace olcb::cdi

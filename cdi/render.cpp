@@ -117,23 +117,12 @@ private:
         if (e.map) map(depth + 1, *e.map);
     }
 
-    // The elements under a segment in document order, each group's children below it, with an
-    // explicit stack rather than recursion.
+    // The elements under a segment in document order, each group's children below it
+    // (cdi::walk_elements: no recursion).
     void elements(int depth, const std::vector<Element>& top) {
-        std::vector<std::pair<const Element*, const Element*>> open;
-        open.emplace_back(top.data(), top.data() + top.size());
-        while (!open.empty()) {
-            auto& [next, end] = open.back();
-            if (next == end) {
-                open.pop_back();
-                continue;
-            }
-            const Element& e = *next++;
-            element(depth + static_cast<int>(open.size()) - 1, e);
-            if (!e.children.empty()) {
-                open.emplace_back(e.children.data(), e.children.data() + e.children.size());
-            }
-        }
+        walk_elements(top, [this, depth](const Element& e, std::size_t below) {
+            element(depth + static_cast<int>(below), e);
+        });
     }
 
     static std::string format_double(double v) {

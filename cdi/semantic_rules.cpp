@@ -142,23 +142,9 @@ private:
         check_tree(segment.children);
     }
 
-    // Every element under a segment in document order, depth first, with an explicit stack:
-    // nesting costs heap in proportion to the model, never the call stack.
+    // Every element under a segment in document order (cdi::walk_elements: no recursion).
     void check_tree(const std::vector<Element>& top) {
-        std::vector<std::pair<const Element*, const Element*>> open;
-        open.emplace_back(top.data(), top.data() + top.size());
-        while (!open.empty()) {
-            auto& [next, end] = open.back();
-            if (next == end) {
-                open.pop_back();
-                continue;
-            }
-            const Element& e = *next++;
-            check_element(e);
-            if (e.kind == ElementKind::kGroup && !e.children.empty()) {
-                open.emplace_back(e.children.data(), e.children.data() + e.children.size());
-            }
-        }
+        walk_elements(top, [this](const Element& e, std::size_t) { check_element(e); });
     }
 
     // One element's own rules; a group's children are check_tree's.

@@ -90,11 +90,10 @@ TEST_F(SimnodeTest, ProtocolSupportReplyNamesWhatItServes) {
     ASSERT_TRUE(m);
     const auto set = ProtocolSet::decode(m->payload);
     for (const auto p :
-         {Protocol::kDatagram, Protocol::kMemoryConfiguration, Protocol::kEventExchange,
-          Protocol::kAcdi, Protocol::kSnip, Protocol::kCdi}) {
+         {Protocol::kDatagram, Protocol::kStream, Protocol::kMemoryConfiguration,
+          Protocol::kEventExchange, Protocol::kAcdi, Protocol::kSnip, Protocol::kCdi}) {
         EXPECT_TRUE(set.has(p)) << std::hex << static_cast<std::uint64_t>(p);
     }
-    EXPECT_FALSE(set.has(Protocol::kStream));
     EXPECT_FALSE(set.has(Protocol::kTractionControl));
 }
 
