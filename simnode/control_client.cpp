@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/number.hpp"
 #include "openlcb/asio.hpp"
 
 namespace olcb::simnode {
@@ -20,18 +21,6 @@ using Args = std::span<const std::string>;
 constexpr std::size_t kMaxResponseBytes = std::size_t{64} << 20;
 constexpr std::size_t kDumpBytesPerLine = 16;
 
-std::optional<std::uint64_t> parse_number(std::string_view text) {
-    int base = 10;
-    if (text.starts_with("0x") || text.starts_with("0X")) {
-        text.remove_prefix(2);
-        base = 16;
-    }
-    std::uint64_t value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value, base);
-    if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-    return value;
-}
-
 bool count_is(Args args, std::size_t min, std::size_t max, const char* usage, std::string& error) {
     if (args.size() >= min && args.size() <= max) return true;
     error = std::string("usage: simnode ctl HOST:PORT ") + usage;
@@ -41,7 +30,7 @@ bool count_is(Args args, std::size_t min, std::size_t max, const char* usage, st
 // SPACE ADDRESS [COUNT] as numbers (decimal or 0x hex) into request.
 bool numbers(Args args, std::span<const char* const> names, Json& request, std::string& error) {
     for (std::size_t i = 0; i < names.size(); ++i) {
-        const auto n = parse_number(args[i]);
+        const auto n = base::parse_unsigned(args[i]);
         if (!n) {
             error =
                 std::string(names[i]) + " '" + args[i] + "' is not a number (decimal or 0x hex)";

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/number.hpp"
 #include "openlcb/clock.hpp"
 
 namespace olcb::simnode {
@@ -125,18 +126,6 @@ bool known_fault(std::string_view name) {
                        [name](const FaultInfo& f) { return f.name == name; });
 }
 
-std::optional<std::uint64_t> parse_number_text(std::string_view text) {
-    int base = 10;
-    if (text.starts_with("0x") || text.starts_with("0X")) {
-        text.remove_prefix(2);
-        base = 16;
-    }
-    std::uint64_t value = 0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value, base);
-    if (text.empty() || ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-    return value;
-}
-
 // The fields of one request, checked as they are taken; the first problem is kept.
 class Fields {
 public:
@@ -181,7 +170,7 @@ public:
         if (v->is_number_integer() && v->get<std::int64_t>() >= 0) {
             n = v->get<std::uint64_t>();
         } else if (v->is_string()) {
-            n = parse_number_text(v->get<std::string>());
+            n = base::parse_unsigned(v->get<std::string>());
         }
         if (!n || *n < min || *n > max) {
             fail("\"" + std::string(name) + "\" " + quoted(*v) + " must be a whole number " +
