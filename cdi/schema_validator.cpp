@@ -1,6 +1,7 @@
 #include "cdi/schema_validator.hpp"
 
 #include <libxml/parser.h>
+#include <libxml/parserInternals.h>
 #include <libxml/tree.h>
 #include <libxml/xmlerror.h>
 #include <libxml/xmlschemas.h>
@@ -10,7 +11,9 @@
 #include <charconv>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <utility>
 
 namespace olcb::cdi {
 namespace {
@@ -114,91 +117,93 @@ const CompiledSchema& compiled_schema(SchemaVersion version) {
     return entry;
 }
 
+// No network, no DTD loading, no entity substitution. XML_PARSE_HUGE lifts libxml2's nesting
+// limit (256 levels), which a valid CDI of deeply nested groups passes; the input stays bounded
+// by kMaxCdiBytes and entities are refused.
+constexpr int kParseOptions = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_HUGE;
+
 /// Per-parse state reachable from SAX callbacks through ctxt->_private.
 struct ParseState {
     bool doctype_seen = false;
     int doctype_line = 0;
+    std::uint32_t root_line = 0;
+    std::string location;  ///< the root's xsi:noNamespaceSchemaLocation ("" when absent)
 };
+
+ParseState& state_of(void* context) {
+    return *static_cast<ParseState*>(static_cast<xmlParserCtxtPtr>(context)->_private);
+}
 
 // A DOCTYPE is where entity declarations live; stopping as soon as it starts means no entity
 // (billion laughs, external entities) is ever declared, let alone expanded.
 void refuse_doctype(void* context, const xmlChar*, const xmlChar*, const xmlChar*) {
     auto* parser = static_cast<xmlParserCtxtPtr>(context);
-    if (auto* state = static_cast<ParseState*>(parser->_private)) {
-        state->doctype_seen = true;
-        state->doctype_line = parser->input != nullptr ? parser->input->line : 0;
+    ParseState& state = state_of(context);
+    state.doctype_seen = true;
+    state.doctype_line = parser->input != nullptr ? parser->input->line : 0;
+    xmlStopParser(parser);
+}
+
+// The schema has to be chosen before validation starts, so a first pass reads up to the root's
+// start tag and stops there.
+void read_root(void* context, const xmlChar*, const xmlChar*, const xmlChar*, int, const xmlChar**,
+               int attribute_count, int, const xmlChar** attributes) {
+    auto* parser = static_cast<xmlParserCtxtPtr>(context);
+    ParseState& state = state_of(context);
+    state.root_line =
+        parser->input != nullptr ? static_cast<std::uint32_t>(parser->input->line) : 0;
+    const auto* xsi = reinterpret_cast<const xmlChar*>(kXsiNamespace);
+    const auto* name = reinterpret_cast<const xmlChar*>("noNamespaceSchemaLocation");
+    for (int i = 0; i < attribute_count; ++i) {
+        // Five pointers per attribute: local name, prefix, namespace URI, value, value end.
+        const xmlChar* const* attribute = attributes + std::ptrdiff_t{5} * i;
+        if (attribute[2] != nullptr && xmlStrEqual(attribute[2], xsi) != 0 &&
+            xmlStrEqual(attribute[0], name) != 0) {
+            state.location.assign(reinterpret_cast<const char*>(attribute[3]),
+                                  static_cast<std::size_t>(attribute[4] - attribute[3]));
+        }
     }
     xmlStopParser(parser);
 }
 
-struct DocFree {
-    void operator()(xmlDocPtr doc) const { xmlFreeDoc(doc); }
+struct ParserFree {
+    void operator()(xmlParserCtxtPtr parser) const { xmlFreeParserCtxt(parser); }
 };
-using DocPtr = std::unique_ptr<xmlDoc, DocFree>;
+using ParserPtr = std::unique_ptr<xmlParserCtxt, ParserFree>;
 
-/// Parses without network, DTD loading or entity substitution; errors go to `out`.
-DocPtr parse_document(std::string_view bytes, Diagnostics& out) {
+/// A parser of `bytes` whose SAX handler builds no tree: it has only `start_element` (may be
+/// null) and the DOCTYPE refusal, and the validator plugs its own handlers in front.
+ParserPtr new_parser(std::string_view bytes, ParseState& state,
+                     startElementNsSAX2Func start_element) {
     xmlInitParser();
-    Collector collector{&out, "XML parse error: "};
-    ErrorRouting routing(&collector);
-    xmlParserCtxtPtr parser = xmlNewParserCtxt();
-    if (parser == nullptr) {
-        out.push_back({Severity::kError, 0, "XML parse error: out of memory"});
-        return nullptr;
-    }
-    ParseState state;
+    ParserPtr parser(xmlCreateMemoryParserCtxt(bytes.data(), static_cast<int>(bytes.size())));
+    if (parser == nullptr) return nullptr;
+    xmlSAXHandler* sax = parser->sax;
+    *sax = xmlSAXHandler{};
+    sax->initialized = XML_SAX2_MAGIC;
+    sax->internalSubset = refuse_doctype;
+    sax->startElementNs = start_element;
     parser->_private = &state;
-    parser->sax->internalSubset = refuse_doctype;
-    // XML_PARSE_HUGE lifts libxml2's nesting limit (256 levels), which a valid CDI of deeply
-    // nested groups passes; the input stays bounded by kMaxCdiBytes and entities are refused.
-    const int options = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_HUGE;
-    DocPtr doc(xmlCtxtReadMemory(parser, bytes.data(), static_cast<int>(bytes.size()), "cdi.xml",
-                                 nullptr, options));
-    const bool well_formed = parser->wellFormed != 0;
-    // Only refuse_doctype stops the parser; this also covers a libxml2 that reset _private.
-    if (parser->errNo == XML_ERR_USER_STOP) state.doctype_seen = true;
-    xmlFreeParserCtxt(parser);
-    finish(collector);
-    if (state.doctype_seen) {
-        out.push_back({Severity::kError, static_cast<std::uint32_t>(state.doctype_line),
-                       "XML parse error: a DOCTYPE is not allowed in a CDI (refused; no entity "
-                       "was expanded)"});
-        return nullptr;
-    }
-    if (!well_formed || doc == nullptr) {
-        if (out.empty()) out.push_back({Severity::kError, 0, "XML parse error: not well-formed"});
-        return nullptr;
-    }
-    return doc;
+    xmlCtxtUseOptions(parser.get(), kParseOptions);
+    return parser;
 }
 
-std::string_view strip_trailing_nuls(std::string_view bytes) {
-    while (!bytes.empty() && bytes.back() == '\0') bytes.remove_suffix(1);
-    return bytes;
+/// The first pass: the prolog and the root's start tag. Its errors are dropped; the validating
+/// pass reads the same text and reports them.
+ParseState scan_root(std::string_view bytes) {
+    ParseState state;
+    Diagnostics dropped;
+    Collector collector{&dropped, ""};
+    ErrorRouting routing(&collector);
+    if (ParserPtr parser = new_parser(bytes, state, read_root)) xmlParseDocument(parser.get());
+    return state;
 }
 
-std::string declared_location(const xmlDoc& doc) {
-    const xmlNode* root = xmlDocGetRootElement(&doc);
-    if (root == nullptr) return {};
-    xmlChar* value =
-        xmlGetNsProp(root, reinterpret_cast<const xmlChar*>("noNamespaceSchemaLocation"),
-                     reinterpret_cast<const xmlChar*>(kXsiNamespace));
-    if (value == nullptr) return {};
-    std::string location(reinterpret_cast<const char*>(value));
-    xmlFree(value);
-    return location;
-}
-
-std::uint32_t root_line(const xmlDoc& doc) {
-    const xmlNode* root = xmlDocGetRootElement(&doc);
-    const long line = root != nullptr ? xmlGetLineNo(root) : 0;
-    return line > 0 ? static_cast<std::uint32_t>(line) : 0;
-}
-
-void validate_doc(xmlDoc& doc, SchemaVersion version, Diagnostics& out) {
+/// The compiled schema of `version`, or null with the reason in `out`.
+xmlSchemaPtr schema_for(SchemaVersion version, Diagnostics& out) {
     if (static_cast<std::size_t>(version) >= kSchemaCount) {
         out.push_back({Severity::kError, 0, "unknown CDI schema version requested"});
-        return;
+        return nullptr;
     }
     const CompiledSchema& compiled = compiled_schema(version);
     if (compiled.schema == nullptr) {
@@ -206,26 +211,97 @@ void validate_doc(xmlDoc& doc, SchemaVersion version, Diagnostics& out) {
                        "internal error: the embedded CDI " +
                            std::string(schema_version_name(version)) + " schema did not compile"});
         out.insert(out.end(), compiled.errors.begin(), compiled.errors.end());
-        return;
     }
-    Collector collector{&out, "CDI " + std::string(schema_version_name(version)) + " schema: "};
-    ErrorRouting routing(&collector);
-    xmlSchemaValidCtxtPtr validator = xmlSchemaNewValidCtxt(compiled.schema);
-    if (validator == nullptr) {
-        out.push_back({Severity::kError, 0, "schema validation: out of memory"});
-        return;
+    return compiled.schema;
+}
+
+// Without a tree, the validator asks where the parser is for the line of what it reports: the
+// end of a start tag for what the tag says, the end tag for content missing from an element.
+int parser_position(void* context, const char** file, unsigned long* line) {
+    const auto* parser = static_cast<const xmlParserCtxt*>(context);
+    *file = nullptr;
+    *line = parser->input != nullptr ? static_cast<unsigned long>(parser->input->line) : 0;
+    return 0;
+}
+
+struct ValidatorFree {
+    void operator()(xmlSchemaValidCtxtPtr validator) const { xmlSchemaFreeValidCtxt(validator); }
+};
+using ValidatorPtr = std::unique_ptr<xmlSchemaValidCtxt, ValidatorFree>;
+
+/// What one validating parse found: parse errors, schema errors, and whether the text is XML.
+struct PassResult {
+    Diagnostics parse_errors;
+    Diagnostics schema_errors;
+    bool well_formed = false;
+    bool valid = false;
+};
+
+/// Parses once, validating against `schema` as the SAX events arrive; no tree is built.
+PassResult validate_stream(std::string_view bytes, xmlSchemaPtr schema, const std::string& prefix,
+                           ParseState& state) {
+    PassResult result;
+    Collector parse_collector{&result.parse_errors, "XML parse error: "};
+    Collector schema_collector{&result.schema_errors, prefix};
+    ErrorRouting routing(&parse_collector);
+    ParserPtr parser = new_parser(bytes, state, nullptr);
+    ValidatorPtr validator(xmlSchemaNewValidCtxt(schema));
+    if (parser == nullptr || validator == nullptr) {
+        result.parse_errors.push_back({Severity::kError, 0, "XML parse error: out of memory"});
+        return result;
     }
-    xmlSchemaSetValidStructuredErrors(validator, collect, &collector);
-    const std::size_t before = out.size();
-    const int result = xmlSchemaValidateDoc(validator, &doc);
-    xmlSchemaFreeValidCtxt(validator);
-    finish(collector);
-    if (result != 0 && out.size() == before) {
-        out.push_back({Severity::kError, 0,
-                       "CDI " + std::string(schema_version_name(version)) +
-                           " schema: validation failed (libxml2 code " + std::to_string(result) +
-                           ")"});
+    xmlSchemaSetValidStructuredErrors(validator.get(), collect, &schema_collector);
+    xmlSchemaValidateSetLocator(validator.get(), parser_position, parser.get());
+    xmlSchemaSAXPlugPtr plug = xmlSchemaSAXPlug(validator.get(), &parser->sax, &parser->userData);
+    if (plug == nullptr) {
+        result.parse_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
+        return result;
     }
+    xmlParseDocument(parser.get());
+    xmlSchemaSAXUnplug(plug);
+    // Only refuse_doctype stops the parser; this also covers a libxml2 that reset _private.
+    if (parser->errNo == XML_ERR_USER_STOP) state.doctype_seen = true;
+    result.well_formed = parser->wellFormed != 0 && !state.doctype_seen;
+    result.valid = xmlSchemaIsValid(validator.get()) == 1;
+    finish(parse_collector);
+    finish(schema_collector);
+    return result;
+}
+
+/// Validates `bytes` against `version`; appends to `out` what a reader needs (the warning
+/// `choice_warning`, if any, only for well-formed text). Returns whether the text is XML.
+bool check_against(std::string_view bytes, SchemaVersion version,
+                   std::optional<Diagnostic> choice_warning, Diagnostics& out) {
+    const xmlSchemaPtr schema = schema_for(version, out);
+    if (schema == nullptr) return false;
+    const std::string prefix = "CDI " + std::string(schema_version_name(version)) + " schema: ";
+    ParseState state;
+    PassResult pass = validate_stream(bytes, schema, prefix, state);
+    out.insert(out.end(), pass.parse_errors.begin(), pass.parse_errors.end());
+    if (state.doctype_seen) {
+        out.push_back({Severity::kError, static_cast<std::uint32_t>(state.doctype_line),
+                       "XML parse error: a DOCTYPE is not allowed in a CDI (refused; no entity "
+                       "was expanded)"});
+        return false;
+    }
+    if (!pass.well_formed) {
+        // Schema errors before the point where the text stopped being XML would only confuse.
+        if (pass.parse_errors.empty()) {
+            out.push_back({Severity::kError, 0, "XML parse error: not well-formed"});
+        }
+        return false;
+    }
+    if (choice_warning) out.push_back(std::move(*choice_warning));
+    out.insert(out.end(), pass.schema_errors.begin(), pass.schema_errors.end());
+    if (!pass.valid && pass.schema_errors.empty()) {
+        out.push_back({Severity::kError, 0, prefix + "validation failed"});
+    }
+    return true;
+}
+
+std::string_view strip_trailing_nuls(std::string_view bytes) {
+    while (!bytes.empty() && bytes.back() == '\0') bytes.remove_suffix(1);
+    return bytes;
 }
 
 bool too_large(std::string_view bytes, Diagnostics& out) {
@@ -270,22 +346,21 @@ Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
     SchemaChoice choice;
     bytes = strip_trailing_nuls(bytes);
     if (!too_large(bytes, out)) {
-        if (DocPtr doc = parse_document(bytes, out)) {
-            choice.well_formed = true;
-            const std::string location = declared_location(*doc);
-            if (const auto version = schema_version_from_location(location)) {
-                choice.version = *version;
-                choice.declared = true;
-            } else {
-                const std::string newest(schema_version_name(kNewestSchema));
-                const bool versioned = location.find("/schema/cdi/1/") != std::string::npos;
-                out.push_back({Severity::kWarning, root_line(*doc),
-                               (versioned ? "unknown schema version declared (" + location + ")"
-                                          : std::string("no schema version declared")) +
-                                   "; validated against CDI " + newest});
-            }
-            validate_doc(*doc, choice.version, out);
+        const ParseState root = scan_root(bytes);
+        std::optional<Diagnostic> warning;
+        if (const auto version = schema_version_from_location(root.location)) {
+            choice.version = *version;
+            choice.declared = true;
+        } else {
+            const std::string newest(schema_version_name(kNewestSchema));
+            const bool versioned = root.location.find("/schema/cdi/1/") != std::string::npos;
+            warning =
+                Diagnostic{Severity::kWarning, root.root_line,
+                           (versioned ? "unknown schema version declared (" + root.location + ")"
+                                      : std::string("no schema version declared")) +
+                               "; validated against CDI " + newest};
         }
+        choice.well_formed = check_against(bytes, choice.version, std::move(warning), out);
     }
     if (chosen != nullptr) *chosen = choice;
     return out;
@@ -294,8 +369,7 @@ Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
 Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version) {
     Diagnostics out;
     bytes = strip_trailing_nuls(bytes);
-    if (too_large(bytes, out)) return out;
-    if (DocPtr doc = parse_document(bytes, out)) validate_doc(*doc, version, out);
+    if (!too_large(bytes, out)) check_against(bytes, version, std::nullopt, out);
     return out;
 }
 
