@@ -95,22 +95,25 @@ std::string generated_cdi(std::size_t target_bytes) {
 )";
     for (int line = 0; out.size() < target_bytes; ++line) {
         const std::string n = std::to_string(line + 1);
-        out += "<group offset=\"2\"><name>Line " + n + "</name><description>Input/output line " +
-               n +
-               " of the board; configure its function and the events it produces.</description>\n"
-               "  <string size=\"32\"><name>Description</name><description>User name of this "
-               "line</description></string>\n"
-               "  <int size=\"1\"><name>Function</name><default>0</default><map>"
-               "<relation><property>0</property><value>Disabled</value></relation>"
-               "<relation><property>1</property><value>Input</value></relation>"
-               "<relation><property>2</property><value>Output</value></relation></map></int>\n"
-               "  <int size=\"2\"><name>Debounce</name><min>1</min><max>1000</max>"
-               "<default>20</default><hints><slider tickSpacing=\"100\" showValue=\"yes\"/>"
-               "</hints></int>\n"
-               "  <eventid><name>Event On</name><description>Sent or consumed when the line "
-               "goes active.</description></eventid>\n"
-               "  <eventid><name>Event Off</name></eventid>\n"
-               "</group>\n";
+        out += "<group offset=\"2\"><name>Line ";
+        out += n;
+        out += "</name><description>Input/output line ";
+        out += n;
+        out +=
+            " of the board; configure its function and the events it produces.</description>\n"
+            "  <string size=\"32\"><name>Description</name><description>User name of this "
+            "line</description></string>\n"
+            "  <int size=\"1\"><name>Function</name><default>0</default><map>"
+            "<relation><property>0</property><value>Disabled</value></relation>"
+            "<relation><property>1</property><value>Input</value></relation>"
+            "<relation><property>2</property><value>Output</value></relation></map></int>\n"
+            "  <int size=\"2\"><name>Debounce</name><min>1</min><max>1000</max>"
+            "<default>20</default><hints><slider tickSpacing=\"100\" showValue=\"yes\"/>"
+            "</hints></int>\n"
+            "  <eventid><name>Event On</name><description>Sent or consumed when the line "
+            "goes active.</description></eventid>\n"
+            "  <eventid><name>Event Off</name></eventid>\n"
+            "</group>\n";
     }
     out += "</segment>\n</cdi>\n";
     return out;

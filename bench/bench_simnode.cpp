@@ -212,6 +212,7 @@ void bm_startup_1000(benchmark::State& state) {
         const long rss0 = simnode::resident_kib();
         const auto t0 = std::chrono::steady_clock::now();
         std::vector<std::unique_ptr<SimNode>> nodes;
+        nodes.reserve(kNetworkSize);
         for (std::size_t i = 0; i < kNetworkSize; ++i) {
             nodes.push_back(make_node(NodeId(0x05'01'01'01'30'00ull + i), cdi, dir.path()));
         }

@@ -137,6 +137,7 @@ TEST(MemoryMap, AlsoListedReplicasAreListed) {
     options.also_list = [](std::uint64_t from, std::uint64_t) { return from <= 50 ? 50 : 100; };
     const SpaceMap m = build_memory_map(*laid->layout, options).at(0);
     std::vector<std::uint64_t> addresses;
+    addresses.reserve(m.variables.size());
     for (const MapVariable& v : m.variables) addresses.push_back(v.address);
     EXPECT_EQ(addresses, (std::vector<std::uint64_t>{0, 1, 50, 99}));
     ASSERT_EQ(m.summaries.size(), 2u);

@@ -99,8 +99,9 @@ TEST(ConfigBackupEscape, EscapesSeparatorsBackslashAndControlsInLowerCaseHex) {
 }
 
 TEST(ConfigBackupEscape, RoundTripsEveryAwkwardString) {
-    for (std::string s : {std::string("plain"), std::string("x=1\\y"), std::string("\t\r\n"),
-                          std::string("\\x0041 literal"), std::string("\xE2\x82\xAC=\x01")}) {
+    for (const std::string& s :
+         {std::string("plain"), std::string("x=1\\y"), std::string("\t\r\n"),
+          std::string("\\x0041 literal"), std::string("\xE2\x82\xAC=\x01")}) {
         EXPECT_EQ(unescape_backup_text(escape_backup_text(s)), s) << s;
     }
     EXPECT_EQ(unescape_backup_text("\\x00"), "\\x00");  // malformed escape kept as written

@@ -35,7 +35,7 @@ struct Fixture : ::testing::Test {
         mem.spaces[253] = std::vector<std::uint8_t>(200, 0);
         mem.spaces[251] = std::vector<std::uint8_t>(128, 0);
     }
-    std::vector<CheckResult> run(const EncodingOptions& o, EncodingHooks hooks = {}) {
+    std::vector<CheckResult> run(const EncodingOptions& o, const EncodingHooks& hooks = {}) {
         probes = plan_encoding(*layout, o).probes;
         outcome = run_encoding_checks(probes, mem, o, hooks);
         return outcome.results;
@@ -59,6 +59,7 @@ TEST(BoundaryValues, IntCoversMinMaxZeroAndSignednessEdgeOnlyWhenValid) {
     e.size = 1;
     auto v = boundary_values(e, false);
     std::vector<cdi::WideInt> ints;
+    ints.reserve(v.size());
     for (auto& x : v) ints.push_back(*x.as_int());
     EXPECT_EQ(ints, (std::vector<cdi::WideInt>{0, 255, 128}));
     e.int_min = -5;
@@ -348,6 +349,7 @@ struct ProtectedFixture : ::testing::Test {
     }
     std::vector<std::string> keys(const EncodingPlan& p) const {
         std::vector<std::string> out;
+        out.reserve(p.probes.size());
         for (const Probe& x : p.probes) out.push_back(x.key);
         return out;
     }

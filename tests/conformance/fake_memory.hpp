@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <span>
 #include <vector>
 
 #include "conformance/backup.hpp"
@@ -20,7 +21,8 @@ struct FakeMemory : MemoryAccess {
         auto it = spaces.find(space);
         if (it == spaces.end()) return {false, 0x1081, {}};
         if (address + count > it->second.size()) return {false, 0x1082, {}};
-        return {true, 0, {it->second.begin() + address, it->second.begin() + address + count}};
+        const auto bytes = std::span(it->second).subspan(address, count);
+        return {true, 0, {bytes.begin(), bytes.end()}};
     }
     AccessResult write(std::uint8_t space, std::uint32_t address,
                        std::span<const std::uint8_t> data) override {

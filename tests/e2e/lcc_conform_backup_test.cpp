@@ -61,7 +61,7 @@ protected:
         return conform_all(args);
     }
     fs::path file(const std::string& name, const std::string& text) {
-        const fs::path p = out_.path() / name;
+        fs::path p = out_.path() / name;
         write_text(p, text);
         return p;
     }

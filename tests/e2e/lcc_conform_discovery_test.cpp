@@ -56,6 +56,7 @@ TEST(LccConformDiscovery, AThousandNodesAreListedOnALoadedMachineAndOneHasNoFals
     ASSERT_TRUE(sim.wait_initialized(milliseconds(120000)));
     // Two busy loops, one per core, bounded in time whatever happens to the test.
     std::vector<std::unique_ptr<Child>> load;
+    load.reserve(2);
     for (int i = 0; i < 2; ++i) {
         // The shell itself loops (a SIGKILL ends it) and stops by itself after a bounded count.
         load.push_back(Child::spawn(

@@ -126,7 +126,8 @@ TEST(SimnodeBitrate, TwoSendersShareOneBus) {
     const auto sent = steady_clock::now();
     ASSERT_TRUE(send_burst(a, 0x123, kEach));
     ASSERT_TRUE(send_burst(c, 0x124, kEach));
-    ASSERT_TRUE(r.collect(2 * kEach, milliseconds(10000))) << r.got.size() << " frames";
+    ASSERT_TRUE(r.collect(std::size_t{2} * kEach, milliseconds(10000)))
+        << r.got.size() << " frames";
     EXPECT_GE(r.got.back().second - sent, 2 * kEach * can_frame_time(8, kBitrate));
     std::size_t from_a = 0;
     for (const auto& [id, at] : r.got) from_a += (id & 0xFFF) == 0x123 ? 1 : 0;
@@ -145,7 +146,7 @@ TEST(SimnodeBitrate, AnAnswerCostsBothFrameTimesOnTopOfTheLatency) {
     const auto bus = can_frame_time(2, kBitrate) + can_frame_time(6, kBitrate);  // 1.92 ms
     for (int i = 0; i < 5; ++i) {
         const auto t0 = steady_clock::now();
-        tool.send(Mti::kVerifyNodeIdAddressed, {}, *node);
+        tool.send(Mti::kVerifyNodeIdAddressed, {}, node);
         const auto m = tool.take(
             [&](const Message& m) {
                 return m.mti == Mti::kVerifiedNodeId && m.source.alias == *node;

@@ -47,6 +47,7 @@ TEST(SimnodeHub, AFloodDoesNotStarveAWellBehavedTool) {
 
     // Passive readers that drain everything, as monitors do.
     std::vector<int> readers;
+    readers.reserve(4);
     for (int i = 0; i < 4; ++i) readers.push_back(connect_to(*port));
     std::atomic<bool> stop{false};
     std::atomic<std::uint64_t> flooded{0};
@@ -79,7 +80,7 @@ TEST(SimnodeHub, AFloodDoesNotStarveAWellBehavedTool) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(4);
     while (std::chrono::steady_clock::now() < end) {
         const auto t0 = std::chrono::steady_clock::now();
-        tool.send(Mti::kVerifyNodeIdAddressed, {}, *node);
+        tool.send(Mti::kVerifyNodeIdAddressed, {}, node);
         const auto m = tool.take(
             [&](const Message& m) {
                 return m.mti == Mti::kVerifiedNodeId && m.source.alias == *node;
@@ -105,7 +106,8 @@ TEST(SimnodeHub, AFloodDoesNotStarveAWellBehavedTool) {
         EXPECT_FALSE(closed_by_peer(fd, milliseconds(50))) << "a passive reader was dropped";
         ::close(fd);
     }
-    std::printf("flood %.1f MB in 4 s, %d answers, worst %lld ms\n", flooded.load() / 1e6, answered,
+    std::printf("flood %.1f MB in 4 s, %d answers, worst %lld ms\n",
+                static_cast<double>(flooded.load()) / 1e6, answered,
                 static_cast<long long>(worst.count()));
 }
 

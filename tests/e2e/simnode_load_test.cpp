@@ -152,6 +152,7 @@ TEST(SimnodeLoad, ThirtyTwoClientsDownloadTheCdiWhileVerifyStaysFast) {
 
     boost::asio::io_context io;
     std::vector<std::unique_ptr<Downloader> > clients;
+    clients.reserve(kClients);
     for (int i = 0; i < kClients; ++i) {
         clients.push_back(
             std::make_unique<Downloader>(io, *port, NodeId(0x02'01'0D'00'01'00ull + i), expected));

@@ -13,6 +13,13 @@ namespace olcb::e2e {
 namespace {
 
 #ifdef SIMNODE_PATH
+// The line simnode prints at startup for the node id, its image in images_dir/id.
+std::string node_line(const std::string& id, const std::string& cdi, const std::string& faults,
+                      const std::string& images_dir) {
+    return "simnode: node " + id + " cdi " + cdi + " faults " + faults + " images " + images_dir +
+           "/" + id + "\n";
+}
+
 TEST(SimnodeStartup, OneLinePerNodeThenTheListener) {
     TempDir images("simnode-startup");
     const auto board = source_path("scenarios/io-board.xml").string();
@@ -25,12 +32,9 @@ TEST(SimnodeStartup, OneLinePerNodeThenTheListener) {
     EXPECT_EQ(rc, 0) << out;
     const std::string images_dir = images.str();
     for (const std::string& line :
-         {"simnode: node 05.01.01.01.50.00 cdi " + board + " faults none images " + images_dir +
-              "/05.01.01.01.50.00\n",
-          "simnode: node 05.01.01.01.50.01 cdi " + board + " faults none images " + images_dir +
-              "/05.01.01.01.50.01\n",
-          "simnode: node 05.01.01.01.51.00 cdi " + board + " faults reply-form,latency=10 images " +
-              images_dir + "/05.01.01.01.51.00\n"}) {
+         {node_line("05.01.01.01.50.00", board, "none", images_dir),
+          node_line("05.01.01.01.50.01", board, "none", images_dir),
+          node_line("05.01.01.01.51.00", board, "reply-form,latency=10", images_dir)}) {
         EXPECT_NE(out.find(line), std::string::npos) << line << "in\n" << out;
     }
     EXPECT_LT(out.find("simnode: node "), out.find("simnode: listening on 127.0.0.1:")) << out;

@@ -29,6 +29,55 @@ struct Reader {
 
 }  // namespace
 
+namespace olcb {
+namespace {
+
+// The next frame: a raw 29-bit header when kind's top bit is set, else a header of the frame
+// format kind selects between the aliases (and MTIs) sel selects; then up to 8 data bytes.
+CanFrame read_frame(Reader& in, std::uint8_t kind, std::uint8_t sel) {
+    CanFrame frame;
+    if (kind & 0x80) {
+        frame.id = (std::uint32_t{in.next()} << 24 | std::uint32_t{in.next()} << 16 |
+                    std::uint32_t{in.next()} << 8 | in.next()) &
+                   can::kHeaderMask;
+        frame.remote = (kind & 0x40) != 0;
+    } else {
+        const auto format = static_cast<can::FrameFormat>(kind & 7);
+        const std::uint16_t src = kAliases[sel & 3];
+        const std::uint16_t dst = kAliases[(sel >> 2) & 3];
+        frame.id = format == can::FrameFormat::kGlobalAddressed
+                       ? can::message_header(kCanMtis[(sel >> 4) & 7], src)
+                       : can::addressed_header(format, dst, src);
+    }
+    frame.len = static_cast<std::uint8_t>(in.next() % 9);
+    for (std::size_t i = 0; i < frame.len; ++i) frame.data[i] = in.next();
+    return frame;
+}
+
+void check_message(const Message& m) {
+    check(m.payload.size() <= (m.mti == Mti::kDatagram ? 72u : kMaxPcerPayload));
+    check(m.payload.size() <= 8 || m.payload.size() <= kMaxPayload || m.mti == Mti::kDatagram);
+}
+
+// Takes every received datagram, answering it as sel says, and every frame and outcome queued.
+void drain(DatagramReceiver& receiver, DatagramSender& sender, std::uint8_t sel) {
+    while (auto d = receiver.pop_datagram()) {
+        check(d->payload.size() <= datagram::kMaxSize);
+        if (sel & 0x40) {
+            receiver.accept(d->source_alias, sel);
+        } else if (sel & 0x80) {
+            receiver.reject(d->source_alias, 0x1042);
+        }  // else left unanswered: holds a buffer
+    }
+    while (auto f = receiver.pop_frame()) check(f->len <= 8);
+    while (auto f = sender.pop_frame()) check(f->len <= 8);
+    while (sender.pop_outcome()) {
+    }
+}
+
+}  // namespace
+}  // namespace olcb
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace olcb;
     Reader in{data, size};
@@ -45,29 +94,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     while (in.more()) {
         const std::uint8_t kind = in.next();
         const std::uint8_t sel = in.next();
-        CanFrame frame;
-        if (kind & 0x80) {
-            frame.id = (std::uint32_t{in.next()} << 24 | std::uint32_t{in.next()} << 16 |
-                        std::uint32_t{in.next()} << 8 | in.next()) &
-                       can::kHeaderMask;
-            frame.remote = (kind & 0x40) != 0;
-        } else {
-            const auto format = static_cast<can::FrameFormat>(kind & 7);
-            const std::uint16_t src = kAliases[sel & 3];
-            const std::uint16_t dst = kAliases[(sel >> 2) & 3];
-            frame.id = format == can::FrameFormat::kGlobalAddressed
-                           ? can::message_header(kCanMtis[(sel >> 4) & 7], src)
-                           : can::addressed_header(format, dst, src);
-        }
-        frame.len = static_cast<std::uint8_t>(in.next() % 9);
-        for (std::size_t i = 0; i < frame.len; ++i) frame.data[i] = in.next();
+        const CanFrame frame = read_frame(in, kind, sel);
         now += std::chrono::milliseconds(in.next() * 20);
 
-        if (auto m = assembler.on_frame(frame, now)) {
-            check(m->payload.size() <= (m->mti == Mti::kDatagram ? 72u : kMaxPcerPayload));
-            check(m->payload.size() <= 8 || m->payload.size() <= kMaxPayload ||
-                  m->mti == Mti::kDatagram);
-        }
+        if (auto m = assembler.on_frame(frame, now)) check_message(*m);
         receiver.on_frame(frame, now);
         sender.on_frame(frame, now);
         if (kind & 0x20) sender.send(kAliases[sel & 3], {frame.data.data(), frame.len}, now);
@@ -75,18 +105,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         receiver.poll(now);
         sender.poll(now);
 
-        while (auto d = receiver.pop_datagram()) {
-            check(d->payload.size() <= datagram::kMaxSize);
-            if (sel & 0x40) {
-                receiver.accept(d->source_alias, sel);
-            } else if (sel & 0x80) {
-                receiver.reject(d->source_alias, 0x1042);
-            }  // else left unanswered: holds a buffer
-        }
-        while (auto f = receiver.pop_frame()) check(f->len <= 8);
-        while (auto f = sender.pop_frame()) check(f->len <= 8);
-        while (sender.pop_outcome()) {
-        }
+        drain(receiver, sender, sel);
         check(assembler.in_progress() <= kMaxInProgress);
         check(receiver.buffers_in_use() <= kMaxBuffers);
         check(sender.queued() <= 8);

@@ -299,15 +299,75 @@ TEST_F(ImageFileTest, ReinitialiseRestoresFactoryContent) {
     EXPECT_EQ(read_file(path_)[17], 17);
 }
 
-// A child writes a stream of values and acknowledges each on a pipe once write() returned; the
-// parent kills it with SIGKILL at a random point and checks every acknowledged value survived
-// and no slot holds a torn (mixed) value.
+// The SIGKILL test: a child writes a stream of values and acknowledges each on a pipe once
+// write() returned; the parent kills it with SIGKILL at a random point and checks every
+// acknowledged value survived and no slot holds a torn (mixed) value.
+constexpr std::size_t kSlots = 16;
+constexpr std::size_t kSlotSize = 64;
+constexpr std::size_t kImageSize = 4096;
+constexpr std::uint64_t kMaxWrites = 100000;
+
+std::size_t slot_offset(std::size_t slot) {
+    return slot * (kImageSize / kSlots);
+}
+
+// The child: writes sequence numbers 1, 2, ... (each repeated over a whole slot) round the slots,
+// acknowledging each on ack_fd; its exit status says what failed.
+[[noreturn]] void write_and_acknowledge(const fs::path& path, int ack_fd) {
+    ImageOpenResult result = ImageFile::open(path, kImageSize);
+    if (!result.ok()) ::_exit(2);
+    std::array<std::uint8_t, kSlotSize> value{};
+    for (std::uint64_t seq = 1; seq <= kMaxWrites; ++seq) {
+        for (std::size_t i = 0; i < kSlotSize; i += 8) std::memcpy(&value[i], &seq, 8);
+        const std::size_t slot = seq % kSlots;
+        if (result.image->write(slot_offset(slot), value) != ImageFile::Status::kOk) ::_exit(3);
+        if (::write(ack_fd, &seq, sizeof seq) != sizeof seq) ::_exit(4);
+    }
+    ::_exit(0);
+}
+
+struct Acknowledged {
+    std::map<std::size_t, std::uint64_t> acked;  // slot -> last acknowledged sequence
+    std::uint64_t last = 0;
+};
+
+// Reads the child's acknowledgements until the pipe closes, killing it after kill_after.
+Acknowledged read_acks_killing_at(int ack_fd, pid_t child, std::uint64_t kill_after) {
+    Acknowledged acks;
+    std::uint64_t seq = 0;
+    bool killed = false;
+    while (::read(ack_fd, &seq, sizeof seq) == sizeof seq) {
+        acks.acked[seq % kSlots] = seq;
+        acks.last = seq;
+        if (!killed && seq >= kill_after) {
+            ::kill(child, SIGKILL);
+            killed = true;
+        }
+    }
+    return acks;
+}
+
+// Every slot holds one whole value: the acknowledged one or the one write in flight when killed.
+void check_slots(const fs::path& path, const Acknowledged& acks) {
+    ImageOpenResult result = ImageFile::open(path, kImageSize);
+    ASSERT_TRUE(result.ok()) << result.error;
+    for (std::size_t slot = 0; slot < kSlots; ++slot) {
+        const auto bytes = result.image->bytes().subspan(slot_offset(slot), 64);
+        std::uint64_t value = 0;
+        std::memcpy(&value, bytes.data(), 8);
+        for (std::size_t i = 8; i < kSlotSize; i += 8) {
+            std::uint64_t word = 0;
+            std::memcpy(&word, bytes.data() + i, 8);
+            ASSERT_EQ(word, value) << "torn value in slot " << slot;
+        }
+        const std::uint64_t expected = acks.acked.count(slot) ? acks.acked.at(slot) : 0;
+        EXPECT_TRUE(value == expected || (value == acks.last + 1 && value % kSlots == slot))
+            << "slot " << slot << " holds " << value << ", acknowledged " << expected;
+    }
+}
+
 TEST_F(ImageFileTest, SurvivesSigkillDuringWrites) {
-    constexpr std::size_t kSlots = 16;
-    constexpr std::size_t kSlotSize = 64;
-    constexpr std::size_t kImageSize = 4096;
     constexpr int kRounds = 20;
-    constexpr std::uint64_t kMaxWrites = 100000;
     const unsigned seed = std::random_device{}();
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937 rng(seed);
@@ -322,56 +382,17 @@ TEST_F(ImageFileTest, SurvivesSigkillDuringWrites) {
         ASSERT_GE(child, 0);
         if (child == 0) {
             ::close(fds[0]);
-            ImageOpenResult result = ImageFile::open(path_, kImageSize);
-            if (!result.ok()) ::_exit(2);
-            std::array<std::uint8_t, kSlotSize> value{};
-            for (std::uint64_t seq = 1; seq <= kMaxWrites; ++seq) {
-                for (std::size_t i = 0; i < kSlotSize; i += 8) std::memcpy(&value[i], &seq, 8);
-                const std::size_t slot = seq % kSlots;
-                if (result.image->write(slot * (kImageSize / kSlots), value) !=
-                    ImageFile::Status::kOk) {
-                    ::_exit(3);
-                }
-                if (::write(fds[1], &seq, sizeof seq) != sizeof seq) ::_exit(4);
-            }
-            ::_exit(0);
+            write_and_acknowledge(path_, fds[1]);
         }
         ::close(fds[1]);
         const std::uint64_t kill_after = std::uniform_int_distribution<std::uint64_t>(1, 12)(rng);
-        std::map<std::size_t, std::uint64_t> acked;  // slot -> last acknowledged sequence
-        std::uint64_t last = 0;
-        std::uint64_t seq = 0;
-        bool killed = false;
-        while (::read(fds[0], &seq, sizeof seq) == sizeof seq) {
-            acked[seq % kSlots] = seq;
-            last = seq;
-            if (!killed && seq >= kill_after) {
-                ::kill(child, SIGKILL);
-                killed = true;
-            }
-        }
+        const Acknowledged acks = read_acks_killing_at(fds[0], child, kill_after);
         ::close(fds[0]);
         int status = 0;
         ASSERT_EQ(::waitpid(child, &status, 0), child);
         ASSERT_TRUE(WIFSIGNALED(status)) << "child status " << status;
-        ASSERT_GE(last, kill_after);
-
-        ImageOpenResult result = ImageFile::open(path_, kImageSize);
-        ASSERT_TRUE(result.ok()) << result.error;
-        for (std::size_t slot = 0; slot < kSlots; ++slot) {
-            const auto bytes = result.image->bytes().subspan(slot * (kImageSize / kSlots), 64);
-            std::uint64_t value = 0;
-            std::memcpy(&value, bytes.data(), 8);
-            for (std::size_t i = 8; i < kSlotSize; i += 8) {
-                std::uint64_t word = 0;
-                std::memcpy(&word, bytes.data() + i, 8);
-                ASSERT_EQ(word, value) << "torn value in slot " << slot;
-            }
-            const std::uint64_t expected = acked.count(slot) ? acked[slot] : 0;
-            // Either the acknowledged value or the one write in flight when killed.
-            EXPECT_TRUE(value == expected || (value == last + 1 && value % kSlots == slot))
-                << "slot " << slot << " holds " << value << ", acknowledged " << expected;
-        }
+        ASSERT_GE(acks.last, kill_after);
+        ASSERT_NO_FATAL_FAILURE(check_slots(path_, acks));
     }
 }
 

@@ -297,7 +297,8 @@ TEST_F(StreamSourceTest, LargeWindowIsFramedAsTheOutputDrains) {
     net_.run_for(0ms);
     take();
     inject(":X1986812CN0343FFFF80000209;");
-    std::vector<std::uint8_t> data(std::size_t{7} * 5000, 0x5A);  // more frames than max_output_frames
+    std::vector<std::uint8_t> data(std::size_t{7} * 5000,
+                                   0x5A);  // more frames than max_output_frames
     stack_.write_stream(big.value_or(0), data);
     stack_.close_stream(big.value_or(0));
     net_.run_for(10ms);

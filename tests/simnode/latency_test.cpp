@@ -100,6 +100,7 @@ TEST_F(LatencyTest, VerifyPipSnipAndOirAreLate) {
     EXPECT_EQ(*oir - sent, milliseconds(100));
     // Same frames as the stack's own answers, in request order.
     std::vector<std::string> texts;
+    texts.reserve(seen_.size());
     for (const auto& f : seen_) texts.push_back(gridconnect::format(f.frame));
     EXPECT_EQ(texts.front(), ":X19170343N050101012200;");
     EXPECT_EQ(texts[1], ":X19668343N012C745800000000;");
@@ -130,6 +131,7 @@ TEST_F(LatencyTest, JitterIsSeededByTheNodeAndKeepsOrder) {
     }
     net_.run_for(milliseconds(200));
     std::vector<TimePoint> got;
+    got.reserve(seen_.size());
     for (const auto& f : seen_) got.push_back(f.at);
     EXPECT_EQ(got, want);
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <span>
 
 #include "cdi/float_codec.hpp"
 #include "memory/snip.hpp"
@@ -239,8 +240,8 @@ TEST_F(MemoryConfigTest, DefaultsComeFromTheCdi) {
         const std::uint32_t base = kPort0 + port * kPortStride;
         for (std::uint32_t k = 0; k < 2; ++k) {
             const std::uint8_t suffix = static_cast<std::uint8_t>(port * 2 + k);
-            EXPECT_EQ(std::vector<std::uint8_t>(mem.begin() + base + 16 + 8 * k,
-                                                mem.begin() + base + 24 + 8 * k),
+            const auto event = std::span(mem).subspan(base + 16 + 8 * k, 8);
+            EXPECT_EQ(std::vector<std::uint8_t>(event.begin(), event.end()),
                       (std::vector<std::uint8_t>{5, 1, 1, 1, 0x22, 0, 0, suffix}));
         }
         EXPECT_EQ(mem[base + 32], 0);
@@ -249,7 +250,7 @@ TEST_F(MemoryConfigTest, DefaultsComeFromTheCdi) {
 }
 
 TEST_F(MemoryConfigTest, MalformedDatagramsGetTheRightRejectCode) {
-    const auto code = [&](std::vector<std::uint8_t> p) {
+    const auto code = [&](const std::vector<std::uint8_t>& p) {
         const Answer a = exchange(p);
         EXPECT_TRUE(a.rejected) << "payload size " << p.size();
         return a.code;

@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -117,7 +118,7 @@ private:
 class PtyRelay {
 public:
     /// The two ends of the cable.
-    enum class Side { A, B };
+    enum class Side : std::uint8_t { A, B };
     /// schedule_unplug() downtime meaning "never replug".
     static constexpr std::chrono::milliseconds kNever{-1};
 
@@ -175,7 +176,7 @@ private:
     using SteadyClock = std::chrono::steady_clock;
     // Bytes waiting for room in a master's input: beyond this the relay stops reading the
     // other side (flow control), so memory stays bounded.
-    static constexpr std::size_t kMaxBuffered = 64 * 1024;
+    static constexpr std::size_t kMaxBuffered = std::size_t{64} * 1024;
 
     struct End {
         std::unique_ptr<PtyPair> pty;

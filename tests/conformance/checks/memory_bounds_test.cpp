@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <span>
 #include <variant>
 
 #include "conformance/check_run.hpp"
@@ -222,10 +223,8 @@ struct MaskIgnoringNode {
         if (r.address >= bytes.size())
             return encode(ReadReplyFail{r.space, r.address, ErrorCode::kOutOfBounds, "", r.form});
         const std::size_t n = std::min<std::size_t>(r.count, bytes.size() - r.address);
-        return encode(ReadReply{r.space,
-                                r.address,
-                                {bytes.begin() + r.address, bytes.begin() + r.address + n},
-                                r.form});
+        const auto reply = std::span(bytes).subspan(r.address, n);
+        return encode(ReadReply{r.space, r.address, {reply.begin(), reply.end()}, r.form});
     }
 };
 

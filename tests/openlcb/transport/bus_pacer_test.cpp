@@ -144,8 +144,8 @@ TEST(BusPacer, TwoDownloadsShareTheBusAboutEvenly) {
     const auto both = reads_within(2, 10s);
     // 150 + 100 + 8 * 160 + 140 + 100 = 1,770 bits = 14.16 ms per read at 125 kbit/s.
     EXPECT_EQ(alone[0], 706);
-    EXPECT_NEAR(both[0], alone[0] / 2, 2);
-    EXPECT_NEAR(both[1], alone[0] / 2, 2);
+    EXPECT_NEAR(both[0], alone[0] / 2.0, 2);
+    EXPECT_NEAR(both[1], alone[0] / 2.0, 2);
 }
 
 }  // namespace

@@ -49,8 +49,9 @@ TEST(Monitor, PerFrameGoldenLines) {
         ":X1982812CN0343;             12C -> 343 Protocol Support Inquiry",
         ":X19A28343N012C80;           343 -> 12C Datagram Received OK flags 80",
         ":X194C7343N0501010122000001; 343 Consumer Identified Unknown 05.01.01.01.22.00.00.01",
-        ":X19068343N012C104304F9;     343 -> 12C Optional Interaction Rejected error 0x1043 "
-        "MTI 0x04F9",
+        // One line, split only to fit: the parentheses say the concatenation is meant.
+        (":X19068343N012C104304F9;     343 -> 12C Optional Interaction Rejected error 0x1043 "
+         "MTI 0x04F9"),
     };
     EXPECT_EQ(lines, expected);
 }

@@ -85,7 +85,7 @@ struct PacedReader {
 };
 
 TEST_F(TcpHubLimitsTest, AFloodIsSlowedAndNoReaderIsDropped) {
-    options.socket_send_buffer_bytes = 16 * 1024;
+    options.socket_send_buffer_bytes = std::size_t{16} * 1024;
     options.max_client_frames_per_second = 0;  // the queues alone must slow it
     start();
     constexpr int kReaders = 4;

@@ -72,6 +72,30 @@ protected:
     std::unique_ptr<TcpHubServer> hub;
 };
 
+// Whether every client (inboxes[i] is client i, sender 3 the local endpoint) has the frames of
+// every other sender and the local endpoint those of every client, `frames` of each at least.
+bool all_arrived(const std::vector<Inbox>& inboxes, const Inbox& local_inbox, std::size_t frames) {
+    for (std::size_t r = 0; r < 3; ++r)
+        for (std::size_t s = 0; s < 4; ++s)
+            if (r != s && inboxes[r].from[s].size() < frames) return false;
+    for (std::size_t s = 0; s < 3; ++s)
+        if (local_inbox.from[s].size() < frames) return false;
+    return true;
+}
+
+void expect_clients_got_all_but_their_own(const std::vector<Inbox>& inboxes,
+                                          const std::vector<std::uint32_t>& expected) {
+    for (std::size_t r = 0; r < 3; ++r) {
+        for (std::size_t s = 0; s < 4; ++s) {
+            if (r == s) {
+                EXPECT_TRUE(inboxes[r].from[s].empty()) << "client " << r << " got its own frames";
+            } else {
+                EXPECT_EQ(inboxes[r].from[s], expected) << "client " << r << " from " << s;
+            }
+        }
+    }
+}
+
 TEST_F(TcpHubTest, ThreeClientsSeeEachOthersFramesNeverTheirOwn) {
     std::vector<Inbox> inboxes(3, Inbox(4));
     std::vector<std::unique_ptr<TcpClient>> clients;
@@ -90,27 +114,11 @@ TEST_F(TcpHubTest, ThreeClientsSeeEachOthersFramesNeverTheirOwn) {
     }
     std::vector<std::uint32_t> expected(kFrames);
     for (std::uint32_t i = 0; i < kFrames; ++i) expected[i] = i;
-    auto all_arrived = [&] {
-        for (std::size_t r = 0; r < 3; ++r)
-            for (std::size_t s = 0; s < 4; ++s)
-                if (r != s && inboxes[r].from[s].size() < kFrames) return false;
-        for (std::size_t s = 0; s < 3; ++s)
-            if (local_inbox.from[s].size() < kFrames) return false;
-        return true;
-    };
-    ASSERT_TRUE(run_until(io, all_arrived));
+    ASSERT_TRUE(run_until(io, [&] { return all_arrived(inboxes, local_inbox, kFrames); }));
     // Let any stray echo arrive before checking that none came.
     run_until(
         io, [] { return false; }, std::chrono::milliseconds(50));
-    for (std::size_t r = 0; r < 3; ++r) {
-        for (std::size_t s = 0; s < 4; ++s) {
-            if (r == s) {
-                EXPECT_TRUE(inboxes[r].from[s].empty()) << "client " << r << " got its own frames";
-            } else {
-                EXPECT_EQ(inboxes[r].from[s], expected) << "client " << r << " from " << s;
-            }
-        }
-    }
+    expect_clients_got_all_but_their_own(inboxes, expected);
     EXPECT_TRUE(local_inbox.from[3].empty());
     EXPECT_EQ(hub->stats().frames_received, 4 * kFrames);
 }

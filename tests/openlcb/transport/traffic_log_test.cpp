@@ -82,8 +82,8 @@ namespace fs = std::filesystem;
 
 // A fresh path in the temp directory, with no FILE or FILE.1 left from an earlier run.
 fs::path fresh_log(const std::string& name) {
-    const auto path = fs::temp_directory_path() /
-                      ("olcb_rotate_" + name + "_" + std::to_string(::getpid()) + ".log");
+    auto path = fs::temp_directory_path() /
+                ("olcb_rotate_" + name + "_" + std::to_string(::getpid()) + ".log");
     fs::remove(path);
     fs::remove(path.string() + ".1");
     return path;
