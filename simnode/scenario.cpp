@@ -574,7 +574,7 @@ private:
     bool read_run_for(const std::string& v, const Keys&) {
         const auto seconds = parse_seconds(v);
         if (!seconds) return fail("run-for '" + v + "' must be a number of seconds >= 0");
-        scenario_.run_for = *seconds;
+        scenario_.run_for = seconds;
         return true;
     }
 
