@@ -25,9 +25,10 @@ std::optional<HostPort> refuse(std::string_view text, std::string_view why, std:
 std::optional<std::uint16_t> parse_port(std::string_view text, std::string_view port_text,
                                         PortZero zero, std::string& error) {
     unsigned port = 0;
-    const char* end = port_text.data() + port_text.size();
-    const auto [ptr, ec] = std::from_chars(port_text.data(), end, port);
-    if (!all_digits(port_text) || ec != std::errc() || ptr != end || port > 65535) {
+    const auto [ptr, ec] =
+        std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+    if (!all_digits(port_text) || ec != std::errc() || ptr != port_text.data() + port_text.size() ||
+        port > 65535) {
         explain(text, "the port must be a number 0..65535", error);
         return std::nullopt;
     }

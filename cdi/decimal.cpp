@@ -15,6 +15,18 @@ bool is_digit(char c) {
     return c >= '0' && c <= '9';
 }
 
+// Advances i past a '+' or '-' at text[i], if there is one.
+void skip_sign(std::string_view text, std::size_t& i) {
+    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+}
+
+// Advances i past the decimal digits from text[i]; returns how many there were.
+std::size_t skip_digits(std::string_view text, std::size_t& i) {
+    const std::size_t start = i;
+    while (i < text.size() && is_digit(text[i])) ++i;
+    return i - start;
+}
+
 // 38 significant digits always fit in a signed 128-bit integer (10^38 < 2^127).
 constexpr std::size_t kMaxSignificantDigits = 38;
 
@@ -52,21 +64,18 @@ std::optional<WideInt> parse_decimal_int(std::string_view text) {
 std::optional<double> parse_decimal_float(std::string_view text) {
     text = trim_xml_space(text);
     std::size_t i = 0;
-    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+    skip_sign(text, i);
     const std::size_t mantissa_start = i;
-    std::size_t digits = 0;
-    while (i < text.size() && is_digit(text[i])) ++i, ++digits;
+    std::size_t digits = skip_digits(text, i);
     if (i < text.size() && text[i] == '.') {
         ++i;
-        while (i < text.size() && is_digit(text[i])) ++i, ++digits;
+        digits += skip_digits(text, i);
     }
     if (digits == 0) return std::nullopt;
     if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
         ++i;
-        if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
-        std::size_t exponent_digits = 0;
-        while (i < text.size() && is_digit(text[i])) ++i, ++exponent_digits;
-        if (exponent_digits == 0) return std::nullopt;
+        skip_sign(text, i);
+        if (skip_digits(text, i) == 0) return std::nullopt;
     }
     if (i != text.size()) return std::nullopt;
     // from_chars takes no leading '+'; the sign is re-applied below.

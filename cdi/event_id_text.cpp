@@ -29,6 +29,49 @@ std::string bad_digit(std::string_view text, char c) {
     return "event ID " + quoted(text) + ": '" + shown + "' is not a hex digit";
 }
 
+// 16 hex digits without dots.
+CodecResult<EventIdValue> parse_plain_hex(std::string_view text) {
+    for (char c : text) {
+        if (hex_digit(c) < 0) return CodecError{bad_digit(text, c)};
+    }
+    if (text.size() != 2 * kGroups) {
+        return CodecError{"event ID " + quoted(text) + " has " + std::to_string(text.size()) +
+                          " hex digits; expected 16, or 8 dotted groups like " +
+                          "05.01.01.01.22.00.00.01"};
+    }
+    EventIdValue id = 0;
+    for (char c : text) id = (id << 4) | static_cast<EventIdValue>(hex_digit(c));
+    return id;
+}
+
+// 8 dotted groups of 2 hex digits.
+CodecResult<EventIdValue> parse_dotted(std::string_view text) {
+    std::size_t groups = 1;
+    for (char c : text) groups += c == '.' ? 1 : 0;
+    if (groups != kGroups) {
+        return CodecError{"event ID " + quoted(text) + " has " + std::to_string(groups) +
+                          " groups; expected 8 like 05.01.01.01.22.00.00.01"};
+    }
+    EventIdValue id = 0;
+    std::size_t start = 0;
+    for (std::size_t g = 0; g < kGroups; ++g) {
+        const std::size_t end = std::min(text.find('.', start), text.size());
+        const std::string_view group = text.substr(start, end - start);
+        const std::string label = "group " + std::to_string(g + 1) + " of event ID " + quoted(text);
+        if (group.empty()) return CodecError{"empty " + label};
+        for (char c : group) {
+            if (hex_digit(c) < 0) return CodecError{bad_digit(text, c)};
+        }
+        if (group.size() != 2) {
+            return CodecError{label + " has " + std::to_string(group.size()) +
+                              " hex digits; expected exactly 2"};
+        }
+        id = (id << 8) | static_cast<EventIdValue>(hex_digit(group[0]) << 4 | hex_digit(group[1]));
+        start = end + 1;
+    }
+    return id;
+}
+
 }  // namespace
 
 std::string format_event_id(EventIdValue id) {
@@ -50,42 +93,8 @@ CodecResult<EventIdValue> parse_event_id(std::string_view text) {
         return CodecError{"event ID text too long (" + std::to_string(text.size()) +
                           " characters; expected 23 like 05.01.01.01.22.00.00.01)"};
     }
-    EventIdValue id = 0;
-    if (text.find('.') == std::string_view::npos) {
-        for (char c : text) {
-            if (hex_digit(c) < 0) return CodecError{bad_digit(text, c)};
-        }
-        if (text.size() != 2 * kGroups) {
-            return CodecError{"event ID " + quoted(text) + " has " + std::to_string(text.size()) +
-                              " hex digits; expected 16, or 8 dotted groups like " +
-                              "05.01.01.01.22.00.00.01"};
-        }
-        for (char c : text) id = (id << 4) | static_cast<EventIdValue>(hex_digit(c));
-        return id;
-    }
-    std::size_t groups = 1;
-    for (char c : text) groups += c == '.' ? 1 : 0;
-    if (groups != kGroups) {
-        return CodecError{"event ID " + quoted(text) + " has " + std::to_string(groups) +
-                          " groups; expected 8 like 05.01.01.01.22.00.00.01"};
-    }
-    std::size_t start = 0;
-    for (std::size_t g = 0; g < kGroups; ++g) {
-        const std::size_t end = std::min(text.find('.', start), text.size());
-        const std::string_view group = text.substr(start, end - start);
-        const std::string label = "group " + std::to_string(g + 1) + " of event ID " + quoted(text);
-        if (group.empty()) return CodecError{"empty " + label};
-        for (char c : group) {
-            if (hex_digit(c) < 0) return CodecError{bad_digit(text, c)};
-        }
-        if (group.size() != 2) {
-            return CodecError{label + " has " + std::to_string(group.size()) +
-                              " hex digits; expected exactly 2"};
-        }
-        id = (id << 8) | static_cast<EventIdValue>(hex_digit(group[0]) << 4 | hex_digit(group[1]));
-        start = end + 1;
-    }
-    return id;
+    if (text.find('.') == std::string_view::npos) return parse_plain_hex(text);
+    return parse_dotted(text);
 }
 
 std::array<std::uint8_t, kEventIdSize> encode_event_id(EventIdValue id) {

@@ -45,15 +45,15 @@ double half_to_double(std::uint16_t half) {
             m <<= 1;
             ++shift;
         }
-        const std::uint64_t double_exponent =
-            static_cast<std::uint64_t>(1 - kHalfBias - shift + kDoubleBias);
-        return std::bit_cast<double>(sign | (double_exponent << kDoubleMantissaBits) |
-                                     ((m & 0x3FF) << kDropBits));
+        const int double_exponent = 1 - kHalfBias - shift + kDoubleBias;
+        return std::bit_cast<double>(
+            sign | (static_cast<std::uint64_t>(double_exponent) << kDoubleMantissaBits) |
+            ((m & 0x3FF) << kDropBits));
     }
-    const std::uint64_t double_exponent =
-        static_cast<std::uint64_t>(exponent - kHalfBias + kDoubleBias);
-    return std::bit_cast<double>(sign | (double_exponent << kDoubleMantissaBits) |
-                                 (mantissa << kDropBits));
+    const int double_exponent = exponent - kHalfBias + kDoubleBias;
+    return std::bit_cast<double>(
+        sign | (static_cast<std::uint64_t>(double_exponent) << kDoubleMantissaBits) |
+        (mantissa << kDropBits));
 }
 
 std::uint16_t half_from_double(double value) {
@@ -77,9 +77,10 @@ std::uint16_t half_from_double(double value) {
     if (unbiased >= 1 - kHalfBias) {
         // Normal range: the carry of rounding may bump the exponent, up to infinity, which is
         // exactly the IEEE result.
-        const auto half_exponent = static_cast<std::uint64_t>(unbiased + kHalfBias);
+        const int half_exponent = unbiased + kHalfBias;
         const std::uint64_t rounded =
-            (half_exponent << kHalfMantissaBits) + shift_round_even(mantissa, kDropBits);
+            (static_cast<std::uint64_t>(half_exponent) << kHalfMantissaBits) +
+            shift_round_even(mantissa, kDropBits);
         return static_cast<std::uint16_t>(sign | rounded);
     }
     // Subnormal range: value = significand * 2^(unbiased - 52), unit 2^-24.

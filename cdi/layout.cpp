@@ -317,6 +317,7 @@ namespace {
 std::size_t count_elements(const std::vector<Segment>& segments) {
     std::size_t n = 0;
     std::vector<const std::vector<Element>*> todo;
+    todo.reserve(segments.size());
     for (const Segment& segment : segments) todo.push_back(&segment.children);
     while (!todo.empty()) {
         const std::vector<Element>& elements = *todo.back();

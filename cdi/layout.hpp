@@ -157,8 +157,16 @@ private:
         std::int64_t origin = 0;
         std::uint64_t first_ordinal = 0;
     };
+    struct ReplicaRange {
+        std::int64_t first = 0;
+        std::int64_t last = -1;
+    };
     bool find_in(Cursor& c, std::uint32_t depth, std::int64_t y, std::uint64_t& budget) const;
+    bool try_child(Cursor& c, std::uint32_t depth, std::int64_t x, std::uint32_t index,
+                   std::uint64_t& budget) const;
+    static ReplicaRange replicas_holding(const Node& n, std::int64_t ya);
     void check_overlaps(const LayoutOptions& options, Diagnostics& diagnostics) const;
+    void check_replica_overlaps(Diagnostics& diagnostics) const;
 
     const Document* doc_ = nullptr;
     std::vector<Node> nodes_;

@@ -134,11 +134,58 @@ Cursor Layout::at(std::uint64_t ordinal) const {
     }
 }
 
+// Tries child `index` of frame d's group for byte x: the variable itself, or the replicas of a
+// group whose span can hold x, in ascending order.
+bool Layout::try_child(Cursor& c, std::uint32_t d, std::int64_t x, std::uint32_t index,
+                       std::uint64_t& budget) const {
+    Cursor::Frame& f = c.frames_[d];
+    const Node& g = nodes_[f.node];
+    const Node& n = nodes_[index];
+    const std::int64_t y = x - f.base;
+    if (y < n.rel + n.lo || y >= n.rel + n.hi) return false;
+    f.child = index - g.first_child + 1;
+    if (!n.is_group) {
+        if (y < n.rel || y >= n.rel + n.stride) return false;
+        c.var_node_ = index;
+        c.address_ = f.base + n.rel;
+        c.depth_ = d + 1;
+        return true;
+    }
+    const ReplicaRange range = replicas_holding(n, y - n.rel);
+    for (std::int64_t k = range.first; k <= range.last; ++k) {
+        if (budget == 0) return false;
+        --budget;
+        c.frames_[d + 1] =
+            Cursor::Frame{index, 0, static_cast<std::uint64_t>(k), f.base + n.rel + k * n.stride};
+        if (find_in(c, d + 1, x, budget)) return true;
+    }
+    return false;
+}
+
+// The replicas of group n whose variable bytes can hold offset ya (relative to n.rel); empty
+// when last < first.
+Layout::ReplicaRange Layout::replicas_holding(const Node& n, std::int64_t ya) {
+    const std::int64_t s = n.stride;
+    std::int64_t kmin = 0;
+    std::int64_t kmax = -1;
+    if (s > 0) {
+        kmin = ceil_div(ya - n.one_hi + 1, s);
+        kmax = floor_div(ya - n.one_lo, s);
+    } else if (s < 0) {
+        kmin = ceil_div(n.one_lo - ya, -s);
+        kmax = floor_div(n.one_hi - 1 - ya, -s);
+    } else if (ya >= n.one_lo && ya < n.one_hi) {
+        kmax = 0;  // every replica is at the same place; the first one wins
+    }
+    const auto last = static_cast<std::int64_t>(n.replication - 1);
+    return ReplicaRange{std::max<std::int64_t>(kmin, 0), std::min(kmax, last)};
+}
+
 // Searches frame d's group (node and base already set) for byte x; children are tried in
 // document order among the candidates, replicas in ascending order, so the first hit is the
 // first variable in document order holding x.
 bool Layout::find_in(Cursor& c, std::uint32_t d, std::int64_t x, std::uint64_t& budget) const {
-    Cursor::Frame& f = c.frames_[d];
+    const Cursor::Frame& f = c.frames_[d];
     const Node& g = nodes_[f.node];
     if (g.sorted_count == 0) return false;
     const std::int64_t y = x - f.base;
@@ -162,55 +209,18 @@ bool Layout::find_in(Cursor& c, std::uint32_t d, std::int64_t x, std::uint64_t& 
     }
     std::sort(candidates, candidates + count);
 
-    auto try_child = [&](std::uint32_t index) -> bool {
-        const Node& n = nodes_[index];
-        if (y < n.rel + n.lo || y >= n.rel + n.hi) return false;
-        f.child = index - g.first_child + 1;
-        if (!n.is_group) {
-            if (y < n.rel || y >= n.rel + n.stride) return false;
-            c.var_node_ = index;
-            c.address_ = f.base + n.rel;
-            c.depth_ = d + 1;
-            return true;
-        }
-        const std::int64_t ya = y - n.rel;
-        const std::int64_t s = n.stride;
-        const auto last = static_cast<std::int64_t>(n.replication - 1);
-        std::int64_t kmin = 0;
-        std::int64_t kmax = -1;
-        if (s > 0) {
-            kmin = ceil_div(ya - n.one_hi + 1, s);
-            kmax = floor_div(ya - n.one_lo, s);
-        } else if (s < 0) {
-            kmin = ceil_div(n.one_lo - ya, -s);
-            kmax = floor_div(n.one_hi - 1 - ya, -s);
-        } else if (ya >= n.one_lo && ya < n.one_hi) {
-            kmax = 0;  // every replica is at the same place; the first one wins
-        }
-        kmin = std::max<std::int64_t>(kmin, 0);
-        kmax = std::min(kmax, last);
-        for (std::int64_t k = kmin; k <= kmax; ++k) {
-            if (budget == 0) return false;
-            --budget;
-            c.frames_[d + 1] =
-                Cursor::Frame{index, 0, static_cast<std::uint64_t>(k), f.base + n.rel + k * s};
-            if (find_in(c, d + 1, x, budget)) return true;
-        }
-        return false;
-    };
-
     if (too_many) {
         for (std::uint32_t i = 0; i < g.child_count; ++i) {
             if (budget == 0) return false;
             --budget;
-            if (try_child(g.first_child + i)) return true;
+            if (try_child(c, d, x, g.first_child + i, budget)) return true;
         }
         return false;
     }
     for (std::size_t i = 0; i < count; ++i) {
         if (budget == 0) return false;
         --budget;
-        if (try_child(candidates[i])) return true;
+        if (try_child(c, d, x, candidates[i], budget)) return true;
     }
     return false;
 }

@@ -15,13 +15,11 @@ struct Span {
     std::uint64_t ordinal;
 };
 
-}  // namespace
-
-void Layout::check_overlaps(const LayoutOptions& options, Diagnostics& diagnostics) const {
-    const std::uint64_t budget = std::min(options.overlap_budget, variable_count_);
+// The first `budget` variables with bytes, ascending by space, address, then document order.
+std::vector<Span> sorted_spans(const Layout& layout, std::uint64_t budget) {
     std::vector<Span> spans;
     spans.reserve(static_cast<std::size_t>(budget));
-    for (Cursor c = begin(); c.valid() && spans.size() < budget; c.next()) {
+    for (Cursor c = layout.begin(); c.valid() && spans.size() < budget; c.next()) {
         if (c.size() == 0) continue;
         spans.push_back({c.space(), c.address(), c.address() + c.size(), c.ordinal()});
     }
@@ -34,6 +32,12 @@ void Layout::check_overlaps(const LayoutOptions& options, Diagnostics& diagnosti
     if (!std::is_sorted(spans.begin(), spans.end(), by_address)) {
         std::sort(spans.begin(), spans.end(), by_address);
     }
+    return spans;
+}
+
+// One warning per space whose sorted spans overlap, naming the first overlapping pair.
+void warn_span_overlaps(const Layout& layout, const std::vector<Span>& spans,
+                        Diagnostics& diagnostics) {
     for (std::size_t i = 0; i < spans.size();) {
         const std::uint32_t space = spans[i].space;
         std::uint64_t overlaps = 0;
@@ -41,17 +45,15 @@ void Layout::check_overlaps(const LayoutOptions& options, Diagnostics& diagnosti
         const Span* first_a = nullptr;
         const Span* first_b = nullptr;
         for (++i; i < spans.size() && spans[i].space == space; ++i) {
-            if (spans[i].begin < widest->end) {
-                if (overlaps++ == 0) {
-                    first_a = widest;
-                    first_b = &spans[i];
-                }
+            if (spans[i].begin < widest->end && overlaps++ == 0) {
+                first_a = widest;
+                first_b = &spans[i];
             }
             if (spans[i].end > widest->end) widest = &spans[i];
         }
         if (overlaps == 0) continue;
-        const Cursor a = at(first_a->ordinal);
-        const Cursor b = at(first_b->ordinal);
+        const Cursor a = layout.at(first_a->ordinal);
+        const Cursor b = layout.at(first_b->ordinal);
         diagnostics.push_back(
             {Severity::kWarning, b.element().pos.line,
              std::to_string(overlaps) + " variable(s) overlap an earlier one in space " +
@@ -59,9 +61,19 @@ void Layout::check_overlaps(const LayoutOptions& options, Diagnostics& diagnosti
                  std::to_string(b.address()) + " overlaps '" + a.path() + "' at " +
                  std::to_string(a.address()) + ".." + std::to_string(a.address() + a.size())});
     }
-    if (budget == variable_count_) return;
-    // Beyond the budget: a group's replicas collide when one replica's variables span more
-    // bytes than the stride.
+}
+
+}  // namespace
+
+void Layout::check_overlaps(const LayoutOptions& options, Diagnostics& diagnostics) const {
+    const std::uint64_t budget = std::min(options.overlap_budget, variable_count_);
+    warn_span_overlaps(*this, sorted_spans(*this, budget), diagnostics);
+    if (budget != variable_count_) check_replica_overlaps(diagnostics);
+}
+
+// Beyond the budget: a group's replicas collide when one replica's variables span more bytes
+// than the stride.
+void Layout::check_replica_overlaps(Diagnostics& diagnostics) const {
     for (const Node& n : nodes_) {
         if (!n.is_group || n.replication < 2 || n.vars_per_replica == 0) continue;
         const std::int64_t width = n.one_hi - n.one_lo;

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cinttypes>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,31 +84,9 @@ private:
         std::string where = placement ? "@" + hex_address(placement->address) + " " : "";
         std::string label = e.name.empty() ? "(unnamed)" : "\"" + e.name + "\"";
         if (e.kind == ElementKind::kGroup) {
-            std::string head = where + "group " + label;
-            if (e.replication > 1) {
-                head += " x" + std::to_string(e.replication);
-                if (placement) head += ", stride " + std::to_string(placement->stride) + " bytes";
-            }
-            if (!e.repnames.empty()) {
-                head += ", repname";
-                for (const auto& r : e.repnames) head += " \"" + r + "\"";
-            }
-            line(depth, head);
+            line(depth, where + group_head(e, label, placement));
         } else {
-            std::string type = e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind);
-            std::string head = where + type + "(" + std::to_string(e.size) + ") " + label;
-            if (e.kind == ElementKind::kInt && e.is_signed()) head += " signed";
-            if (e.int_min) head += " min " + to_string(*e.int_min);
-            if (e.int_max) head += " max " + to_string(*e.int_max);
-            if (e.int_default) head += " default " + to_string(*e.int_default);
-            if (e.float_min) head += " min " + format_double(*e.float_min);
-            if (e.float_max) head += " max " + format_double(*e.float_max);
-            if (e.float_default) head += " default " + format_double(*e.float_default);
-            if (e.text_default) head += " default \"" + *e.text_default + "\"";
-            if (e.action_value) head += " value " + to_string(*e.action_value);
-            if (e.button_text) head += " button \"" + *e.button_text + "\"";
-            if (e.blob_mode) head += " mode " + *e.blob_mode;
-            line(depth, head);
+            line(depth, where + variable_head(e, label));
         }
         text(depth + 1, e.description);
         if (e.link) line(depth + 1, "link: " + e.link->text + " <" + e.link->ref + ">");
@@ -115,6 +94,39 @@ private:
         if (!hints.empty()) line(depth + 1, "hints: " + hints);
         if (e.dialog_text) line(depth + 1, "dialog: " + *e.dialog_text);
         if (e.map) map(depth + 1, *e.map);
+    }
+
+    // "group LABEL" with its replication, stride and repnames.
+    static std::string group_head(const Element& e, const std::string& label,
+                                  const std::optional<Placement>& placement) {
+        std::string head = "group " + label;
+        if (e.replication > 1) {
+            head += " x" + std::to_string(e.replication);
+            if (placement) head += ", stride " + std::to_string(placement->stride) + " bytes";
+        }
+        if (!e.repnames.empty()) {
+            head += ", repname";
+            for (const auto& r : e.repnames) head += " \"" + r + "\"";
+        }
+        return head;
+    }
+
+    // "TYPE(SIZE) LABEL" with every attribute the variable has.
+    static std::string variable_head(const Element& e, const std::string& label) {
+        std::string type = e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind);
+        std::string head = type + "(" + std::to_string(e.size) + ") " + label;
+        if (e.kind == ElementKind::kInt && e.is_signed()) head += " signed";
+        if (e.int_min) head += " min " + to_string(*e.int_min);
+        if (e.int_max) head += " max " + to_string(*e.int_max);
+        if (e.int_default) head += " default " + to_string(*e.int_default);
+        if (e.float_min) head += " min " + format_double(*e.float_min);
+        if (e.float_max) head += " max " + format_double(*e.float_max);
+        if (e.float_default) head += " default " + format_double(*e.float_default);
+        if (e.text_default) head += " default \"" + *e.text_default + "\"";
+        if (e.action_value) head += " value " + to_string(*e.action_value);
+        if (e.button_text) head += " button \"" + *e.button_text + "\"";
+        if (e.blob_mode) head += " mode " + *e.blob_mode;
+        return head;
     }
 
     // The elements under a segment in document order, each group's children below it

@@ -211,34 +211,45 @@ const FrameProbe& CheckRun::frame_probe() {
     // sits behind 999 others); then the checks judge what came.
     std::size_t frames_seen = fmark, messages_seen = mmark;
     auto count_answers = [&] {
-        for (const CanFrame& f : s_.frames_since(frames_seen)) {
-            if (!from_node(f) || !can::is_control(f.id)) continue;
-            const auto kind = can::classify_control(f.id);
-            if (kind == can::ControlFrame::kAmd && f.len == 6 &&
-                NodeId::from_bytes({f.data.data(), 6}) == node_.id)
-                ++p.amd;
-            if (kind == can::ControlFrame::kRid) ++p.rid;
-        }
-        frames_seen = s_.frame_mark();
-        for (const auto& r : s_.messages_since(messages_seen)) {
-            const Message& m = r.message;
-            if (m.source.alias != alias()) continue;
-            if (m.mti == Mti::kOptionalInteractionRejected && m.payload.size() >= 4 &&
-                (m.payload[2] << 8 | m.payload[3]) == kUnknownAddressedMti && (m.payload[0] & 0x10))
-                p.oir = true;
-            if ((m.mti == Mti::kVerifiedNodeId || m.mti == Mti::kVerifiedNodeIdSimple) &&
-                NodeId::from_bytes(m.payload) == node_.id) {
-                p.verified = true;
-                p.verified_mti = m.mti;
-            }
-        }
-        messages_seen = s_.message_mark();
+        count_probe_frames(p, frames_seen);
+        count_probe_messages(p, messages_seen);
         return p.amd >= 2 && p.rid >= 1 && p.oir && p.verified;
     };
     s_.link().run_until(count_answers, o_.answer_window);
     count_answers();
     frame_probe_ = p;
     return *frame_probe_;
+}
+
+// The node's AMDs (carrying its node ID) and RIDs among the frames since seen; seen moves on.
+void CheckRun::count_probe_frames(FrameProbe& p, std::size_t& seen) {
+    for (const CanFrame& f : s_.frames_since(seen)) {
+        if (!from_node(f) || !can::is_control(f.id)) continue;
+        const auto kind = can::classify_control(f.id);
+        if (kind == can::ControlFrame::kAmd && f.len == 6 &&
+            NodeId::from_bytes({f.data.data(), 6}) == node_.id)
+            ++p.amd;
+        if (kind == can::ControlFrame::kRid) ++p.rid;
+    }
+    seen = s_.frame_mark();
+}
+
+// The node's OIR to the unknown addressed MTI and its Verified Node ID among the messages
+// since seen; seen moves on.
+void CheckRun::count_probe_messages(FrameProbe& p, std::size_t& seen) {
+    for (const auto& r : s_.messages_since(seen)) {
+        const Message& m = r.message;
+        if (m.source.alias != alias()) continue;
+        if (m.mti == Mti::kOptionalInteractionRejected && m.payload.size() >= 4 &&
+            (m.payload[2] << 8 | m.payload[3]) == kUnknownAddressedMti && (m.payload[0] & 0x10))
+            p.oir = true;
+        if ((m.mti == Mti::kVerifiedNodeId || m.mti == Mti::kVerifiedNodeIdSimple) &&
+            NodeId::from_bytes(m.payload) == node_.id) {
+            p.verified = true;
+            p.verified_mti = m.mti;
+        }
+    }
+    seen = s_.message_mark();
 }
 
 const std::optional<std::vector<std::uint8_t>>& CheckRun::snip_raw() {

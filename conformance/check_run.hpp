@@ -190,6 +190,8 @@ public:
 private:
     /// Reads on past Space Info's highest address when the download ended there without a NUL.
     void read_past_highest(CdiDownload& d, std::uint32_t len);
+    void count_probe_frames(FrameProbe& p, std::size_t& seen);
+    void count_probe_messages(FrameProbe& p, std::size_t& seen);
 
     Session& s_;
     NodeInfo node_;

@@ -147,7 +147,7 @@ bool replica_sampled(std::uint64_t index, std::uint64_t count, std::size_t sampl
     // `sample` indices spread evenly from the first to the last replica.
     for (std::size_t i = 0; i < sample; ++i) {
         std::uint64_t pick = static_cast<std::uint64_t>(
-            (static_cast<long double>(count - 1) * i) / (sample - 1) + 0.5L);
+            std::round((static_cast<long double>(count - 1) * i) / (sample - 1)));
         if (pick == index) return true;
     }
     return false;

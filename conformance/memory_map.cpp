@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <unordered_map>
 
 #include <nlohmann/json.hpp>
@@ -22,7 +23,7 @@ std::uint64_t next_sampled(std::uint64_t from, std::uint64_t count, std::size_t 
     if (sample == 1) return from == 0 ? 0 : count;
     for (std::size_t i = 0; i < sample; ++i) {
         const auto pick = static_cast<std::uint64_t>(
-            (static_cast<long double>(count - 1) * i) / (sample - 1) + 0.5L);
+            std::round((static_cast<long double>(count - 1) * i) / (sample - 1)));
         if (pick >= from) return pick;
     }
     return count;

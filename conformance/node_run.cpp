@@ -92,7 +92,7 @@ NodeReport NodeRun::run() {
 void NodeRun::say(const std::string& text) {
     // On a terminal the bars show progress; in a log one line at a time does.
     if (options_.progress) return;
-    progress_ << "lcc-conform: " << report_.node_id << " " << text << std::endl;
+    progress_ << "lcc-conform: " << report_.node_id << " " << text << '\n' << std::flush;
     last_line_ = wall();
 }
 
@@ -479,7 +479,8 @@ void NodeRun::after_incident() {
     report_.checks.push_back(failed);
     // The message names the node's own variable names: untrusted bytes.
     progress_ << "lcc-conform: " << printable(failed.message) << "; waiting up to "
-              << options_.node_wait.count() << " s for it to come back" << std::endl;
+              << options_.node_wait.count() << " s for it to come back\n"
+              << std::flush;
     if (!watch_.wait_for_return(options_.node_wait)) {
         keep_backup("the node did not come back within " +
                     std::to_string(options_.node_wait.count()) + " s");
@@ -512,7 +513,8 @@ void NodeRun::wait_for_link() {
     progress_ << "lcc-conform: the link went down"
               << (link.loss_reason().empty() ? "" : " (" + link.loss_reason() + ")")
               << "; waiting up to " << options_.link_wait.count()
-              << " s for it to return to restore the node" << std::endl;
+              << " s for it to return to restore the node\n"
+              << std::flush;
     // The link's clock: simulated in tests, steady on real transports.
     const TimePoint deadline = link.now() + options_.link_wait;
     while (!stop_requested() && link.now() < deadline) {
@@ -523,7 +525,7 @@ void NodeRun::wait_for_link() {
         if (stop_requested()) return;
         // Up again: the node must answer before its memory is trusted to the restore.
         if (session_.find_node(node_.id)) {
-            progress_ << "lcc-conform: link back; restoring" << std::endl;
+            progress_ << "lcc-conform: link back; restoring\n" << std::flush;
             return;
         }
     }

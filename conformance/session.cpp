@@ -78,6 +78,28 @@ void take_reply(const memory::Message& reply, MemResult& result) {
         reply);
 }
 
+// The first memory-configuration reply datagram from one alias among the recorded messages,
+// each scan resuming where the previous one stopped.
+struct ReplyScan {
+    std::uint16_t alias = 0;
+    std::size_t scanned = 0;
+    std::optional<std::size_t> index;
+    std::optional<memory::Message> decoded;
+
+    template <class Events>
+    bool found(const Events& messages) {
+        for (; !index && scanned < messages.size(); ++scanned) {
+            const Message& m = messages[scanned].message;
+            if (m.mti != Mti::kDatagram || m.source.alias != alias) continue;
+            auto d = memory::decode(m.payload);
+            if (!d.ok() || !is_reply(d.message)) continue;
+            index = scanned;
+            decoded = d.message;
+        }
+        return index.has_value();
+    }
+};
+
 }  // namespace
 
 Session::Session(Link& link) : link_(link) {
@@ -452,34 +474,18 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
         result.rejected = true;
         return result;
     }
-    std::size_t scanned = mark;
-    std::optional<std::size_t> reply_index;
-    std::optional<memory::Message> decoded;
-    auto find_reply = [&] {
-        for (; !reply_index && scanned < messages_.size(); ++scanned) {
-            const Message& m = messages_[scanned].message;
-            if (m.mti != Mti::kDatagram || m.source.alias != alias) continue;
-            auto d = memory::decode(m.payload);
-            if (!d.ok() || !is_reply(d.message)) continue;
-            reply_index = scanned;
-            decoded = d.message;
-        }
-        return reply_index.has_value();
-    };
-    auto outcome = [&]() -> const OutcomeRecord* {
-        auto it = outcomes_.find(*id);
-        return it == outcomes_.end() ? nullptr : &it->second;
-    };
+    ReplyScan scan{alias, mark, std::nullopt, std::nullopt};
+    auto find_reply = [&] { return scan.found(messages_); };
     // The ack may sit behind an earlier unacknowledged datagram to the same node (sender timeout).
     const Duration ack_wait =
         link_.stack().config().datagram_sender.ack_timeout * 2 + std::chrono::milliseconds(500);
     // A transport that goes away mid-exchange ends the wait at once: no reply can come.
     const std::uint64_t losses = link_.losses();
     auto lost = [&] { return link_.losses() != losses; };
-    link_.run_until([&] { return outcome() != nullptr || find_reply() || lost(); }, ack_wait);
-    const OutcomeRecord* oc = outcome();
+    link_.run_until([&] { return outcome_of(*id) != nullptr || find_reply() || lost(); }, ack_wait);
+    const OutcomeRecord* oc = outcome_of(*id);
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
-    if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !reply_index) {
+    if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !scan.index) {
         result.rejected = true;
         result.error = oc->outcome.error_code;
         return result;
@@ -492,24 +498,29 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
             return result;
         }
     }
-    if (!reply_index && !lost()) {
+    if (!scan.index && !lost()) {
         link_.run_until([&] { return find_reply() || lost(); }, reply_timeout_);
     }
-    if (!reply_index) {
+    if (!scan.index) {
         result.timed_out = true;
         result.error = base::to_u16(base::ErrorCode::kTimeout);
         return result;
     }
-    const Event& ev = messages_[*reply_index];
-    oc = outcome();
+    const Event& ev = messages_[*scan.index];
+    oc = outcome_of(*id);
     result.datagram_ok_seen =
         oc && oc->outcome.status == DatagramOutcome::Status::kAccepted && oc->seq < ev.seq;
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
     result.reply_latency = ev.at - sent_at;
     result.reply_in_request_form = is_short_form(ev.message.payload) == request_short;
-    if (reply) *reply = *decoded;
-    take_reply(*decoded, result);
+    if (reply) *reply = *scan.decoded;
+    take_reply(*scan.decoded, result);
     return result;
+}
+
+const Session::OutcomeRecord* Session::outcome_of(std::uint32_t datagram_id) const {
+    auto it = outcomes_.find(datagram_id);
+    return it == outcomes_.end() ? nullptr : &it->second;
 }
 
 MemResult Session::read(const NodeInfo& node, memory::Space space, std::uint32_t address,

@@ -237,6 +237,7 @@ private:
 
     MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                        bool always_reply, memory::Message* reply);
+    const OutcomeRecord* outcome_of(std::uint32_t datagram_id) const;
     struct StreamWait;  // session_stream.cpp
     bool stream_progress(StreamWait& w);
     void stream_event(StreamWait& w, const StreamEvent& e);

@@ -2,9 +2,9 @@
 // the stream transport on (see tool_stack_config).
 #include <algorithm>
 
+#include "base/error_codes.hpp"
 #include "conformance/session.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "base/error_codes.hpp"
 
 namespace olcb::conform {
 
@@ -132,7 +132,8 @@ StreamReadResult Session::read_stream(const NodeInfo& node, memory::Space space,
         if (w.failed || (w.result.completed && w.reply_done)) break;
         if (link_.now() - w.last_progress > patience) {
             w.result.mem.timed_out = true;
-            if (w.result.mem.error == 0) w.result.mem.error = base::to_u16(base::ErrorCode::kTimeout);
+            if (w.result.mem.error == 0)
+                w.result.mem.error = base::to_u16(base::ErrorCode::kTimeout);
             break;
         }
     }

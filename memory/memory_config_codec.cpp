@@ -133,50 +133,89 @@ bool is_defined_family(std::uint8_t family) {
     }
 }
 
+// The address, then the space: in the command byte (short form) or in byte 6.
+DecodeError decode_header(std::uint8_t command, Reader& reader, Header& h) {
+    if (!reader.be(4, h.address)) return DecodeError::kTruncated;
+    if (const auto short_space = short_form_space(command)) {
+        h.space = *short_space;
+        h.form = SpaceForm::kShort;
+        return DecodeError::kNone;
+    }
+    std::uint8_t space = 0;
+    if (!reader.u8(space)) return DecodeError::kMissingSpace;
+    h.space = static_cast<Space>(space);
+    h.form = SpaceForm::kByte6;
+    return DecodeError::kNone;
+}
+
+DecodeResult decode_read(const Header& h, Reader& reader) {
+    std::uint8_t count = 0;
+    if (!reader.u8(count)) return fail(DecodeError::kTruncated);
+    count &= static_cast<std::uint8_t>(~kReadCountReservedBit);
+    if (!is_valid_read_count(count)) return fail(DecodeError::kBadCount);
+    return ok(Read{h.space, h.address, count, h.form});
+}
+
+// Read Reply and Write: the data bytes follow the header.
+template <typename M>
+DecodeResult decode_with_data(const Header& h, Reader& reader) {
+    M m{h.space, h.address, {}, h.form};
+    if (auto e = decode_data(reader, m.data); e != DecodeError::kNone) return fail(e);
+    return ok(std::move(m));
+}
+
+DecodeResult decode_write_under_mask(const Header& h, Reader& reader) {
+    const auto rest = reader.rest();
+    if (rest.empty()) return fail(DecodeError::kNoData);
+    if (rest.size() % 2 != 0) return fail(DecodeError::kOddMaskData);
+    if (rest.size() > kMaxReadWrite) return fail(DecodeError::kTooMuchData);
+    WriteUnderMask m{h.space, h.address, {}, h.form};
+    for (std::size_t i = 0; i < rest.size(); i += 2) {
+        m.bytes.push_back(MaskedByte{rest[i], rest[i + 1]});
+    }
+    return ok(std::move(m));
+}
+
+// Read Stream and its reply: source and destination stream IDs, then the count.
+template <typename M>
+DecodeResult decode_stream_read(const Header& h, Reader& reader) {
+    M m{h.space, h.address, 0, 0, 0, h.form};
+    if (!reader.u8(m.source_stream_id) || !reader.u8(m.destination_stream_id) ||
+        !reader.be(4, m.count)) {
+        return fail(DecodeError::kTruncated);
+    }
+    return ok(m);
+}
+
+DecodeResult decode_write_stream(const Header& h, Reader& reader) {
+    WriteStream m{h.space, h.address, 0, h.form};
+    if (!reader.u8(m.source_stream_id)) return fail(DecodeError::kTruncated);
+    return ok(m);
+}
+
+DecodeResult decode_write_stream_reply(const Header& h, Reader& reader) {
+    WriteStreamReply m{h.space, h.address, 0, 0, h.form};
+    if (!reader.u8(m.source_stream_id) || !reader.u8(m.destination_stream_id)) {
+        return fail(DecodeError::kTruncated);
+    }
+    return ok(m);
+}
+
 DecodeResult decode_read_write(std::uint8_t command, Reader& reader) {
     const std::uint8_t family = family_of(command);
     if (!is_defined_family(family)) return fail(DecodeError::kUnknownCommand);
     Header h;
-    if (!reader.be(4, h.address)) return fail(DecodeError::kTruncated);
-    if (const auto short_space = short_form_space(command)) {
-        h.space = *short_space;
-        h.form = SpaceForm::kShort;
-    } else {
-        std::uint8_t space = 0;
-        if (!reader.u8(space)) return fail(DecodeError::kMissingSpace);
-        h.space = static_cast<Space>(space);
-        h.form = SpaceForm::kByte6;
-    }
+    if (auto e = decode_header(command, reader, h); e != DecodeError::kNone) return fail(e);
 
     switch (static_cast<Command>(family)) {
-        case Command::kRead: {
-            std::uint8_t count = 0;
-            if (!reader.u8(count)) return fail(DecodeError::kTruncated);
-            count &= static_cast<std::uint8_t>(~kReadCountReservedBit);
-            if (!is_valid_read_count(count)) return fail(DecodeError::kBadCount);
-            return ok(Read{h.space, h.address, count, h.form});
-        }
-        case Command::kReadReply: {
-            ReadReply m{h.space, h.address, {}, h.form};
-            if (auto e = decode_data(reader, m.data); e != DecodeError::kNone) return fail(e);
-            return ok(std::move(m));
-        }
-        case Command::kWrite: {
-            Write m{h.space, h.address, {}, h.form};
-            if (auto e = decode_data(reader, m.data); e != DecodeError::kNone) return fail(e);
-            return ok(std::move(m));
-        }
-        case Command::kWriteUnderMask: {
-            const auto rest = reader.rest();
-            if (rest.empty()) return fail(DecodeError::kNoData);
-            if (rest.size() % 2 != 0) return fail(DecodeError::kOddMaskData);
-            if (rest.size() > kMaxReadWrite) return fail(DecodeError::kTooMuchData);
-            WriteUnderMask m{h.space, h.address, {}, h.form};
-            for (std::size_t i = 0; i < rest.size(); i += 2) {
-                m.bytes.push_back(MaskedByte{rest[i], rest[i + 1]});
-            }
-            return ok(std::move(m));
-        }
+        case Command::kRead:
+            return decode_read(h, reader);
+        case Command::kReadReply:
+            return decode_with_data<ReadReply>(h, reader);
+        case Command::kWrite:
+            return decode_with_data<Write>(h, reader);
+        case Command::kWriteUnderMask:
+            return decode_write_under_mask(h, reader);
         case Command::kWriteReply:
             return ok(WriteReply{h.space, h.address, h.form});
         case Command::kReadReplyFail:
@@ -187,34 +226,14 @@ DecodeResult decode_read_write(std::uint8_t command, Reader& reader) {
             return decode_fail_reply<ReadStreamReplyFail>(h, reader);
         case Command::kWriteStreamReplyFail:
             return decode_fail_reply<WriteStreamReplyFail>(h, reader);
-        case Command::kReadStream: {
-            ReadStream m{h.space, h.address, 0, 0, 0, h.form};
-            if (!reader.u8(m.source_stream_id) || !reader.u8(m.destination_stream_id) ||
-                !reader.be(4, m.count)) {
-                return fail(DecodeError::kTruncated);
-            }
-            return ok(m);
-        }
-        case Command::kReadStreamReply: {
-            ReadStreamReply m{h.space, h.address, 0, 0, 0, h.form};
-            if (!reader.u8(m.source_stream_id) || !reader.u8(m.destination_stream_id) ||
-                !reader.be(4, m.count)) {
-                return fail(DecodeError::kTruncated);
-            }
-            return ok(m);
-        }
-        case Command::kWriteStream: {
-            WriteStream m{h.space, h.address, 0, h.form};
-            if (!reader.u8(m.source_stream_id)) return fail(DecodeError::kTruncated);
-            return ok(m);
-        }
-        case Command::kWriteStreamReply: {
-            WriteStreamReply m{h.space, h.address, 0, 0, h.form};
-            if (!reader.u8(m.source_stream_id) || !reader.u8(m.destination_stream_id)) {
-                return fail(DecodeError::kTruncated);
-            }
-            return ok(m);
-        }
+        case Command::kReadStream:
+            return decode_stream_read<ReadStream>(h, reader);
+        case Command::kReadStreamReply:
+            return decode_stream_read<ReadStreamReply>(h, reader);
+        case Command::kWriteStream:
+            return decode_write_stream(h, reader);
+        case Command::kWriteStreamReply:
+            return decode_write_stream_reply(h, reader);
         default:
             return fail(DecodeError::kUnknownCommand);
     }

@@ -114,41 +114,60 @@ Decision MemoryConfigServer::handle(const Source&, std::span<const std::uint8_t>
             } else if constexpr (std::is_same_v<T, UpdateComplete>) {
                 return Decision::ok();
             } else if constexpr (std::is_same_v<T, ResetReboot>) {
-                Decision d = Decision::ok();
-                d.effects.reboot = true;
-                reset();
-                return d;
+                return on_reset_reboot();
             } else if constexpr (std::is_same_v<T, FactoryReset>) {
-                // The node ID in the command is a safety check against resetting the wrong node.
-                if ((m.node_id & kNodeIdMask) != (config_.node_id & kNodeIdMask)) {
-                    return Decision::reject(ErrorCode::kInvalidArguments);
-                }
-                Decision d = Decision::ok();
-                d.effects.factory_reset = true;
-                reset();
-                return d;
-            } else if constexpr (std::is_same_v<T, Freeze> || std::is_same_v<T, Unfreeze>) {
-                if (!config_.accept_freeze) return Decision::reject(ErrorCode::kSubcommandUnknown);
-                Decision d = Decision::ok();
-                if constexpr (std::is_same_v<T, Freeze>) {
-                    d.effects.freeze = m.space;
-                } else {
-                    d.effects.unfreeze = m.space;
-                }
-                return d;
+                return on_factory_reset(m);
+            } else if constexpr (std::is_same_v<T, Freeze>) {
+                return on_freeze(m);
+            } else if constexpr (std::is_same_v<T, Unfreeze>) {
+                return on_unfreeze(m);
             } else if constexpr (std::is_same_v<T, EnterBootloader>) {
-                if (!config_.accept_enter_bootloader) {
-                    return Decision::reject(ErrorCode::kSubcommandUnknown);
-                }
-                Decision d = Decision::ok();
-                d.effects.enter_bootloader = true;
-                return d;
+                return on_enter_bootloader();
             } else {
                 // Streams (unsupported) and replies (we are not a client).
                 return Decision::reject(ErrorCode::kSubcommandUnknown);
             }
         },
         decoded.message);
+}
+
+Decision MemoryConfigServer::on_reset_reboot() {
+    Decision d = Decision::ok();
+    d.effects.reboot = true;
+    reset();
+    return d;
+}
+
+Decision MemoryConfigServer::on_factory_reset(const FactoryReset& request) {
+    // The node ID in the command is a safety check against resetting the wrong node.
+    if ((request.node_id & kNodeIdMask) != (config_.node_id & kNodeIdMask)) {
+        return Decision::reject(ErrorCode::kInvalidArguments);
+    }
+    Decision d = Decision::ok();
+    d.effects.factory_reset = true;
+    reset();
+    return d;
+}
+
+Decision MemoryConfigServer::on_freeze(const Freeze& request) const {
+    if (!config_.accept_freeze) return Decision::reject(ErrorCode::kSubcommandUnknown);
+    Decision d = Decision::ok();
+    d.effects.freeze = request.space;
+    return d;
+}
+
+Decision MemoryConfigServer::on_unfreeze(const Unfreeze& request) const {
+    if (!config_.accept_freeze) return Decision::reject(ErrorCode::kSubcommandUnknown);
+    Decision d = Decision::ok();
+    d.effects.unfreeze = request.space;
+    return d;
+}
+
+Decision MemoryConfigServer::on_enter_bootloader() const {
+    if (!config_.accept_enter_bootloader) return Decision::reject(ErrorCode::kSubcommandUnknown);
+    Decision d = Decision::ok();
+    d.effects.enter_bootloader = true;
+    return d;
 }
 
 Decision MemoryConfigServer::on_read(const Read& read) {

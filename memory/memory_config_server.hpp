@@ -159,6 +159,11 @@ private:
     Decision on_space_info(const GetSpaceInfo& request) const;
     Decision on_lock(const Lock& request);
     Decision on_unique_id(const GetUniqueId& request);
+    Decision on_reset_reboot();
+    Decision on_factory_reset(const FactoryReset& request);
+    Decision on_freeze(const Freeze& request) const;
+    Decision on_unfreeze(const Unfreeze& request) const;
+    Decision on_enter_bootloader() const;
     Decision with_reply(const Message& reply) const;
 
     Config config_;

@@ -238,24 +238,34 @@ void DatagramReceiver::on_frame(const CanFrame& frame, TimePoint now) {
     const bool only = format == can::FrameFormat::kDatagramOnly;
 
     if (starts) {
-        discarding_[src] = false;  // whatever was being skipped is over
-        std::uint16_t code = 0;
-        if (slot && !slot->complete) {
-            code = base::to_u16(base::ErrorCode::kFirstBeforePreviousFinished);
-            erase(src);
-        } else if (slot || slots_.size() >= config_.max_buffers) {
-            code = base::to_u16(base::ErrorCode::kBufferUnavailable);
-        }
-        if (code != 0) {
-            send_reject(src, code);
-            if (!only) discarding_[src] = true;
-            return;
-        }
-        start(src, frame, only, now);
+        on_first_frame(src, slot, frame, only, now);
+    } else {
+        on_later_frame(src, slot, frame, format == can::FrameFormat::kDatagramLast, now);
+    }
+}
+
+// Only or First: a new datagram from src, refused while one is unfinished or no buffer is free.
+void DatagramReceiver::on_first_frame(std::uint16_t src, const Slot* slot, const CanFrame& frame,
+                                      bool only, TimePoint now) {
+    discarding_[src] = false;  // whatever was being skipped is over
+    std::uint16_t code = 0;
+    if (slot && !slot->complete) {
+        code = base::to_u16(base::ErrorCode::kFirstBeforePreviousFinished);
+        erase(src);
+    } else if (slot || slots_.size() >= config_.max_buffers) {
+        code = base::to_u16(base::ErrorCode::kBufferUnavailable);
+    }
+    if (code != 0) {
+        send_reject(src, code);
+        if (!only) discarding_[src] = true;
         return;
     }
+    start(src, frame, only, now);
+}
 
-    const bool last = format == can::FrameFormat::kDatagramLast;
+// Middle or Last: appended to src's unfinished datagram; the rest of a refused one is skipped.
+void DatagramReceiver::on_later_frame(std::uint16_t src, Slot* slot, const CanFrame& frame,
+                                      bool last, TimePoint now) {
     if (discarding_[src]) {
         if (last) discarding_[src] = false;
         return;

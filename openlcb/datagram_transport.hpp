@@ -172,6 +172,10 @@ private:
     void erase(std::uint16_t src);
     void send_reject(std::uint16_t src, std::uint16_t code);
     void start(std::uint16_t src, const CanFrame& frame, bool complete, TimePoint now);
+    void on_first_frame(std::uint16_t src, const Slot* slot, const CanFrame& frame, bool only,
+                        TimePoint now);
+    void on_later_frame(std::uint16_t src, Slot* slot, const CanFrame& frame, bool last,
+                        TimePoint now);
 
     DatagramReceiverConfig config_;
     std::uint16_t alias_ = 0;

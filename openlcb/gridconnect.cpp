@@ -63,6 +63,50 @@ std::string format(const CanFrame& frame) {
     return out;
 }
 
+namespace {
+
+// The kind letter (X extended, S standard) and the hex identifier after it, in range for the
+// kind; pos is left on the character after the identifier.
+bool parse_header(std::string_view text, std::size_t& pos, CanFrame& frame) {
+    const char kind = text[0];
+    if (kind == 'X' || kind == 'x') {
+        frame.extended = true;
+    } else if (kind == 'S' || kind == 's') {
+        frame.extended = false;
+    } else {
+        return false;
+    }
+    pos = 1;
+    std::uint32_t id = 0;
+    std::size_t digits = 0;
+    while (pos < text.size()) {
+        const int v = hex_value(text[pos]);
+        if (v < 0) break;
+        if (++digits > 8) return false;
+        id = (id << 4) | static_cast<std::uint32_t>(v);
+        ++pos;
+    }
+    if (digits == 0 || pos >= text.size()) return false;
+    if (id > (frame.extended ? 0x1FFFFFFFu : 0x7FFu)) return false;
+    frame.id = id;
+    return true;
+}
+
+// Up to 8 data bytes as pairs of hex digits.
+bool parse_data(std::string_view hex, CanFrame& frame) {
+    if (hex.size() % 2 != 0 || hex.size() > 16) return false;
+    for (std::size_t i = 0; i < hex.size() / 2; ++i) {
+        const int hi = hex_value(hex[2 * i]);
+        const int lo = hex_value(hex[2 * i + 1]);
+        if (hi < 0 || lo < 0) return false;
+        frame.data[i] = static_cast<std::uint8_t>((hi << 4) | lo);
+    }
+    frame.len = static_cast<std::uint8_t>(hex.size() / 2);
+    return true;
+}
+
+}  // namespace
+
 std::optional<CanFrame> parse_frame(std::string_view text) {
     while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
     while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
@@ -71,28 +115,8 @@ std::optional<CanFrame> parse_frame(std::string_view text) {
     text = text.substr(1, text.size() - 2);
 
     CanFrame frame;
-    const char kind = text[0];
-    if (kind == 'X' || kind == 'x') {
-        frame.extended = true;
-    } else if (kind == 'S' || kind == 's') {
-        frame.extended = false;
-    } else {
-        return std::nullopt;
-    }
-    std::size_t pos = 1;
-    std::uint32_t id = 0;
-    std::size_t digits = 0;
-    while (pos < text.size()) {
-        const int v = hex_value(text[pos]);
-        if (v < 0) break;
-        if (++digits > 8) return std::nullopt;
-        id = (id << 4) | static_cast<std::uint32_t>(v);
-        ++pos;
-    }
-    if (digits == 0 || pos >= text.size()) return std::nullopt;
-    if (id > (frame.extended ? 0x1FFFFFFFu : 0x7FFu)) return std::nullopt;
-    frame.id = id;
-
+    std::size_t pos = 0;
+    if (!parse_header(text, pos, frame)) return std::nullopt;
     const char type = text[pos++];
     if (type == 'N' || type == 'n') {
         frame.remote = false;
@@ -101,15 +125,7 @@ std::optional<CanFrame> parse_frame(std::string_view text) {
     } else {
         return std::nullopt;
     }
-    const std::size_t data_chars = text.size() - pos;
-    if (data_chars % 2 != 0 || data_chars > 16) return std::nullopt;
-    for (std::size_t i = 0; i < data_chars / 2; ++i) {
-        const int hi = hex_value(text[pos + 2 * i]);
-        const int lo = hex_value(text[pos + 2 * i + 1]);
-        if (hi < 0 || lo < 0) return std::nullopt;
-        frame.data[i] = static_cast<std::uint8_t>((hi << 4) | lo);
-    }
-    frame.len = static_cast<std::uint8_t>(data_chars / 2);
+    if (!parse_data(text.substr(pos), frame)) return std::nullopt;
     return frame;
 }
 

@@ -26,7 +26,7 @@ namespace olcb {
 class Monitor {
 public:
     /// One line per frame, or one per completed message.
-    enum class Mode { kPerFrame, kPerMessage };
+    enum class Mode : std::uint8_t { kPerFrame, kPerMessage };
 
     /// Display choices.
     struct Options {

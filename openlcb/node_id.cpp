@@ -24,6 +24,21 @@ void fail(std::string* error, const char* what, std::string_view text, const Par
     if (error) *error = concat(std::string_view(what), " '", text.substr(0, 40), "': ", detail...);
 }
 
+// The value of a run of hex digits of the id `text`; nullopt and the reason on a non-digit.
+std::optional<std::uint64_t> hex_run(std::string_view digits, std::string_view text,
+                                     const char* what, std::string* error) {
+    std::uint64_t value = 0;
+    for (char c : digits) {
+        const int v = hex_value(c);
+        if (v < 0) {
+            fail(error, what, text, "'", std::string(1, c), "' is not a hex digit");
+            return std::nullopt;
+        }
+        value = value << 4 | static_cast<std::uint64_t>(v);
+    }
+    return value;
+}
+
 // Shared by NodeId and EventId: they differ only in byte count.
 std::optional<std::uint64_t> parse_id(std::string_view text, std::size_t bytes, const char* what,
                                       std::string* error) {
@@ -39,15 +54,7 @@ std::optional<std::uint64_t> parse_id(std::string_view text, std::size_t bytes, 
                  std::to_string(2 * bytes), " hex digits");
             return std::nullopt;
         }
-        for (char c : text) {
-            const int v = hex_value(c);
-            if (v < 0) {
-                fail(error, what, text, "'", std::string(1, c), "' is not a hex digit");
-                return std::nullopt;
-            }
-            value = value << 4 | static_cast<std::uint64_t>(v);
-        }
-        return value;
+        return hex_run(text, text, what, error);
     }
     std::size_t count = 0;
     std::size_t pos = 0;
@@ -64,16 +71,9 @@ std::optional<std::uint64_t> parse_id(std::string_view text, std::size_t bytes, 
             fail(error, what, text, "byte ", std::to_string(count), " must be 1 or 2 hex digits");
             return std::nullopt;
         }
-        int byte = 0;
-        for (char c : part) {
-            const int v = hex_value(c);
-            if (v < 0) {
-                fail(error, what, text, "'", std::string(1, c), "' is not a hex digit");
-                return std::nullopt;
-            }
-            byte = byte * 16 + v;
-        }
-        value = value << 8 | static_cast<std::uint64_t>(byte);
+        const auto byte = hex_run(part, text, what, error);
+        if (!byte) return std::nullopt;
+        value = value << 8 | *byte;
         if (dot == std::string_view::npos) break;
         pos = dot + 1;
     }

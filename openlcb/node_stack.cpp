@@ -227,6 +227,12 @@ void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
         collect();
     }
     if (control || !initialized()) return;
+    route_message_frame(frame, now, burst);
+}
+
+// A message frame of an initialized node, to the handler of its format if it is for us; an
+// addressed one in a burst is dropped (fault injection).
+void NodeStack::route_message_frame(const CanFrame& frame, TimePoint now, bool burst) {
     const std::uint16_t me = alias();
     switch (can::frame_format(frame.id)) {
         case can::FrameFormat::kGlobalAddressed: {

@@ -277,6 +277,7 @@ private:
     bool handle_builtin(const Message& msg);
     void push_verified_node_id();
     bool in_burst(TimePoint now, std::uint16_t source);
+    void route_message_frame(const CanFrame& frame, TimePoint now, bool burst);
     void on_standard_frame();
     void announce_duplicate();
     void on_datagram_frame(const CanFrame& frame, TimePoint now);

@@ -66,6 +66,17 @@ std::optional<TimePoint> SimNetwork::earliest_deadline() const {
     return best;
 }
 
+// The earliest timer deadline or, with the timing model, frame completion on the bus.
+std::optional<TimePoint> SimNetwork::next_event() {
+    std::optional<TimePoint> next = earliest_deadline();
+    if (!bus_.timing_enabled()) return next;
+    if (auto c = bus_.next_completion()) {
+        const TimePoint done = epoch_ + *c;
+        if (!next || done < *next) next = done;
+    }
+    return next;
+}
+
 void SimNetwork::poll_due() {
     const TimePoint t = now();
     for (std::size_t i = 0; i < stacks_.size(); ++i) {
@@ -87,13 +98,7 @@ bool SimNetwork::run_until(const std::function<bool()>& pred, Duration max) {
             return false;
         }
         if (!bus_.timing_enabled() && bus_.deliver(1) > 0) continue;
-        std::optional<TimePoint> next = earliest_deadline();
-        if (bus_.timing_enabled()) {
-            if (auto c = bus_.next_completion()) {
-                const TimePoint done = epoch_ + *c;
-                if (!next || done < *next) next = done;
-            }
-        }
+        const std::optional<TimePoint> next = next_event();
         if (!next || *next > limit) {
             if (now() < limit) bus_.advance_to(limit - epoch_);
             pump_dirty();

@@ -92,6 +92,7 @@ private:
     void pump_dirty();
     void poll_due();
     std::optional<TimePoint> earliest_deadline() const;
+    std::optional<TimePoint> next_event();
 
     TimePoint epoch_;
     InProcessBus bus_;

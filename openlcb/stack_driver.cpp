@@ -87,29 +87,41 @@ void StackDriver::process() {
             continue;
         }
         if (dirty_.empty()) break;
-        // Index loop: delivering to the other stacks may append to dirty_.
-        for (std::size_t d = 0; d < dirty_.size(); ++d) {
-            const std::size_t i = dirty_[d];
-            slots_[i].dirty = false;
-            if (!slots_[i].stack) continue;
-            scratch_.clear();
-            slots_[i].stack->drain(scratch_);
-            for (const CanFrame& f : scratch_) {
-                ++stats_.frames_out;
-                ++handled;
-                transport_.send(f);
-                for (std::size_t j = 0; j < slots_.size(); ++j) {
-                    if (j != i && slots_[j].stack) slots_[j].stack->on_frame(f, now);
-                }
-            }
-        }
-        dirty_.clear();
+        handled += drain_dirty(now);
     }
     if (!incoming_.empty() || !dirty_.empty()) {
         schedule();  // more work than one batch: continue after other handlers ran
         return;
     }
-    // The deadline minimum is O(stacks): recompute once per burst, not per frame.
+    post_rearm();
+}
+
+// Sends the output of every dirty stack to the transport and the other stacks; returns the
+// frames sent.
+std::size_t StackDriver::drain_dirty(TimePoint now) {
+    std::size_t sent = 0;
+    // Index loop: delivering to the other stacks may append to dirty_.
+    for (std::size_t d = 0; d < dirty_.size(); ++d) {
+        const std::size_t i = dirty_[d];
+        slots_[i].dirty = false;
+        if (!slots_[i].stack) continue;
+        scratch_.clear();
+        slots_[i].stack->drain(scratch_);
+        for (const CanFrame& f : scratch_) {
+            ++stats_.frames_out;
+            ++sent;
+            transport_.send(f);
+            for (std::size_t j = 0; j < slots_.size(); ++j) {
+                if (j != i && slots_[j].stack) slots_[j].stack->on_frame(f, now);
+            }
+        }
+    }
+    dirty_.clear();
+    return sent;
+}
+
+// The deadline minimum is O(stacks): recompute once per burst, not per frame.
+void StackDriver::post_rearm() {
     if (rearm_posted_) return;
     rearm_posted_ = true;
     std::weak_ptr<bool> alive = alive_;

@@ -68,6 +68,8 @@ private:
 
     void on_transport_frame(const CanFrame& frame);
     void process();
+    std::size_t drain_dirty(TimePoint now);
+    void post_rearm();
     void schedule();
     void rearm();
     void on_timer();

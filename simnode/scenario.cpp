@@ -123,7 +123,7 @@ bool add_option(Raw& raw, const std::string& key, std::vector<std::string> value
     return true;
 }
 
-po::options_description cli_options() {
+po::options_description general_options() {
     po::options_description general("General");
     general.add_options()("help,h", "print this help and exit")(
         "version", "print the program's version and exit")(
@@ -132,6 +132,10 @@ po::options_description cli_options() {
         "scenario .ini file (also accepted as the only positional argument)")(
         "run-for", po::value<std::string>()->value_name("SECONDS"),
         "stop cleanly after SECONDS (default: run until SIGINT/SIGTERM)");
+    return general;
+}
+
+po::options_description node_options() {
     po::options_description node("Node (top level, or a [node.NAME] section)");
     node.add_options()("node-id", po::value<std::string>()->value_name("ID"),
                        "node ID, e.g. 05.01.01.01.22.00 (the first one when count > 1)")(
@@ -156,6 +160,10 @@ po::options_description cli_options() {
         "streams", po::value<std::string>()->value_name("BOOL"),
         "serve memory-config stream reads and accept streams (default true; false = "
         "datagram-only, as a node without stream support)");
+    return node;
+}
+
+po::options_description transport_options() {
     po::options_description transport("Transports and logs (top level)");
     transport.add_options()("listen", po::value<std::string>()->value_name("HOST:PORT"),
                             "run a GridConnect TCP hub (port 0 = any free port; "
@@ -181,11 +189,19 @@ po::options_description cli_options() {
         "log-max-bytes", po::value<std::string>()->value_name("N"),
         "rotate the trace and candump files to FILE.1 before they grow past N bytes "
         "(default 0 = never)");
+    return transport;
+}
+
+po::options_description audit_options() {
     po::options_description audit("Client audit (top level, docs/audit.md)");
     audit.add_options()("audit", po::value<std::string>()->value_name("FILE"),
                         "record every protocol violation of the tools talking to the nodes in "
                         "FILE (JSON)")("audit-junit", po::value<std::string>()->value_name("FILE"),
                                        "the same as JUnit XML, one testcase per rule");
+    return audit;
+}
+
+po::options_description testing_options() {
     po::options_description testing("Test hooks (top level)");
     testing.add_options()("latency", po::value<std::string>()->value_name("MS[:JITTER]"),
                           "every node answers MS ms (plus 0..JITTER ms) late, as the fault "
@@ -196,6 +212,10 @@ po::options_description cli_options() {
         "start-on-connect", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
         "with listen: every node logs in again (CID..RID, AMD, Initialization Complete) "
         "whenever a TCP client connects");
+    return testing;
+}
+
+po::options_description control_options() {
     po::options_description control("Live control (top level; docs/control.md)");
     control.add_options()("control", po::value<std::string>()->value_name("HOST:PORT"),
                           "take JSON-line control requests (list, faults, memory, reboot, add, "
@@ -203,8 +223,17 @@ po::options_description cli_options() {
         "control-remote", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
         "let control bind an address other machines reach (anyone who connects can change "
         "every node)");
+    return control;
+}
+
+po::options_description cli_options() {
     po::options_description all;
-    all.add(general).add(node).add(transport).add(audit).add(testing).add(control);
+    all.add(general_options())
+        .add(node_options())
+        .add(transport_options())
+        .add(audit_options())
+        .add(testing_options())
+        .add(control_options());
     return all;
 }
 
@@ -545,7 +574,7 @@ private:
     bool read_run_for(const std::string& v, const Keys&) {
         const auto seconds = parse_seconds(v);
         if (!seconds) return fail("run-for '" + v + "' must be a number of seconds >= 0");
-        scenario_.run_for = *seconds;
+        scenario_.run_for = seconds;
         return true;
     }
 

@@ -471,9 +471,10 @@ void SimNode::on_stream_event(const StreamEvent& event) {
         case StreamEvent::Kind::kTimedOut:
             if (!event.outgoing || event.buffer == 0) {
                 // Never accepted: the requester still waits for the reply datagram.
-                const std::uint16_t silent = event.kind == StreamEvent::Kind::kTimedOut
-                                                 ? base::to_u16(base::ErrorCode::kTimeout)
-                                                 : base::to_u16(base::ErrorCode::kBufferUnavailable);
+                const std::uint16_t silent =
+                    event.kind == StreamEvent::Kind::kTimedOut
+                        ? base::to_u16(base::ErrorCode::kTimeout)
+                        : base::to_u16(base::ErrorCode::kBufferUnavailable);
                 const std::uint16_t code = event.code != 0 ? event.code : silent;
                 send_reply(pending.requester,
                            memory::MemoryConfigServer::stream_fail(

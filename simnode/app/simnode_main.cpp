@@ -67,7 +67,7 @@ std::vector<fs::path> default_scenarios() {
 }
 
 void say(const std::string& line) {
-    std::cout << "simnode: " << line << std::endl;  // endl: scripts wait for these lines
+    std::cout << "simnode: " << line << '\n' << std::flush;  // scripts wait for these lines
 }
 
 // Records every frame of the segment: decoded lines (--trace) and candump lines (--candump).
@@ -288,7 +288,7 @@ private:
             if (up) {
                 say("serial " + serial_->device() + ": open again");
             } else {
-                std::cerr << "simnode: " << reason << "; reopening" << std::endl;
+                std::cerr << "simnode: " << reason << "; reopening\n" << std::flush;
             }
         });
         Transport& port = add_port([this](const CanFrame& f) { serial_->send(f); });
@@ -312,7 +312,7 @@ private:
         if (!audit_) return;
         std::string failed = audit_->finish();  // "" also once it has finished
         if (failed.empty()) return;
-        std::cerr << "simnode: audit: " << failed << std::endl;
+        std::cerr << "simnode: audit: " << failed << '\n' << std::flush;
         audit_error_ = std::move(failed);
     }
 
@@ -369,8 +369,8 @@ private:
                 for (auto& node : nodes_) node->relogin(now);
             });
         } else if (scenario_.start_on_connect) {
-            std::cerr << "simnode: warning: start-on-connect does nothing without listen"
-                      << std::endl;
+            std::cerr << "simnode: warning: start-on-connect does nothing without listen\n"
+                      << std::flush;
         }
         if (!client_) {
             nodes_started_ = true;
@@ -382,7 +382,7 @@ private:
         const std::string where = scenario_.connect->to_string();
         client_->set_connection_handler([this, where](bool up) {
             if (!up) {
-                std::cerr << "simnode: lost the hub " << where << "; reconnecting" << std::endl;
+                std::cerr << "simnode: lost the hub " << where << "; reconnecting\n" << std::flush;
                 return;
             }
             say("connected to hub " + where);
