@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <sstream>
 
 #include "base/error_codes.hpp"
@@ -310,10 +311,16 @@ RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
 
 RestoreGuard::~RestoreGuard() {
     if (!armed_) return;
+    // A destructor must not throw, but a node left unrestored must not go unnoticed: say so, and
+    // where the values are (the backup file stays on disk for `lcc-conform restore FILE`).
     try {
         restore(backup_, memory_);
+    } catch (const std::exception& e) {
+        std::cerr << "lcc-conform: restoring the node's values failed (" << e.what()
+                  << "); restore them from the backup file with `lcc-conform restore FILE`\n";
     } catch (...) {
-        // A destructor must not throw; the backup file is still on disk for `restore FILE`.
+        std::cerr << "lcc-conform: restoring the node's values failed; restore them from the "
+                     "backup file with `lcc-conform restore FILE`\n";
     }
 }
 

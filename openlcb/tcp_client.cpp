@@ -218,7 +218,7 @@ TcpClient::~TcpClient() {
     try {
         impl_->stop();
     } catch (...) {
-        // Cancelling a resolver or closing a socket that is already gone: nothing to release.
+        // @nothrow: cancelling a resolver or closing a socket already gone leaves nothing.
     }
 }
 

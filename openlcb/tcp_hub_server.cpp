@@ -424,7 +424,7 @@ TcpHubServer::~TcpHubServer() {
     try {
         impl_->stop();
     } catch (...) {
-        // Closing sockets cannot fail in a way a destructor could act on.
+        // @nothrow: closing sockets cannot fail in a way a destructor could act on.
     }
 }
 
