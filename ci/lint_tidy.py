@@ -67,7 +67,7 @@ def preprocess_args(entry, clang):
 
 
 class Cache:
-    def __init__(self, root, build, tidy_bin, header_filter):
+    def __init__(self, root, build, tidy_bin, filter_key):
         location = os.environ.get("OLCB_LINT_CACHE",
                                   os.path.join(os.path.expanduser("~"), ".cache", "olcb-lint"))
         self.dir = None if location == "off" else location
@@ -78,7 +78,7 @@ class Cache:
         base = hashlib.sha256(version.encode())
         for rel in sorted(configs):
             base.update(rel.encode() + b"\0" + open(os.path.join(root, rel), "rb").read())
-        base.update(header_filter.replace(root, ROOT_MARK).encode())
+        base.update(filter_key.encode())
         self.base = base
         # The clang of the same release as clang-tidy preprocesses (clang-tidy-19: clang++-19).
         suffix = re.sub(r"^clang-tidy", "", os.path.basename(tidy_bin))
@@ -152,7 +152,11 @@ def main():
     tracked = subprocess.run(["git", "ls-files", "*.cpp", "*.hpp"], cwd=root, check=True,
                              capture_output=True, text=True).stdout.split()
     dirs = sorted({rel.split("/")[0] for rel in tracked if "/" in rel})
-    header_filter = "^" + re.escape(root) + "/(" + "|".join(map(re.escape, dirs)) + ")/"
+    tail = "/(" + "|".join(map(re.escape, dirs)) + ")/"
+    header_filter = "^" + re.escape(root) + tail
+    # The key's form of the filter names no checkout: re.escape writes "ci-clone" as "ci\-clone",
+    # so replacing the root in the escaped text would miss.
+    filter_key = "^" + ROOT_MARK + tail
     entries, borrowed = load_entries(root, build, tracked)
     if only:
         wanted = {os.path.abspath(f) for f in only}
@@ -162,7 +166,7 @@ def main():
     with open(os.path.join(db, "compile_commands.json"), "w") as out:
         json.dump(list(entries.values()), out)
     files = sorted(entries, key=lambda f: -os.path.getsize(f))
-    cache = Cache(root, build, tidy_bin, header_filter)
+    cache = Cache(root, build, tidy_bin, filter_key)
     print(f"{len(files)} translation units", end="")
     print(f" ({len(borrowed)} not in the build, checked with a test's flags: "
           f"{', '.join(borrowed)})" if borrowed else "", end="")
