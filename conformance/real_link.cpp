@@ -20,8 +20,21 @@ void TapTransport::set_handler(FrameHandler handler) {
     handler_ = std::move(handler);
 }
 
+namespace {
+
+// On a real link lcc-conform waits 50 ms past the standard's 200 ms between its last CID and
+// RID: a hub or node times frames when it gets to them, so CIDs read late (a busy hub, a slow
+// accept) would otherwise make a correct wait look short to it. Waiting longer is conformant.
+NodeStackConfig real_stack_config(NodeId tool_id) {
+    NodeStackConfig config = tool_stack_config(tool_id);
+    config.alias.reservation_wait = std::chrono::milliseconds(250);
+    return config;
+}
+
+}  // namespace
+
 RealLink::RealLink(std::unique_ptr<boost::asio::io_context> io, NodeId tool_id)
-    : io_(std::move(io)), stack_(tool_stack_config(tool_id)) {}
+    : io_(std::move(io)), stack_(real_stack_config(tool_id)) {}
 
 RealLink::~RealLink() {
     detach();
