@@ -229,8 +229,10 @@ struct ValidatorFree {
 };
 using ValidatorPtr = std::unique_ptr<xmlSchemaValidCtxt, ValidatorFree>;
 
-/// What one validating parse found: parse errors, schema errors, and whether the text is XML.
+/// What one validating parse found: parse errors, schema errors, whether the text is XML, and
+/// the parse's own state (a refused DOCTYPE and its line).
 struct PassResult {
+    ParseState state;
     Diagnostics parse_errors;
     Diagnostics schema_errors;
     bool well_formed = false;
@@ -238,9 +240,9 @@ struct PassResult {
 };
 
 /// Parses once, validating against `schema` as the SAX events arrive; no tree is built.
-PassResult validate_stream(std::string_view bytes, xmlSchemaPtr schema, const std::string& prefix,
-                           ParseState& state) {
+PassResult validate_stream(std::string_view bytes, xmlSchemaPtr schema, const std::string& prefix) {
     PassResult result;
+    ParseState& state = result.state;
     Collector parse_collector{&result.parse_errors, "XML parse error: "};
     Collector schema_collector{&result.schema_errors, prefix};
     ErrorRouting routing(&parse_collector);
@@ -275,11 +277,10 @@ bool check_against(std::string_view bytes, SchemaVersion version,
     const xmlSchemaPtr schema = schema_for(version, out);
     if (schema == nullptr) return false;
     const std::string prefix = "CDI " + std::string(schema_version_name(version)) + " schema: ";
-    ParseState state;
-    PassResult pass = validate_stream(bytes, schema, prefix, state);
+    const PassResult pass = validate_stream(bytes, schema, prefix);
     out.insert(out.end(), pass.parse_errors.begin(), pass.parse_errors.end());
-    if (state.doctype_seen) {
-        out.push_back({Severity::kError, static_cast<std::uint32_t>(state.doctype_line),
+    if (pass.state.doctype_seen) {
+        out.push_back({Severity::kError, static_cast<std::uint32_t>(pass.state.doctype_line),
                        "XML parse error: a DOCTYPE is not allowed in a CDI (refused; no entity "
                        "was expanded)"});
         return false;
