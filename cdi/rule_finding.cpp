@@ -250,8 +250,11 @@ std::string_view rule_status_name(RuleStatus status) {
 }
 
 std::vector<RuleFinding> check_rules(std::string_view text) {
+    return check_rules(text, validate_model(text));
+}
+
+std::vector<RuleFinding> check_rules(std::string_view text, const ValidatedCdi& cdi) {
     while (text.ends_with('\0')) text.remove_suffix(1);
-    const ValidatedCdi cdi = validate_model(text);
     std::vector<RuleFinding> out;
     out.reserve(kRuleCheckIds.size());
     out.push_back(no_bom(text));

@@ -15,6 +15,8 @@
 
 namespace olcb::cdi {
 
+struct ValidatedCdi;  // cdi/validator.hpp
+
 /// A rule's verdict, as lcc-conform reports the check (FAIL and WARN are findings).
 enum class RuleStatus : std::uint8_t { kPass, kFail, kWarn, kSkip };
 
@@ -40,6 +42,10 @@ std::string_view rule_status_name(RuleStatus status);
 /// Judges a CDI text (the bytes before its terminating NUL; trailing NULs are ignored): one
 /// finding per entry of kRuleCheckIds, in that order, PASS and SKIP included.
 std::vector<RuleFinding> check_rules(std::string_view text);
+
+/// check_rules() of a text whose validate_model() the caller already has (and keeps, for the
+/// model): the text is parsed once, not twice.
+std::vector<RuleFinding> check_rules(std::string_view text, const ValidatedCdi& cdi);
 
 /// Where the CDI's own variables lie over the ACDI blocks (any byte of space 252, bytes outside
 /// 1..127 of space 251), as "space 252 bytes 0..7, ..."; "" when nowhere.

@@ -5,7 +5,7 @@
 #include <set>
 #include <variant>
 
-#include "cdi/parser.hpp"
+#include "cdi/validator.hpp"
 #include "conformance/report.hpp"
 #include "memory/acdi.hpp"
 #include "memory/memory_config_codec.hpp"
@@ -315,12 +315,12 @@ const CdiDownload& CheckRun::cdi() {
     const std::string_view text(reinterpret_cast<const char*>(ctx_.cdi_bytes.data()),
                                 ctx_.cdi_bytes.size());
     if (d.read_ok) {
-        auto parsed = cdi::parse(text);
-        if (parsed.document) {
-            ctx_.document = std::make_unique<cdi::Document>(std::move(*parsed.document));
-            auto lr = cdi::build_layout(*ctx_.document);
-            if (lr.layout) ctx_.layout = std::move(lr.layout);
-        }
+        // One validation serves the model the other checks use and the text-only cdi.* rules;
+        // the layout points into the document, which stays where it is on the heap.
+        cdi::ValidatedCdi validated = cdi::validate_model(text);
+        rules_ = cdi::check_rules(text, validated);
+        ctx_.document = std::move(validated.document);
+        ctx_.layout = std::move(validated.layout);
     }
     cdi_ = std::move(d);
     return *cdi_;

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include "cdi/validator.hpp"
+
 namespace olcb::cdi {
 namespace {
 
@@ -58,6 +60,28 @@ TEST(CheckRules, ACleanCdiPassesEveryRuleItHas) {
             EXPECT_EQ(f.status, RuleStatus::kPass) << listing(findings);
         }
     }
+}
+
+// lcc-conform judges the rules with the validation it keeps for its model; the verdicts must be
+// those of a fresh check_rules() of the same text, messages and lines included.
+TEST(CheckRules, WithAKeptValidationGivesTheSameVerdicts) {
+    const std::string acdi_conflict =
+        std::string("<?xml version=\"1.0\"?>\n") + kRoot +
+        "<acdi/><segment space=\"251\"><int size=\"1\"><name>V</name></int></segment>\n</cdi>\n";
+    const std::vector<std::string> texts = {
+        cdi_with("<?xml version=\"1.0\"?>") + '\0',
+        cdi_with(""),
+        "\xEF\xBB\xBF" + cdi_with("<?xml version=\"1.0\"?>"),
+        cdi_with("<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>"),
+        "<cdi><segment space=\"253\"><int size=\"9\"/></segment>",
+        acdi_conflict,
+    };
+    for (const std::string& text : texts) {
+        const ValidatedCdi validated = validate_model(text);
+        EXPECT_EQ(listing(check_rules(text, validated)), listing(check_rules(text))) << text;
+    }
+    const auto conflict = check_rules(acdi_conflict, validate_model(acdi_conflict));
+    EXPECT_EQ(rule(conflict, "cdi.acdi-spaces").status, RuleStatus::kFail) << listing(conflict);
 }
 
 TEST(XmlDeclarationRule, NoDeclarationFailsOnLineOne) {
