@@ -4,11 +4,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <sstream>
+#include <string_view>
 
 #include "base/error_codes.hpp"
 #include "base/file.hpp"
@@ -172,25 +174,39 @@ bool SafetyBackup::is_safety_backup(const std::string& text) {
 
 namespace {
 
+// One whitespace-free field of a range line as an unsigned number of `radix` (a "0x" prefix
+// allowed for 16); nullopt unless the whole field is a number of at most `max`. sscanf's %u
+// would wrap an out-of-range space (2^32 + 253 read as 253) instead of refusing it.
+std::optional<std::uint64_t> range_field(std::string_view field, int radix, std::uint64_t max) {
+    if (radix == 16 && (field.starts_with("0x") || field.starts_with("0X"))) field.remove_prefix(2);
+    std::uint64_t value = 0;
+    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value, radix);
+    if (field.empty() || ec != std::errc() || end != field.data() + field.size() || value > max) {
+        return std::nullopt;
+    }
+    return value;
+}
+
 // "range SPACE ADDRESS LENGTH HEX": one range of a safety backup; nullopt with `why` when not.
 std::optional<BackupRange> parse_range_line(const std::string& line, std::string& why) {
-    unsigned space = 0;
-    unsigned long address = 0;
-    std::size_t length = 0;
-    int used = 0;
-    if (std::sscanf(line.c_str(), "range %u %lx %zu %n", &space, &address, &length, &used) != 3 ||
-        space > 255 || address > 0xFFFFFFFFul || length > kMaxRangeBytes) {
+    std::istringstream fields(line);
+    std::string word, space_text, address_text, length_text, hex;
+    fields >> word >> space_text >> address_text >> length_text;
+    std::getline(fields >> std::ws, hex);
+    const auto space = range_field(space_text, 10, 255);
+    const auto address = range_field(address_text, 16, 0xFFFFFFFFu);
+    const auto length = range_field(length_text, 10, kMaxRangeBytes);
+    if (word != "range" || !space || !address || !length) {
         why = "malformed range line";
         return std::nullopt;
     }
-    const std::string hex = line.substr(static_cast<std::size_t>(used));
-    if (hex.size() != length * 2) {
+    if (hex.size() != *length * 2) {
         why = "range length does not match its bytes";
         return std::nullopt;
     }
-    BackupRange r{static_cast<std::uint8_t>(space), static_cast<std::uint32_t>(address), {}};
-    r.bytes.reserve(length);
-    for (std::size_t i = 0; i < length; ++i) {
+    BackupRange r{static_cast<std::uint8_t>(*space), static_cast<std::uint32_t>(*address), {}};
+    r.bytes.reserve(*length);
+    for (std::size_t i = 0; i < *length; ++i) {
         const int hi = hex_digit(hex[2 * i]);
         const int lo = hex_digit(hex[2 * i + 1]);
         if (hi < 0 || lo < 0) {

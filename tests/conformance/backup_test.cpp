@@ -69,6 +69,17 @@ TEST(SafetyBackup, LoadRejectsTruncatedAndMalformedFiles) {
         f << "# lcc-conform safety backup v1\nnode 1\nrange 253 0x10 99999999999 00\nend\n";
     }
     EXPECT_FALSE(SafetyBackup::load(path, error));
+    // A space past 32 bits must not wrap to a valid one (2^32 + 253 is not space 253), nor an
+    // address past 32 bits to a valid address.
+    for (const char* range : {"range 4294967549 0x10 2 0A0B", "range 253 0x100000010 2 0A0B",
+                              "range 253 0x10 -2 0A0B", "range 253 0x10 2x 0A0B"}) {
+        {
+            std::ofstream f(path);
+            f << "# lcc-conform safety backup v1\nnode 1\n" << range << "\nend\n";
+        }
+        EXPECT_FALSE(SafetyBackup::load(path, error)) << range;
+        EXPECT_NE(error.find("malformed range line"), std::string::npos) << range << ": " << error;
+    }
     {
         std::ofstream f(path);
         f << "hello\n";
