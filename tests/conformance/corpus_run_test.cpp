@@ -53,7 +53,7 @@ TEST_P(CorpusRun, OnlyTheCdisOwnFaultsFail) {
     if (!fs::exists(dir / "MANIFEST.md")) GTEST_SKIP() << "corpus absent at " << dir;
     const auto kinds = corpus_kinds(dir / "MANIFEST.md");
     ASSERT_GE(kinds.size(), 58U) << "MANIFEST table not found";
-    const std::string file = GetParam();
+    const std::string& file = GetParam();
     const auto kind = kinds.find(file);
     ASSERT_NE(kind, kinds.end()) << file;
     if (kind->second != "device" && kind->second != "capture") {
