@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -14,6 +13,7 @@
 
 #include "base/error_codes.hpp"
 #include "base/file.hpp"
+#include "base/number.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -174,17 +174,11 @@ bool SafetyBackup::is_safety_backup(const std::string& text) {
 
 namespace {
 
-// One whitespace-free field of a range line as an unsigned number of `radix` (a "0x" prefix
-// allowed for 16); nullopt unless the whole field is a number of at most `max`. sscanf's %u
-// would wrap an out-of-range space (2^32 + 253 read as 253) instead of refusing it.
-std::optional<std::uint64_t> range_field(std::string_view field, int radix, std::uint64_t max) {
-    if (radix == 16 && (field.starts_with("0x") || field.starts_with("0X"))) field.remove_prefix(2);
-    std::uint64_t value = 0;
-    const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value, radix);
-    if (field.empty() || ec != std::errc() || end != field.data() + field.size() || value > max) {
-        return std::nullopt;
-    }
-    return value;
+// One field of a range line as a number of at most `max` (base::parse_unsigned: the whole
+// field, decimal or 0x-hex); sscanf's %u wrapped 2^32 + 253 to space 253 instead of refusing it.
+std::optional<std::uint64_t> range_field(std::string_view field, std::uint64_t max) {
+    const auto value = base::parse_unsigned(field);
+    return value && *value <= max ? value : std::nullopt;
 }
 
 // "range SPACE ADDRESS LENGTH HEX": one range of a safety backup; nullopt with `why` when not.
@@ -193,10 +187,12 @@ std::optional<BackupRange> parse_range_line(const std::string& line, std::string
     std::string word, space_text, address_text, length_text, hex;
     fields >> word >> space_text >> address_text >> length_text;
     std::getline(fields >> std::ws, hex);
-    const auto space = range_field(space_text, 10, 255);
-    const auto address = range_field(address_text, 16, 0xFFFFFFFFu);
-    const auto length = range_field(length_text, 10, kMaxRangeBytes);
-    if (word != "range" || !space || !address || !length) {
+    const auto space = range_field(space_text, 255);
+    // The address is written as 0x%08X; a bare number is refused, not read as decimal.
+    const bool hex_address = address_text.starts_with("0x") || address_text.starts_with("0X");
+    const auto address = range_field(address_text, 0xFFFFFFFFu);
+    const auto length = range_field(length_text, kMaxRangeBytes);
+    if (word != "range" || !space || !hex_address || !address || !length) {
         why = "malformed range line";
         return std::nullopt;
     }

@@ -70,9 +70,10 @@ TEST(SafetyBackup, LoadRejectsTruncatedAndMalformedFiles) {
     }
     EXPECT_FALSE(SafetyBackup::load(path, error));
     // A space past 32 bits must not wrap to a valid one (2^32 + 253 is not space 253), nor an
-    // address past 32 bits to a valid address.
-    for (const char* range : {"range 4294967549 0x10 2 0A0B", "range 253 0x100000010 2 0A0B",
-                              "range 253 0x10 -2 0A0B", "range 253 0x10 2x 0A0B"}) {
+    // address past 32 bits to a valid address; an address is written in 0x-hex, never bare.
+    for (const char* range :
+         {"range 4294967549 0x10 2 0A0B", "range 253 0x100000010 2 0A0B", "range 253 0x10 -2 0A0B",
+          "range 253 0x10 2x 0A0B", "range 253 10 2 0A0B"}) {
         {
             std::ofstream f(path);
             f << "# lcc-conform safety backup v1\nnode 1\n" << range << "\nend\n";
