@@ -207,25 +207,36 @@ const FrameProbe& CheckRun::frame_probe() {
     verify.mti = Mti::kVerifyNodeIdAddressed;
     verify.destination = NodeHandle{node_.id, node};
     s_.send(verify);
-    // Every answer is awaited up to the answer window (on a 1,000-node segment the node's AMD
-    // sits behind 999 others); then the checks judge what came.
+    // Every answer is awaited up to the answer window, and a window more while other nodes'
+    // AMDs still came in the last one: on a 1,000-node segment the node's AMD, RID and OIR wait
+    // for the bus behind 999 AMDs (a second at 125 kbit/s, longer on a loaded hub). Then the
+    // checks judge what came.
     std::size_t frames_seen = fmark, messages_seen = mmark;
     auto count_answers = [&] {
         count_probe_frames(p, frames_seen);
         count_probe_messages(p, messages_seen);
         return p.amd >= 2 && p.rid >= 1 && p.oir && p.verified;
     };
-    s_.link().run_until(count_answers, o_.answer_window);
+    for (int round = 0; round <= kSegmentAnswerRounds; ++round) {
+        const std::size_t segment_before = p.segment_amd;
+        if (s_.link().run_until(count_answers, o_.answer_window)) break;
+        if (p.segment_amd == segment_before) break;
+    }
     count_answers();
     frame_probe_ = p;
     return *frame_probe_;
 }
 
-// The node's AMDs (carrying its node ID) and RIDs among the frames since seen; seen moves on.
+// The node's AMDs (carrying its node ID) and RIDs, and other nodes' AMDs, among the frames
+// since seen; seen moves on.
 void CheckRun::count_probe_frames(FrameProbe& p, std::size_t& seen) {
     for (const CanFrame& f : s_.frames_since(seen)) {
-        if (!from_node(f) || !can::is_control(f.id)) continue;
+        if (!can::is_control(f.id)) continue;
         const auto kind = can::classify_control(f.id);
+        if (!from_node(f)) {
+            if (kind == can::ControlFrame::kAmd) ++p.segment_amd;
+            continue;
+        }
         if (kind == can::ControlFrame::kAmd && f.len == 6 &&
             NodeId::from_bytes({f.data.data(), 6}) == node_.id)
             ++p.amd;

@@ -30,10 +30,15 @@ inline constexpr std::uint64_t kOtherNodeId = 0x0201'12FE'0001ull;
 /// Silence windows a silence check tries while other sources keep speaking.
 inline constexpr int kQuietAttempts = 3;
 
+/// Answer windows the frame probe adds while the segment still answers its global AME (a
+/// 1,000-node segment at 125 kbit/s needs about a second for their AMDs).
+inline constexpr int kSegmentAnswerRounds = 30;
+
 /// Answers to the injected control frames and first messages (AME, CID, unknown MTI, Verify).
 struct FrameProbe {
     std::size_t amd = 0;              ///< AMD frames from the node with its node ID
     std::size_t rid = 0;              ///< RID frames from the node
+    std::size_t segment_amd = 0;      ///< AMD frames from every other node (the global AME's)
     bool oir = false;                 ///< OIR with a permanent code echoing the unknown MTI
     bool verified = false;            ///< Verified Node ID to the addressed Verify
     std::optional<Mti> verified_mti;  ///< which Verified MTI (simple or full) it used
