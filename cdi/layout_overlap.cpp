@@ -3,6 +3,7 @@
 // replicas are still checked against each other by arithmetic (docs/layout-rules.md).
 #include <algorithm>
 
+#include "base/run_sort.hpp"
 #include "cdi/layout.hpp"
 
 namespace olcb::cdi {
@@ -28,10 +29,8 @@ std::vector<Span> sorted_spans(const Layout& layout, std::uint64_t budget) {
         if (a.begin != b.begin) return a.begin < b.begin;
         return a.ordinal < b.ordinal;
     };
-    // Document order is usually address order already; checking is far cheaper than sorting.
-    if (!std::is_sorted(spans.begin(), spans.end(), by_address)) {
-        std::sort(spans.begin(), spans.end(), by_address);
-    }
+    // Document order is usually address order already, or a few ascending runs.
+    base::run_sort(spans.begin(), spans.end(), by_address);
     return spans;
 }
 

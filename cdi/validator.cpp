@@ -4,6 +4,7 @@
 #include <tuple>
 #include <utility>
 
+#include "base/run_sort.hpp"
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/semantic_rules.hpp"
@@ -16,11 +17,12 @@ void append(Diagnostics& out, Diagnostics more) {
                std::make_move_iterator(more.end()));
 }
 
-/// Sorts by line (stable, so each pass keeps its own order within a line) and drops exact
-/// repeats, which arise when two passes word the same finding identically.
+/// Sorts by line (stable, so each pass keeps its own order within a line; each pass reports in
+/// document order, so this merges a few runs) and drops exact repeats, which arise when two
+/// passes word the same finding identically.
 void sort_and_dedupe(Diagnostics& diagnostics) {
-    std::stable_sort(diagnostics.begin(), diagnostics.end(),
-                     [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
+    base::run_sort(diagnostics.begin(), diagnostics.end(),
+                   [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
     Diagnostics unique;
     unique.reserve(diagnostics.size());
     for (Diagnostic& d : diagnostics) {
