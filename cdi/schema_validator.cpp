@@ -122,83 +122,6 @@ const CompiledSchema& compiled_schema(SchemaVersion version) {
 // by kMaxCdiBytes and entities are refused.
 constexpr int kParseOptions = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_HUGE;
 
-/// Per-parse state reachable from SAX callbacks through ctxt->_private.
-struct ParseState {
-    bool doctype_seen = false;
-    int doctype_line = 0;
-    std::uint32_t root_line = 0;
-    std::string location;  ///< the root's xsi:noNamespaceSchemaLocation ("" when absent)
-};
-
-ParseState& state_of(void* context) {
-    return *static_cast<ParseState*>(static_cast<xmlParserCtxtPtr>(context)->_private);
-}
-
-// A DOCTYPE is where entity declarations live; stopping as soon as it starts means no entity
-// (billion laughs, external entities) is ever declared, let alone expanded.
-void refuse_doctype(void* context, const xmlChar*, const xmlChar*, const xmlChar*) {
-    auto* parser = static_cast<xmlParserCtxtPtr>(context);
-    ParseState& state = state_of(context);
-    state.doctype_seen = true;
-    state.doctype_line = parser->input != nullptr ? parser->input->line : 0;
-    xmlStopParser(parser);
-}
-
-// The schema has to be chosen before validation starts, so a first pass reads up to the root's
-// start tag and stops there.
-void read_root(void* context, const xmlChar*, const xmlChar*, const xmlChar*, int, const xmlChar**,
-               int attribute_count, int, const xmlChar** attributes) {
-    auto* parser = static_cast<xmlParserCtxtPtr>(context);
-    ParseState& state = state_of(context);
-    state.root_line =
-        parser->input != nullptr ? static_cast<std::uint32_t>(parser->input->line) : 0;
-    const auto* xsi = reinterpret_cast<const xmlChar*>(kXsiNamespace);
-    const auto* name = reinterpret_cast<const xmlChar*>("noNamespaceSchemaLocation");
-    for (int i = 0; i < attribute_count; ++i) {
-        // Five pointers per attribute: local name, prefix, namespace URI, value, value end.
-        const xmlChar* const* attribute = attributes + std::ptrdiff_t{5} * i;
-        if (attribute[2] != nullptr && xmlStrEqual(attribute[2], xsi) != 0 &&
-            xmlStrEqual(attribute[0], name) != 0) {
-            state.location.assign(reinterpret_cast<const char*>(attribute[3]),
-                                  static_cast<std::size_t>(attribute[4] - attribute[3]));
-        }
-    }
-    xmlStopParser(parser);
-}
-
-struct ParserFree {
-    void operator()(xmlParserCtxtPtr parser) const { xmlFreeParserCtxt(parser); }
-};
-using ParserPtr = std::unique_ptr<xmlParserCtxt, ParserFree>;
-
-/// A parser of `bytes` whose SAX handler builds no tree: it has only `start_element` (may be
-/// null) and the DOCTYPE refusal, and the validator plugs its own handlers in front.
-ParserPtr new_parser(std::string_view bytes, ParseState& state,
-                     startElementNsSAX2Func start_element) {
-    xmlInitParser();
-    ParserPtr parser(xmlCreateMemoryParserCtxt(bytes.data(), static_cast<int>(bytes.size())));
-    if (parser == nullptr) return nullptr;
-    xmlSAXHandler* sax = parser->sax;
-    *sax = xmlSAXHandler{};
-    sax->initialized = XML_SAX2_MAGIC;
-    sax->internalSubset = refuse_doctype;
-    sax->startElementNs = start_element;
-    parser->_private = &state;
-    xmlCtxtUseOptions(parser.get(), kParseOptions);
-    return parser;
-}
-
-/// The first pass: the prolog and the root's start tag. Its errors are dropped; the validating
-/// pass reads the same text and reports them.
-ParseState scan_root(std::string_view bytes) {
-    ParseState state;
-    Diagnostics dropped;
-    Collector collector{&dropped, ""};
-    ErrorRouting routing(&collector);
-    if (ParserPtr parser = new_parser(bytes, state, read_root)) xmlParseDocument(parser.get());
-    return state;
-}
-
 /// The compiled schema of `version`, or null with the reason in `out`.
 xmlSchemaPtr schema_for(SchemaVersion version, Diagnostics& out) {
     if (static_cast<std::size_t>(version) >= kSchemaCount) {
@@ -215,6 +138,89 @@ xmlSchemaPtr schema_for(SchemaVersion version, Diagnostics& out) {
     return compiled.schema;
 }
 
+std::string schema_prefix(SchemaVersion version) {
+    return "CDI " + std::string(schema_version_name(version)) + " schema: ";
+}
+
+struct ValidatorFree {
+    void operator()(xmlSchemaValidCtxtPtr validator) const { xmlSchemaFreeValidCtxt(validator); }
+};
+using ValidatorPtr = std::unique_ptr<xmlSchemaValidCtxt, ValidatorFree>;
+
+/// What one validating parse found: parse errors, schema errors, whether the text is XML, and
+/// the parse's own state (a refused DOCTYPE and its line, the schema chosen at the root).
+struct PassResult {
+    PassResult() = default;
+    PassResult(const PassResult&) = delete;  // schema_collector points into it
+    PassResult& operator=(const PassResult&) = delete;
+
+    std::optional<SchemaVersion> fixed;  ///< validate_schema_as: the version, whatever is declared
+    SchemaChoice choice;
+    std::optional<Diagnostic> choice_warning;  ///< no or an unknown version declared
+    Diagnostics setup_errors;                  ///< the schema could not be used
+    bool doctype_seen = false;
+    int doctype_line = 0;
+    Diagnostics parse_errors;
+    Diagnostics schema_errors;
+    Collector schema_collector{&schema_errors, ""};
+    ValidatorPtr validator;
+    xmlSchemaSAXPlugPtr plug = nullptr;
+    bool well_formed = false;
+    bool valid = false;
+};
+
+PassResult& state_of(void* context) {
+    return *static_cast<PassResult*>(static_cast<xmlParserCtxtPtr>(context)->_private);
+}
+
+// A DOCTYPE is where entity declarations live; stopping as soon as it starts means no entity
+// (billion laughs, external entities) is ever declared, let alone expanded.
+void refuse_doctype(void* context, const xmlChar*, const xmlChar*, const xmlChar*) {
+    auto* parser = static_cast<xmlParserCtxtPtr>(context);
+    PassResult& state = state_of(context);
+    state.doctype_seen = true;
+    state.doctype_line = parser->input != nullptr ? parser->input->line : 0;
+    xmlStopParser(parser);
+}
+
+// The root's xsi:noNamespaceSchemaLocation ("" when absent).
+std::string root_location(int attribute_count, const xmlChar** attributes) {
+    const auto* xsi = reinterpret_cast<const xmlChar*>(kXsiNamespace);
+    const auto* name = reinterpret_cast<const xmlChar*>("noNamespaceSchemaLocation");
+    std::string location;
+    for (int i = 0; i < attribute_count; ++i) {
+        // Five pointers per attribute: local name, prefix, namespace URI, value, value end.
+        const xmlChar* const* attribute = attributes + std::ptrdiff_t{5} * i;
+        if (attribute[2] != nullptr && xmlStrEqual(attribute[2], xsi) != 0 &&
+            xmlStrEqual(attribute[0], name) != 0) {
+            location.assign(reinterpret_cast<const char*>(attribute[3]),
+                            static_cast<std::size_t>(attribute[4] - attribute[3]));
+        }
+    }
+    return location;
+}
+
+// The version to validate against: the one asked for, else the one the root declares, else the
+// newest with a warning at the root's line.
+void choose(PassResult& state, const std::string& location, std::uint32_t root_line) {
+    if (state.fixed) {
+        state.choice.version = *state.fixed;
+        return;
+    }
+    if (const auto version = schema_version_from_location(location)) {
+        state.choice.version = *version;
+        state.choice.declared = true;
+        return;
+    }
+    const std::string newest(schema_version_name(kNewestSchema));
+    const bool versioned = location.find("/schema/cdi/1/") != std::string::npos;
+    state.choice_warning =
+        Diagnostic{Severity::kWarning, root_line,
+                   (versioned ? "unknown schema version declared (" + location + ")"
+                              : std::string("no schema version declared")) +
+                       "; validated against CDI " + newest};
+}
+
 // Without a tree, the validator asks where the parser is for the line of what it reports: the
 // end of a start tag for what the tag says, the end tag for content missing from an element.
 int parser_position(void* context, const char** file, unsigned long* line) {
@@ -224,63 +230,97 @@ int parser_position(void* context, const char** file, unsigned long* line) {
     return 0;
 }
 
-struct ValidatorFree {
-    void operator()(xmlSchemaValidCtxtPtr validator) const { xmlSchemaFreeValidCtxt(validator); }
-};
-using ValidatorPtr = std::unique_ptr<xmlSchemaValidCtxt, ValidatorFree>;
-
-/// What one validating parse found: parse errors, schema errors, whether the text is XML, and
-/// the parse's own state (a refused DOCTYPE and its line).
-struct PassResult {
-    ParseState state;
-    Diagnostics parse_errors;
-    Diagnostics schema_errors;
-    bool well_formed = false;
-    bool valid = false;
-};
-
-/// Parses once, validating against `schema` as the SAX events arrive; no tree is built.
-PassResult validate_stream(std::string_view bytes, xmlSchemaPtr schema, const std::string& prefix) {
-    PassResult result;
-    ParseState& state = result.state;
-    Collector parse_collector{&result.parse_errors, "XML parse error: "};
-    Collector schema_collector{&result.schema_errors, prefix};
-    ErrorRouting routing(&parse_collector);
-    ParserPtr parser = new_parser(bytes, state, nullptr);
-    ValidatorPtr validator(xmlSchemaNewValidCtxt(schema));
-    if (parser == nullptr || validator == nullptr) {
-        result.parse_errors.push_back({Severity::kError, 0, "XML parse error: out of memory"});
-        return result;
+// Puts the validator of the chosen schema in front of the parser's handlers; false when the
+// schema cannot be used (the reason is in setup_errors).
+bool plug_validator(PassResult& state, xmlParserCtxtPtr parser) {
+    const xmlSchemaPtr schema = schema_for(state.choice.version, state.setup_errors);
+    if (schema == nullptr) return false;
+    state.schema_collector.prefix = schema_prefix(state.choice.version);
+    state.validator.reset(xmlSchemaNewValidCtxt(schema));
+    if (state.validator == nullptr) {
+        state.setup_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
+        return false;
     }
-    xmlSchemaSetValidStructuredErrors(validator.get(), collect, &schema_collector);
-    xmlSchemaValidateSetLocator(validator.get(), parser_position, parser.get());
-    xmlSchemaSAXPlugPtr plug = xmlSchemaSAXPlug(validator.get(), &parser->sax, &parser->userData);
-    if (plug == nullptr) {
-        result.parse_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
-        return result;
+    xmlSchemaSetValidStructuredErrors(state.validator.get(), collect, &state.schema_collector);
+    xmlSchemaValidateSetLocator(state.validator.get(), parser_position, parser);
+    state.plug = xmlSchemaSAXPlug(state.validator.get(), &parser->sax, &parser->userData);
+    if (state.plug == nullptr) {
+        state.setup_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
+        return false;
     }
-    xmlParseDocument(parser.get());
-    xmlSchemaSAXUnplug(plug);
-    // Only refuse_doctype stops the parser; this also covers a libxml2 that reset _private.
-    if (parser->errNo == XML_ERR_USER_STOP) state.doctype_seen = true;
-    result.well_formed = parser->wellFormed != 0 && !state.doctype_seen;
-    result.valid = xmlSchemaIsValid(validator.get()) == 1;
-    finish(parse_collector);
-    finish(schema_collector);
-    return result;
+    return true;
 }
 
-/// Validates `bytes` against `version`; appends to `out` what a reader needs (the warning
-/// `choice_warning`, if any, only for well-formed text). Returns whether the text is XML.
-bool check_against(std::string_view bytes, SchemaVersion version,
-                   std::optional<Diagnostic> choice_warning, Diagnostics& out) {
-    const xmlSchemaPtr schema = schema_for(version, out);
-    if (schema == nullptr) return false;
-    const std::string prefix = "CDI " + std::string(schema_version_name(version)) + " schema: ";
-    const PassResult pass = validate_stream(bytes, schema, prefix);
+// The root's start tag chooses the schema (so one parse both reads the declaration and
+// validates): the validator is plugged in here and gets this tag as its first event.
+void start_root(void* context, const xmlChar* local_name, const xmlChar* prefix, const xmlChar* uri,
+                int namespace_count, const xmlChar** namespaces, int attribute_count,
+                int defaulted_count, const xmlChar** attributes) {
+    auto* parser = static_cast<xmlParserCtxtPtr>(context);
+    PassResult& state = state_of(context);
+    const auto root_line =
+        parser->input != nullptr ? static_cast<std::uint32_t>(parser->input->line) : 0;
+    choose(state, root_location(attribute_count, attributes), root_line);
+    parser->sax->startElementNs = nullptr;       // every later start tag goes to the validator only
+    if (!plug_validator(state, parser)) return;  // still parsed: well-formedness is reported
+    parser->sax->startElementNs(parser->userData, local_name, prefix, uri, namespace_count,
+                                namespaces, attribute_count, defaulted_count, attributes);
+}
+
+struct ParserFree {
+    void operator()(xmlParserCtxtPtr parser) const { xmlFreeParserCtxt(parser); }
+};
+using ParserPtr = std::unique_ptr<xmlParserCtxt, ParserFree>;
+
+/// A parser of `bytes` whose SAX handler builds no tree: it has only the root's start tag (where
+/// the validator is plugged in) and the DOCTYPE refusal.
+ParserPtr new_parser(std::string_view bytes, PassResult& state) {
+    xmlInitParser();
+    ParserPtr parser(xmlCreateMemoryParserCtxt(bytes.data(), static_cast<int>(bytes.size())));
+    if (parser == nullptr) return nullptr;
+    xmlSAXHandler* sax = parser->sax;
+    *sax = xmlSAXHandler{};
+    sax->initialized = XML_SAX2_MAGIC;
+    sax->internalSubset = refuse_doctype;
+    sax->startElementNs = start_root;
+    parser->_private = &state;
+    xmlCtxtUseOptions(parser.get(), kParseOptions);
+    return parser;
+}
+
+/// Parses once, validating against the schema chosen at the root as the SAX events arrive; no
+/// tree is built.
+void validate_stream(std::string_view bytes, PassResult& result) {
+    Collector parse_collector{&result.parse_errors, "XML parse error: "};
+    ErrorRouting routing(&parse_collector);
+    ParserPtr parser = new_parser(bytes, result);
+    if (parser == nullptr) {
+        result.parse_errors.push_back({Severity::kError, 0, "XML parse error: out of memory"});
+        return;
+    }
+    xmlParseDocument(parser.get());
+    if (result.plug != nullptr) xmlSchemaSAXUnplug(result.plug);
+    // Only refuse_doctype stops the parser; this also covers a libxml2 that reset _private.
+    if (parser->errNo == XML_ERR_USER_STOP) result.doctype_seen = true;
+    result.well_formed = parser->wellFormed != 0 && !result.doctype_seen;
+    result.valid = result.validator != nullptr && xmlSchemaIsValid(result.validator.get()) == 1;
+    finish(parse_collector);
+    finish(result.schema_collector);
+}
+
+/// Validates `bytes` against the declared schema (or `fixed`); appends to `out` what a reader
+/// needs (the choice's warning, if any, only for well-formed text). Returns whether the text is
+/// XML; `choice` receives the schema used.
+bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, Diagnostics& out,
+                   SchemaChoice& choice) {
+    PassResult pass;
+    pass.fixed = fixed;
+    validate_stream(bytes, pass);
+    choice = pass.choice;
+    out.insert(out.end(), pass.setup_errors.begin(), pass.setup_errors.end());
     out.insert(out.end(), pass.parse_errors.begin(), pass.parse_errors.end());
-    if (pass.state.doctype_seen) {
-        out.push_back({Severity::kError, static_cast<std::uint32_t>(pass.state.doctype_line),
+    if (pass.doctype_seen) {
+        out.push_back({Severity::kError, static_cast<std::uint32_t>(pass.doctype_line),
                        "XML parse error: a DOCTYPE is not allowed in a CDI (refused; no entity "
                        "was expanded)"});
         return false;
@@ -292,10 +332,11 @@ bool check_against(std::string_view bytes, SchemaVersion version,
         }
         return false;
     }
-    if (choice_warning) out.push_back(std::move(*choice_warning));
+    if (!pass.setup_errors.empty()) return false;
+    if (pass.choice_warning) out.push_back(std::move(*pass.choice_warning));
     out.insert(out.end(), pass.schema_errors.begin(), pass.schema_errors.end());
     if (!pass.valid && pass.schema_errors.empty()) {
-        out.push_back({Severity::kError, 0, prefix + "validation failed"});
+        out.push_back({Severity::kError, 0, schema_prefix(choice.version) + "validation failed"});
     }
     return true;
 }
@@ -347,21 +388,7 @@ Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
     SchemaChoice choice;
     bytes = strip_trailing_nuls(bytes);
     if (!too_large(bytes, out)) {
-        const ParseState root = scan_root(bytes);
-        std::optional<Diagnostic> warning;
-        if (const auto version = schema_version_from_location(root.location)) {
-            choice.version = *version;
-            choice.declared = true;
-        } else {
-            const std::string newest(schema_version_name(kNewestSchema));
-            const bool versioned = root.location.find("/schema/cdi/1/") != std::string::npos;
-            warning =
-                Diagnostic{Severity::kWarning, root.root_line,
-                           (versioned ? "unknown schema version declared (" + root.location + ")"
-                                      : std::string("no schema version declared")) +
-                               "; validated against CDI " + newest};
-        }
-        choice.well_formed = check_against(bytes, choice.version, std::move(warning), out);
+        choice.well_formed = check_against(bytes, std::nullopt, out, choice);
     }
     if (chosen != nullptr) *chosen = choice;
     return out;
@@ -369,8 +396,9 @@ Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
 
 Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version) {
     Diagnostics out;
+    SchemaChoice choice;
     bytes = strip_trailing_nuls(bytes);
-    if (!too_large(bytes, out)) check_against(bytes, version, std::nullopt, out);
+    if (!too_large(bytes, out)) check_against(bytes, version, out, choice);
     return out;
 }
 
