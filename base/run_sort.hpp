@@ -5,8 +5,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
-#include <vector>
 
 namespace olcb::base {
 
@@ -17,20 +17,21 @@ inline constexpr std::size_t kMaxMergedRuns = 8;
 /// kMaxMergedRuns of them, else std::stable_sort.
 template <typename It, typename Less>
 void run_sort(It first, It last, Less less) {
-    std::vector<It> runs;  // the start of each ascending run
+    std::array<It, kMaxMergedRuns> runs{};  // the start of each ascending run
+    std::size_t count = 0;
     for (It it = first; it != last;) {
-        runs.push_back(it);
-        if (runs.size() > kMaxMergedRuns) {
+        if (count == kMaxMergedRuns) {
             std::stable_sort(first, last, less);
             return;
         }
+        runs[count++] = it;
         It next = std::next(it);
         while (next != last && !less(*next, *std::prev(next))) ++next;
         it = next;
     }
     // Each merge joins the sorted prefix with the next run; earlier elements stay first on ties.
-    for (std::size_t i = 1; i < runs.size(); ++i) {
-        std::inplace_merge(first, runs[i], i + 1 < runs.size() ? runs[i + 1] : last, less);
+    for (std::size_t i = 1; i < count; ++i) {
+        std::inplace_merge(first, runs[i], i + 1 < count ? runs[i + 1] : last, less);
     }
 }
 

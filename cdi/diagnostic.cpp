@@ -1,8 +1,15 @@
 #include "cdi/diagnostic.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 namespace olcb::cdi {
+
+void append(Diagnostics& out, Diagnostics&& more) {
+    out.insert(out.end(), std::make_move_iterator(more.begin()),
+               std::make_move_iterator(more.end()));
+    more.clear();
+}
 
 bool has_errors(const Diagnostics& diagnostics) {
     return std::any_of(diagnostics.begin(), diagnostics.end(),

@@ -20,6 +20,9 @@ struct Diagnostic {
 /// The findings of one pass over a document, in document order.
 using Diagnostics = std::vector<Diagnostic>;
 
+/// Moves every finding of `more` to the end of `out`.
+void append(Diagnostics& out, Diagnostics&& more);
+
 /// True when any finding is an error.
 bool has_errors(const Diagnostics& diagnostics);
 

@@ -317,8 +317,10 @@ bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, D
     pass.fixed = fixed;
     validate_stream(bytes, pass);
     choice = pass.choice;
-    out.insert(out.end(), pass.setup_errors.begin(), pass.setup_errors.end());
-    out.insert(out.end(), pass.parse_errors.begin(), pass.parse_errors.end());
+    const bool unusable = !pass.setup_errors.empty();
+    const bool parse_failed = !pass.parse_errors.empty();
+    append(out, std::move(pass.setup_errors));
+    append(out, std::move(pass.parse_errors));
     if (pass.doctype_seen) {
         out.push_back({Severity::kError, static_cast<std::uint32_t>(pass.doctype_line),
                        "XML parse error: a DOCTYPE is not allowed in a CDI (refused; no entity "
@@ -327,17 +329,15 @@ bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, D
     }
     if (!pass.well_formed) {
         // Schema errors before the point where the text stopped being XML would only confuse.
-        if (pass.parse_errors.empty()) {
-            out.push_back({Severity::kError, 0, "XML parse error: not well-formed"});
-        }
+        if (!parse_failed) out.push_back({Severity::kError, 0, "XML parse error: not well-formed"});
         return false;
     }
-    if (!pass.setup_errors.empty()) return false;
+    if (unusable) return false;
     if (pass.choice_warning) out.push_back(std::move(*pass.choice_warning));
-    out.insert(out.end(), pass.schema_errors.begin(), pass.schema_errors.end());
     if (!pass.valid && pass.schema_errors.empty()) {
         out.push_back({Severity::kError, 0, schema_prefix(choice.version) + "validation failed"});
     }
+    append(out, std::move(pass.schema_errors));
     return true;
 }
 

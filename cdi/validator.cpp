@@ -12,11 +12,6 @@
 namespace olcb::cdi {
 namespace {
 
-void append(Diagnostics& out, Diagnostics more) {
-    out.insert(out.end(), std::make_move_iterator(more.begin()),
-               std::make_move_iterator(more.end()));
-}
-
 /// Sorts by line (stable, so each pass keeps its own order within a line; each pass reports in
 /// document order, so this merges a few runs) and drops exact repeats, which arise when two
 /// passes word the same finding identically.
