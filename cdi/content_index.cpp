@@ -112,4 +112,34 @@ std::uint32_t non_element_nodes_between(std::string_view text, std::size_t from,
     }
 }
 
+std::size_t end_of_element(std::string_view text, std::size_t from, int depth) {
+    if (from == 0 || from > text.size()) return 0;
+    const char* p = text.data() + from - 1;  // the '<' of the element at from
+    const char* const end = text.data() + text.size();
+    for (;;) {
+        switch (next_token(p, end)) {
+            case Token::kNode:
+                break;
+            case Token::kOpen:
+                ++depth;
+                break;
+            case Token::kEmpty:
+                if (depth < 0) return static_cast<std::size_t>(p - text.data());
+                break;
+            case Token::kClose:
+                if (--depth < 0) return static_cast<std::size_t>(p - text.data());
+                break;
+            case Token::kStop:
+                return 0;
+        }
+    }
+}
+
+std::size_t end_of_start_tag(std::string_view text, std::size_t from) {
+    if (from == 0 || from > text.size()) return 0;
+    bool self_closing = false;
+    const char* p = tag_end(text.data() + from, text.data() + text.size(), self_closing);
+    return p == nullptr ? 0 : static_cast<std::size_t>(p - text.data());
+}
+
 }  // namespace olcb::cdi

@@ -22,4 +22,12 @@ namespace olcb::cdi {
 std::uint32_t non_element_nodes_between(std::string_view text, std::size_t from, int depth,
                                         std::size_t to);
 
+/// The offset just past the '>' that ends element E (its end tag, or the tag itself for <x/>),
+/// scanning from the element whose name starts at `from` with `depth` as above (-1: E itself;
+/// for a short scan, E's last element in document order). 0 when the text ends first.
+std::size_t end_of_element(std::string_view text, std::size_t from, int depth);
+
+/// The offset just past the '>' of the start tag whose name starts at `from`; 0 when none.
+std::size_t end_of_start_tag(std::string_view text, std::size_t from);
+
 }  // namespace olcb::cdi

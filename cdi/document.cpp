@@ -2,6 +2,8 @@
 
 namespace olcb::cdi {
 
+Element::Element() = default;
+
 std::string to_string(WideInt value) {
     if (value == 0) return "0";
     // Work on the unsigned magnitude so the most negative value does not overflow on negation.

@@ -85,6 +85,10 @@ struct SourcePos {
 /// or an unknown element with a size). Large members that most elements lack are Boxed (kept
 /// out of line), so a document of thousands of elements stays compact.
 struct Element {
+    /// Every member has its initializer; a constructor of our own (defined out of line) spares
+    /// the zeroing of the whole object that value-initialising an aggregate would do first.
+    Element();
+
     ElementKind kind = ElementKind::kUnknown;
     SourcePos pos;
     /// Index among all content nodes of the parent element in the text as parsed (whitespace

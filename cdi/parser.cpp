@@ -11,20 +11,35 @@
 #include <vector>
 
 #include "cdi/content_index.hpp"
+#include "cdi/line_counter.hpp"
+#include "cdi/loaded_xml.hpp"
 
 namespace olcb::cdi {
 namespace {
-
-// How pugixml reads a CDI. parse_doctype keeps a DOCTYPE as a node so it can be refused;
-// pugixml never expands entities it does not know, so a billion-laughs DTD costs one linear
-// scan. parse_embed_pcdata stores an element's first text in the element: fewer nodes.
-constexpr unsigned kPugixmlOptions =
-    pugi::parse_default | pugi::parse_doctype | pugi::parse_embed_pcdata;
 
 /// One attribute: its name and its value (entities decoded, whitespace normalised).
 struct XmlAttribute {
     std::string_view name;
     std::string_view value;
+};
+
+// An element name as pugixml keeps it (NUL-terminated), compared with literals byte by byte up
+// to the first difference: no strlen is paid to look at it, and nothing past its NUL is read.
+class Tag {
+public:
+    explicit Tag(const char* name) : name_(name) {}
+    char first() const { return name_[0]; }
+    std::string_view view() const { return name_; }
+    template <std::size_t N>
+    bool is(const char (&literal)[N]) const {
+        for (std::size_t i = 0; i < N; ++i) {
+            if (name_[i] != literal[i]) return false;
+        }
+        return true;
+    }
+
+private:
+    const char* name_;
 };
 
 // The attributes of an element in document order (duplicates kept), as XmlAttribute values.
@@ -63,19 +78,13 @@ public:
     explicit operator bool() const { return static_cast<bool>(node_); }
     std::string_view name() const { return node_.name(); }
     const char* c_name() const { return node_.name(); }
+    Tag tag() const { return Tag(node_.name()); }
+    pugi::xml_node node() const { return node_; }
     // The first text directly inside the element ("" when none).
     std::string_view text() const { return node_.child_value(); }
     // Byte offset of the name in the source: pugixml parses in place and never moves a name.
-    std::size_t offset() const {
-        const std::ptrdiff_t offset = node_.offset_debug();
-        return offset < 0 ? 0 : static_cast<std::size_t>(offset);
-    }
+    std::size_t offset() const { return source_offset(node_); }
     XmlElement first_child() const { return forward(node_.first_child()); }
-    XmlElement last_child() const {
-        pugi::xml_node n = node_.last_child();
-        while (n && n.type() != pugi::node_element) n = n.previous_sibling();
-        return XmlElement(n);
-    }
     XmlElement next_sibling() const { return forward(node_.next_sibling()); }
     XmlAttributes attributes() const { return XmlAttributes(node_.first_attribute()); }
     // The first attribute with this name.
@@ -104,65 +113,42 @@ constexpr WideInt kTwoPow32 = WideInt{1} << 32;
 // Enough to report every problem of a real CDI; bounds memory on hostile input.
 constexpr std::size_t kMaxDiagnostics = 1000;
 
-// Counts '\n' in [p, end), eight bytes at a time: a byte b is zero exactly when neither
-// (b & 0x7F) + 0x7F nor b has its high bit set, so a word XORed with "\n\n..." has as many zero
-// bytes as high bits left clear; the multiplication adds those up (no popcount instruction is
-// assumed). A byte loop is several times slower.
-std::size_t count_newlines(const char* p, const char* end) {
-    constexpr std::uint64_t kNewlines = 0x0A0A0A0A0A0A0A0AULL;
-    constexpr std::uint64_t kLow7 = 0x7F7F7F7F7F7F7F7FULL;
-    std::size_t total = 0;
-    for (; end - p >= 8; p += 8) {
-        std::uint64_t word = 0;
-        std::memcpy(&word, p, sizeof word);
-        word ^= kNewlines;
-        const std::uint64_t nonzero = ((word & kLow7) + kLow7) | word;
-        const std::uint64_t zero_bytes = (~nonzero & ~kLow7) >> 7;  // 0 or 1 in each byte
-        total += static_cast<std::size_t>((zero_bytes * 0x0101010101010101ULL) >> 56);
-    }
-    for (; p < end; ++p) total += static_cast<std::size_t>(*p == '\n');
-    return total;
-}
-
-// Maps a byte offset to a 1-based line. Elements are visited in document order, so lines are
-// counted incrementally from the previous offset; a backwards step recounts from the start.
-class LineCounter {
-public:
-    explicit LineCounter(std::string_view text) : text_(text) {}
-
-    std::uint32_t line_of(std::size_t offset) {
-        offset = std::min(offset, text_.size());
-        if (offset < offset_) {
-            offset_ = 0;
-            line_ = 1;
-        }
-        line_ += static_cast<std::uint32_t>(
-            count_newlines(text_.data() + offset_, text_.data() + offset));
-        offset_ = offset;
-        return line_;
-    }
-
-private:
-    std::string_view text_;
-    std::size_t offset_ = 0;
-    std::uint32_t line_ = 1;
-};
-
 template <std::size_t N>
 bool is(std::string_view name, const char (&literal)[N]) {
     return name == std::string_view(literal, N - 1);
+}
+
+template <std::size_t N>
+bool is(Tag tag, const char (&literal)[N]) {
+    return tag.is(literal);
 }
 
 std::string str(std::string_view text) {
     return std::string(text);
 }
 
+std::string str(Tag tag) {
+    return std::string(tag.view());
+}
+
+// A literal's length is known at compile time; a view of it through const char* costs a strlen.
+template <std::size_t N>
+std::string_view part(const char (&literal)[N]) {
+    return {literal, N - 1};
+}
+inline std::string_view part(std::string_view text) {
+    return text;
+}
+inline std::string_view part(Tag tag) {
+    return tag.view();
+}
+
 // A message from its parts with one allocation (a CDI may earn hundreds of warnings).
 template <typename... Parts>
 std::string cat(const Parts&... parts) {
     std::string out;
-    out.reserve((std::string_view(parts).size() + ...));
-    (out.append(std::string_view(parts)), ...);
+    out.reserve((part(parts).size() + ...));
+    (out.append(part(parts)), ...);
     return out;
 }
 
@@ -196,7 +182,7 @@ template <std::size_t N>
 std::size_t count_children(XmlElement node, const char (&name)[N]) {
     std::size_t n = 0;
     for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
-        if (is(child.name(), name)) ++n;
+        if (is(child.tag(), name)) ++n;
     }
     return n;
 }
@@ -230,8 +216,8 @@ bool is_namespace_attribute(std::string_view name) {
     return name.substr(0, 5) == "xmlns" || name.find(':') != std::string_view::npos;
 }
 
-std::optional<ElementKind> known_kind(std::string_view tag) {
-    switch (tag[0]) {
+std::optional<ElementKind> known_kind(Tag tag) {
+    switch (tag.first()) {
         case 'g':
             if (is(tag, "group")) return ElementKind::kGroup;
             break;
@@ -261,7 +247,7 @@ std::optional<ElementKind> known_kind(std::string_view tag) {
 }
 
 // The container's own children of a <segment>/<group>, read by its caller (name, ...).
-bool is_own_child(std::string_view tag, bool in_group) {
+bool is_own_child(Tag tag, bool in_group) {
     if (is(tag, "name") || is(tag, "description") || is(tag, "link")) return true;
     return in_group && (is(tag, "repname") || is(tag, "hints"));
 }
@@ -289,14 +275,10 @@ public:
     }
 
 private:
-    // The last element of e's subtree in document order, and how deep below e it is.
+    // The last element of e's subtree in document order, and how deep below e's parent it is.
     static std::pair<XmlElement, int> last_descendant(XmlElement e) {
-        int depth = 0;
-        for (XmlElement c = e.last_child(); c; c = e.last_child()) {
-            e = c;
-            ++depth;
-        }
-        return {e, depth};
+        const auto [last, depth] = last_element(e.node());
+        return {XmlElement(last), depth + 1};
     }
 
     std::string_view text_;
@@ -320,7 +302,7 @@ class Parser {
 public:
     explicit Parser(Diagnostics& diagnostics) : diagnostics_(diagnostics) {}
 
-    std::optional<Document> run(std::string_view bytes);
+    std::optional<Document> run(const LoadedXml& xml);
 
 private:
     void report(Severity severity, std::uint32_t line, std::string message) {
@@ -349,7 +331,7 @@ private:
     std::optional<WideInt> int_text(XmlElement node, XmlElement parent);
     std::optional<double> float_text(XmlElement node, XmlElement parent);
 
-    XmlElement read_xml(std::string& buffer, pugi::xml_document& xml);
+    XmlElement read_xml(const LoadedXml& loaded);
     void read_declaration(std::string_view text, Document& doc);
     void parse_identification(XmlElement node, Document& doc);
     void parse_acdi(XmlElement node, Document& doc);
@@ -366,10 +348,8 @@ private:
     bool parse_data_element(XmlElement node, ElementKind kind, std::size_t depth, Element& element);
     void parse_group_body(XmlElement node, Element& group);
     void parse_variable_body(XmlElement node, Element& element);
-    bool parse_value_child(XmlElement node, XmlElement child, std::string_view tag,
-                           Element& element);
-    bool parse_action_child(XmlElement node, XmlElement child, std::string_view tag,
-                            Element& element);
+    bool parse_value_child(XmlElement node, XmlElement child, Tag tag, Element& element);
+    bool parse_action_child(XmlElement node, XmlElement child, Tag tag, Element& element);
     bool read_size(XmlElement node, std::optional<WideInt> size, Element& element);
 
     Diagnostics& diagnostics_;
@@ -435,20 +415,20 @@ std::optional<double> Parser::float_text(XmlElement node, XmlElement parent) {
     return value;
 }
 
-// Parses the buffer in place and returns the <cdi> root, or reports what makes the document
+// The <cdi> root of the loaded text, or none with a report of what makes the document
 // unusable (malformed XML, a DTD, no root, another root, nesting too deep) and returns none.
-XmlElement Parser::read_xml(std::string& buffer, pugi::xml_document& xml) {
+XmlElement Parser::read_xml(const LoadedXml& loaded) {
     const auto line = [this](pugi::xml_node node) -> std::uint32_t {
         return lines_->line_of(XmlElement(node).offset());
     };
-    const pugi::xml_parse_result parsed =
-        xml.load_buffer_inplace(buffer.data(), buffer.size(), kPugixmlOptions, pugi::encoding_utf8);
+    const pugi::xml_parse_result& parsed = loaded.result();
     if (!parsed) {
         const std::size_t offset = parsed.offset < 0 ? 0 : static_cast<std::size_t>(parsed.offset);
-        report(Severity::kError, lines_->line_of(std::min(offset, buffer.size())),
+        report(Severity::kError, lines_->line_of(std::min(offset, loaded.text().size())),
                std::string("malformed XML: ") + parsed.description());
         return {};
     }
+    const pugi::xml_document& xml = loaded.document();
     for (pugi::xml_node child : xml.children()) {
         if (child.type() == pugi::node_doctype) {
             report(Severity::kError, line(child),
@@ -465,8 +445,9 @@ XmlElement Parser::read_xml(std::string& buffer, pugi::xml_document& xml) {
         error(root, "root element is <" + str(root.name()) + ">, expected <cdi>");
         return {};
     }
+    if (const auto bound = loaded.depth_bound(); bound && *bound <= kMaxXmlDepth) return root;
     DepthWalker walker;
-    xml.traverse(walker);
+    pugi::xml_node(xml).traverse(walker);  // a handle: traverse() is not const
     if (pugi::xml_node deep = walker.too_deep()) {
         report(
             Severity::kError, line(deep),
@@ -503,7 +484,7 @@ void Parser::parse_relation(XmlElement node, MapEntry& entry) {
     XmlElement property;
     XmlElement value;
     for (XmlElement part = node.first_child(); part; part = part.next_sibling()) {
-        const std::string_view part_tag = part.name();
+        const Tag part_tag = part.tag();
         if (!property && is(part_tag, "property")) {
             property = part;
         } else if (!value && is(part_tag, "value")) {
@@ -517,7 +498,7 @@ void Parser::parse_relation(XmlElement node, MapEntry& entry) {
 
 void Parser::parse_map(XmlElement node, Map& map) {
     for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
-        const std::string_view tag = child.name();
+        const Tag tag = child.tag();
         if (is(tag, "name")) {
             map.name = child.text();
         } else if (is(tag, "description")) {
@@ -651,7 +632,7 @@ void Parser::open_container(XmlElement parent, std::vector<Element>& out, std::s
     ContentCounter counter(text_, parent);
     for (XmlElement child = parent.first_child(); child; child = child.next_sibling()) {
         const std::uint32_t content_index = counter.index_of(child);
-        const std::string_view tag = child.name();
+        const Tag tag = child.tag();
         if (is_own_child(tag, in_group)) continue;  // the caller's
         std::optional<ElementKind> kind = known_kind(tag);
         if (!kind && child.attribute("size")) kind = ElementKind::kUnknown;
@@ -786,7 +767,7 @@ bool Parser::parse_data_element(XmlElement node, ElementKind kind, std::size_t d
 
 void Parser::parse_group_body(XmlElement node, Element& group) {
     for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
-        const std::string_view tag = child.name();
+        const Tag tag = child.tag();
         if (is(tag, "name")) {
             group.name = child.text();
         } else if (is(tag, "description")) {
@@ -803,8 +784,7 @@ void Parser::parse_group_body(XmlElement node, Element& group) {
 
 // The children of a variable that hold a value (<min>, <max>, <default>, the action's
 // texts): false when tag is none of those this kind has.
-bool Parser::parse_value_child(XmlElement node, XmlElement child, std::string_view tag,
-                               Element& element) {
+bool Parser::parse_value_child(XmlElement node, XmlElement child, Tag tag, Element& element) {
     const ElementKind kind = element.kind;
     const bool integer = kind == ElementKind::kInt || kind == ElementKind::kBit;
     if (integer && is(tag, "min")) {
@@ -830,8 +810,7 @@ bool Parser::parse_value_child(XmlElement node, XmlElement child, std::string_vi
     return true;
 }
 
-bool Parser::parse_action_child(XmlElement node, XmlElement child, std::string_view tag,
-                                Element& element) {
+bool Parser::parse_action_child(XmlElement node, XmlElement child, Tag tag, Element& element) {
     if (is(tag, "buttonText")) {
         set_text(element.button_text, child.text());
     } else if (is(tag, "dialogText")) {
@@ -848,7 +827,7 @@ void Parser::parse_variable_body(XmlElement node, Element& element) {
     const ElementKind kind = element.kind;
     const bool mappable = kind != ElementKind::kAction && kind != ElementKind::kBlob;
     for (XmlElement child = node.first_child(); child; child = child.next_sibling()) {
-        const std::string_view tag = child.name();
+        const Tag tag = child.tag();
         if (is(tag, "name")) {
             element.name = child.text();
         } else if (is(tag, "description")) {
@@ -867,7 +846,8 @@ void Parser::parse_variable_body(XmlElement node, Element& element) {
     }
 }
 
-std::optional<Document> Parser::run(std::string_view bytes) {
+std::optional<Document> Parser::run(const LoadedXml& loaded) {
+    std::string_view bytes = loaded.text();
     if (bytes.size() >= 3 && static_cast<unsigned char>(bytes[0]) == 0xEF &&
         static_cast<unsigned char>(bytes[1]) == 0xBB &&
         static_cast<unsigned char>(bytes[2]) == 0xBF) {
@@ -875,8 +855,7 @@ std::optional<Document> Parser::run(std::string_view bytes) {
                "the CDI starts with a UTF-8 byte-order mark; the standard forbids a BOM");
         return std::nullopt;
     }
-    // A node serves the CDI with a NUL terminator (sometimes several); it is not XML.
-    while (!bytes.empty() && bytes.back() == '\0') bytes.remove_suffix(1);
+    // A node serves the CDI with a NUL terminator (sometimes several): LoadedXml dropped them.
     LineCounter lines(bytes);
     lines_ = &lines;
     if (const void* nul = std::memchr(bytes.data(), '\0', bytes.size())) {
@@ -890,11 +869,9 @@ std::optional<Document> Parser::run(std::string_view bytes) {
         return std::nullopt;
     }
 
-    // pugixml parses a copy in place (it rewrites texts as it decodes them); the nodes between
-    // elements are counted in the original. buffer and xml live as long as the walk over them.
-    std::string buffer(bytes);
-    pugi::xml_document xml;
-    const XmlElement root = read_xml(buffer, xml);
+    // pugixml parsed a copy in place (it rewrites texts as it decodes them); the nodes between
+    // elements are counted in the original.
+    const XmlElement root = read_xml(loaded);
     if (!root) return std::nullopt;
     text_ = bytes;
 
@@ -925,9 +902,14 @@ std::optional<Document> Parser::run(std::string_view bytes) {
 }  // namespace
 
 ParseResult parse(std::string_view bytes) {
+    const LoadedXml loaded(bytes);
+    return parse(loaded);
+}
+
+ParseResult parse(const LoadedXml& loaded) {
     ParseResult result;
     Parser parser(result.diagnostics);
-    result.document = parser.run(bytes);
+    result.document = parser.run(loaded);
     if (has_errors(result.diagnostics)) result.document.reset();
     return result;
 }

@@ -8,6 +8,7 @@
 #include "cdi/decimal.hpp"
 #include "cdi/diagnostic.hpp"
 #include "cdi/document.hpp"
+#include "cdi/loaded_xml.hpp"
 
 namespace olcb::cdi {
 
@@ -23,5 +24,8 @@ inline constexpr std::size_t kMaxGroupDepth = 1024;
 
 /// Parses CDI bytes as a node serves them; document is empty when diagnostics has errors.
 ParseResult parse(std::string_view bytes);
+
+/// The same, from a text already loaded (validate() shares one load with the schema check).
+ParseResult parse(const LoadedXml& loaded);
 
 }  // namespace olcb::cdi

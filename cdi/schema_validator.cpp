@@ -15,6 +15,9 @@
 #include <string>
 #include <utility>
 
+#include "cdi/schema_tree.hpp"
+#include "cdi/xml_screen.hpp"
+
 namespace olcb::cdi {
 namespace {
 
@@ -165,6 +168,8 @@ struct PassResult {
     Collector schema_collector{&schema_errors, ""};
     ValidatorPtr validator;
     xmlSchemaSAXPlugPtr plug = nullptr;
+    std::optional<TreePosition> position;  ///< where the tree walk is (tree path only)
+    bool misfit = false;  ///< a finding the tree cannot place as libxml2's parse would
     bool well_formed = false;
     bool valid = false;
 };
@@ -230,9 +235,28 @@ int parser_position(void* context, const char** file, unsigned long* line) {
     return 0;
 }
 
-// Puts the validator of the chosen schema in front of the parser's handlers; false when the
+// Without a parser, the tree walk knows which event it fed last.
+int tree_position(void* context, const char** file, unsigned long* line) {
+    auto* state = static_cast<PassResult*>(context);
+    *file = nullptr;
+    if (state->position && !state->position->finding_fits()) state->misfit = true;
+    // Past kMaxDiagnostics the finding is dropped: no need to find its line.
+    const bool wanted = state->schema_errors.size() < kMaxDiagnostics;
+    *line = wanted && state->position ? state->position->line() : 0;
+    return 0;
+}
+
+/// Where the validator reports from and the handlers it is put in front of.
+struct PlugTarget {
+    xmlSAXHandlerPtr* sax;
+    void** user;
+    xmlSchemaValidityLocatorFunc locator;
+    void* locator_context;
+};
+
+// Puts the validator of the chosen schema in front of the given handlers; false when the
 // schema cannot be used (the reason is in setup_errors).
-bool plug_validator(PassResult& state, xmlParserCtxtPtr parser) {
+bool plug_validator(PassResult& state, const PlugTarget& target) {
     const xmlSchemaPtr schema = schema_for(state.choice.version, state.setup_errors);
     if (schema == nullptr) return false;
     state.schema_collector.prefix = schema_prefix(state.choice.version);
@@ -242,8 +266,8 @@ bool plug_validator(PassResult& state, xmlParserCtxtPtr parser) {
         return false;
     }
     xmlSchemaSetValidStructuredErrors(state.validator.get(), collect, &state.schema_collector);
-    xmlSchemaValidateSetLocator(state.validator.get(), parser_position, parser);
-    state.plug = xmlSchemaSAXPlug(state.validator.get(), &parser->sax, &parser->userData);
+    xmlSchemaValidateSetLocator(state.validator.get(), target.locator, target.locator_context);
+    state.plug = xmlSchemaSAXPlug(state.validator.get(), target.sax, target.user);
     if (state.plug == nullptr) {
         state.setup_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
         return false;
@@ -261,8 +285,9 @@ void start_root(void* context, const xmlChar* local_name, const xmlChar* prefix,
     const auto root_line =
         parser->input != nullptr ? static_cast<std::uint32_t>(parser->input->line) : 0;
     choose(state, root_location(attribute_count, attributes), root_line);
-    parser->sax->startElementNs = nullptr;       // every later start tag goes to the validator only
-    if (!plug_validator(state, parser)) return;  // still parsed: well-formedness is reported
+    parser->sax->startElementNs = nullptr;  // every later start tag goes to the validator only
+    // Still parsed when the schema cannot be used: well-formedness is reported.
+    if (!plug_validator(state, {&parser->sax, &parser->userData, parser_position, parser})) return;
     parser->sax->startElementNs(parser->userData, local_name, prefix, uri, namespace_count,
                                 namespaces, attribute_count, defaulted_count, attributes);
 }
@@ -308,15 +333,42 @@ void validate_stream(std::string_view bytes, PassResult& result) {
     finish(result.schema_collector);
 }
 
-/// Validates `bytes` against the declared schema (or `fixed`); appends to `out` what a reader
-/// needs (the choice's warning, if any, only for well-formed text). Returns whether the text is
-/// XML; `choice` receives the schema used.
-bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, Diagnostics& out,
-                   SchemaChoice& choice) {
-    PassResult pass;
-    pass.fixed = fixed;
-    validate_stream(bytes, pass);
+/// Validates the tree pugixml built, fed to the validator event by event; false when the walk
+/// met what it leaves to libxml2 (result then holds nothing worth keeping).
+bool validate_tree(const LoadedXml& xml, bool ascii, PassResult& result) {
+    const pugi::xml_node root = xml.document().document_element();
+    TreePosition& position = result.position.emplace(xml.text());
+    position.at_start(root);
+    choose(result, root_schema_location(root), position.line());
+    xmlSAXHandlerPtr sax = nullptr;
+    void* user = nullptr;
+    result.well_formed = true;
+    if (!plug_validator(result, {&sax, &user, tree_position, &result})) return true;
+    const bool fed = feed_tree(xml, ascii, *sax, user, position);
+    xmlSchemaSAXUnplug(result.plug);
+    result.plug = nullptr;
+    result.valid = xmlSchemaIsValid(result.validator.get()) == 1;
+    finish(result.schema_collector);
+    return fed && !result.misfit;
+}
+
+/// Validates the loaded text against the declared schema (or `fixed`): from pugixml's tree when
+/// the screen says pugixml's reading settles well-formedness, else by libxml2's own parse.
+/// Appends to `out` what a reader needs (the choice's warning, if any, only for well-formed
+/// text). Returns whether the text is XML; `choice` receives the schema used.
+bool check_against(const LoadedXml& xml, std::optional<SchemaVersion> fixed, Diagnostics& out,
+                   SchemaChoice& choice, bool tree_allowed = true) {
+    std::optional<PassResult> tried;
+    tried.emplace().fixed = fixed;
+    const XmlScreen screened = tree_allowed ? screen(xml) : XmlScreen{};
+    const bool from_tree = screened.passes && validate_tree(xml, screened.ascii, *tried);
+    if (!from_tree) {
+        tried.emplace().fixed = fixed;
+        validate_stream(xml.text(), *tried);
+    }
+    PassResult& pass = *tried;
     choice = pass.choice;
+    choice.from_tree = from_tree;
     const bool unusable = !pass.setup_errors.empty();
     const bool parse_failed = !pass.parse_errors.empty();
     append(out, std::move(pass.setup_errors));
@@ -383,12 +435,34 @@ std::optional<SchemaVersion> schema_version_from_location(std::string_view locat
     return static_cast<SchemaVersion>(minor);
 }
 
-Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
+Diagnostics validate_schema(const LoadedXml& xml, SchemaChoice* chosen) {
     Diagnostics out;
     SchemaChoice choice;
+    if (!too_large(xml.text(), out)) {
+        choice.well_formed = check_against(xml, std::nullopt, out, choice);
+    }
+    if (chosen != nullptr) *chosen = choice;
+    return out;
+}
+
+Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
     bytes = strip_trailing_nuls(bytes);
+    Diagnostics out;
+    if (too_large(bytes, out)) {  // refused before pugixml reads it
+        if (chosen != nullptr) *chosen = SchemaChoice{};
+        return out;
+    }
+    const LoadedXml xml(bytes);
+    return validate_schema(xml, chosen);
+}
+
+Diagnostics validate_schema_parsed(std::string_view bytes, SchemaChoice* chosen) {
+    bytes = strip_trailing_nuls(bytes);
+    Diagnostics out;
+    SchemaChoice choice;
     if (!too_large(bytes, out)) {
-        choice.well_formed = check_against(bytes, std::nullopt, out, choice);
+        const LoadedXml xml(bytes);
+        choice.well_formed = check_against(xml, std::nullopt, out, choice, false);
     }
     if (chosen != nullptr) *chosen = choice;
     return out;
@@ -398,7 +472,9 @@ Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version) {
     Diagnostics out;
     SchemaChoice choice;
     bytes = strip_trailing_nuls(bytes);
-    if (!too_large(bytes, out)) check_against(bytes, version, out, choice);
+    if (too_large(bytes, out)) return out;
+    const LoadedXml xml(bytes);
+    check_against(xml, version, out, choice);
     return out;
 }
 

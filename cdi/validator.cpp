@@ -39,9 +39,11 @@ ValidationReport validate(std::string_view bytes) {
 ValidatedCdi validate_model(std::string_view bytes) {
     ValidatedCdi out;
     ValidationReport& report = out.report;
-    append(report.diagnostics, validate_schema(bytes, &report.schema));
+    // One pugixml parse for both passes; libxml2 parses only what the screen leaves to it.
+    const LoadedXml xml(bytes);
+    append(report.diagnostics, validate_schema(xml, &report.schema));
 
-    ParseResult parsed = parse(bytes);
+    ParseResult parsed = parse(xml);
     if (!report.schema.well_formed && !parsed.document) {
         // libxml2 already reported why the text is not XML; the model parser's errors would
         // say the same thing a second time in other words.

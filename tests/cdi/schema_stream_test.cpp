@@ -1,6 +1,6 @@
-// The schema check runs while libxml2 parses (no tree): what that changes at the edges — how the
-// schema is chosen before the root is validated, which line a finding gets, and what is kept
-// when the text turns out not to be XML.
+// The schema check is fed events (from pugixml's tree, or while libxml2 parses), never a DOM:
+// what that changes at the edges — how the schema is chosen before the root is validated, which
+// line a finding gets, and what is kept when the text turns out not to be XML.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
