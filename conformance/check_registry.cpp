@@ -73,7 +73,8 @@ constexpr CheckSpec kEarlyChecks[] = {
      "WARN quoting it; another version or encoding, or none: FAIL quoting at most 80 bytes)",
      k::cdi_xml_declaration},
     {"cdi.well-formed", C::kCdi, "ConfigurationDescriptionInformationS §5", "cd10",
-     "libxml2 parses it (FAIL quotes the first parse error and lists all; stopped at the "
+     "pugixml's parse where the screen settles it, else libxml2's (FAIL quotes libxml2's first "
+     "parse error and lists all; stopped at the "
      "invalid UTF-8: SKIP depends on cdi.utf8)",
      k::cdi_well_formed},
     {"cdi.valid", C::kCdi, "ConfigurationDescriptionInformationS §5", "cd10",
