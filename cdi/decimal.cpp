@@ -8,9 +8,6 @@
 namespace olcb::cdi {
 namespace {
 
-bool is_xml_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
 bool is_digit(char c) {
     return c >= '0' && c <= '9';
 }

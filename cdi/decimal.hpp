@@ -17,6 +17,11 @@ std::optional<WideInt> parse_decimal_int(std::string_view text);
 /// ok; refuses hex floats, "inf", "nan" and values outside the double range.
 std::optional<double> parse_decimal_float(std::string_view text);
 
+/// XML whitespace (the S production): space, tab, CR, LF.
+inline bool is_xml_space(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
+}
+
 /// The text without leading and trailing XML whitespace (space, tab, CR, LF).
 std::string_view trim_xml_space(std::string_view text);
 

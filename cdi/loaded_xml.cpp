@@ -9,12 +9,12 @@ namespace {
 constexpr unsigned kPugixmlOptions =
     pugi::parse_default | pugi::parse_doctype | pugi::parse_embed_pcdata;
 
+}  // namespace
+
 std::string_view without_trailing_nuls(std::string_view bytes) {
     while (!bytes.empty() && bytes.back() == '\0') bytes.remove_suffix(1);
     return bytes;
 }
-
-}  // namespace
 
 LoadedXml::LoadedXml(std::string_view bytes) : text_(without_trailing_nuls(bytes)), buffer_(text_) {
     result_ = document_.load_buffer_inplace(buffer_.data(), buffer_.size(), kPugixmlOptions,

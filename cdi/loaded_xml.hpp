@@ -47,6 +47,9 @@ private:
     pugi::xml_parse_result result_;
 };
 
+/// `bytes` without the NUL terminators a node serves after the CDI text.
+std::string_view without_trailing_nuls(std::string_view bytes);
+
 /// The byte offset of an element's name in the source (pugixml parses in place and never moves a
 /// name); 0 for a null node.
 std::size_t source_offset(pugi::xml_node node);

@@ -173,10 +173,6 @@ private:
     pugi::xml_node too_deep_;
 };
 
-bool is_xml_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
-
 // Number of children named name; a reservation hint.
 template <std::size_t N>
 std::size_t count_children(XmlElement node, const char (&name)[N]) {

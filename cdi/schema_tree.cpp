@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cdi/content_index.hpp"
+#include "cdi/decimal.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -148,10 +149,6 @@ bool StartTag::feed(pugi::xml_node element, const char* name, bool root) {
     return true;
 }
 
-bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
-
 /// Stretches of the source ([begin, end) offsets) to feed as text, in document order. Only the
 /// first `count` are set: zeroing all of them would cost a memset per element.
 struct Runs {
@@ -192,7 +189,7 @@ bool leading_whitespace(std::string_view text, pugi::xml_node element, pugi::xml
     std::size_t end = source_offset(first) - 1;  // the child's '<'
     for (;;) {
         std::size_t begin = end;
-        while (begin > 0 && is_space(text[begin - 1])) --begin;
+        while (begin > 0 && is_xml_space(text[begin - 1])) --begin;
         if (begin < end) {
             if (backwards.count == Runs::kMax) return false;
             backwards.add(begin, end);

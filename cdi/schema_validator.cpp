@@ -393,11 +393,6 @@ bool check_against(const LoadedXml& xml, std::optional<SchemaVersion> fixed, Dia
     return true;
 }
 
-std::string_view strip_trailing_nuls(std::string_view bytes) {
-    while (!bytes.empty() && bytes.back() == '\0') bytes.remove_suffix(1);
-    return bytes;
-}
-
 bool too_large(std::string_view bytes, Diagnostics& out) {
     if (bytes.size() <= kMaxCdiBytes) return false;
     out.push_back({Severity::kError, 0,
@@ -446,7 +441,7 @@ Diagnostics validate_schema(const LoadedXml& xml, SchemaChoice* chosen) {
 }
 
 Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
-    bytes = strip_trailing_nuls(bytes);
+    bytes = without_trailing_nuls(bytes);
     Diagnostics out;
     if (too_large(bytes, out)) {  // refused before pugixml reads it
         if (chosen != nullptr) *chosen = SchemaChoice{};
@@ -457,7 +452,7 @@ Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
 }
 
 Diagnostics validate_schema_parsed(std::string_view bytes, SchemaChoice* chosen) {
-    bytes = strip_trailing_nuls(bytes);
+    bytes = without_trailing_nuls(bytes);
     Diagnostics out;
     SchemaChoice choice;
     if (!too_large(bytes, out)) {
@@ -471,7 +466,7 @@ Diagnostics validate_schema_parsed(std::string_view bytes, SchemaChoice* chosen)
 Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version) {
     Diagnostics out;
     SchemaChoice choice;
-    bytes = strip_trailing_nuls(bytes);
+    bytes = without_trailing_nuls(bytes);
     if (too_large(bytes, out)) return out;
     const LoadedXml xml(bytes);
     check_against(xml, version, out, choice);

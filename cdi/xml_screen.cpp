@@ -6,13 +6,10 @@
 
 #include "base/utf8.hpp"
 #include "cdi/content_index.hpp"
+#include "cdi/decimal.hpp"
 
 namespace olcb::cdi {
 namespace {
-
-bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n';
-}
 
 // A run of non-ASCII bytes: valid UTF-8 without U+FFFE or U+FFFF (the only non-ASCII code points
 // of valid UTF-8 that XML 1.0 forbids; surrogates are not valid UTF-8).
@@ -136,7 +133,8 @@ bool plain_instruction(std::string_view text, std::size_t at) {
     if (target.size() >= 3 && equals_ignoring_case(target.substr(0, 3), "xml") &&
         target != "xml-stylesheet" && target != "xml-model")
         return false;
-    if (end >= text.size() || !(is_space(text[end]) || text.substr(end, 2) == "?>")) return false;
+    if (end >= text.size() || !(is_xml_space(text[end]) || text.substr(end, 2) == "?>"))
+        return false;
     return text.find("?>", end) != std::string_view::npos;
 }
 
@@ -162,13 +160,13 @@ bool plain_markup(std::string_view text) {
 // pseudo-attribute="value" (either quote) after whitespace; value is left on what was read.
 bool read_pseudo_attribute(std::string_view& rest, std::string_view name, std::string_view& value) {
     std::size_t i = 0;
-    while (i < rest.size() && is_space(rest[i])) ++i;
+    while (i < rest.size() && is_xml_space(rest[i])) ++i;
     if (i == 0 || rest.substr(i, name.size()) != name) return false;
     i += name.size();
-    while (i < rest.size() && is_space(rest[i])) ++i;
+    while (i < rest.size() && is_xml_space(rest[i])) ++i;
     if (i >= rest.size() || rest[i] != '=') return false;
     ++i;
-    while (i < rest.size() && is_space(rest[i])) ++i;
+    while (i < rest.size() && is_xml_space(rest[i])) ++i;
     if (i >= rest.size() || (rest[i] != '"' && rest[i] != '\'')) return false;
     const std::size_t close = rest.find(rest[i], i + 1);
     if (close == std::string_view::npos) return false;
@@ -182,7 +180,7 @@ bool read_pseudo_attribute(std::string_view& rest, std::string_view name, std::s
 // other declaration.
 std::size_t after_declaration(std::string_view text) {
     if (!text.starts_with("<?")) return 0;
-    if (!text.starts_with("<?xml") || text.size() < 6 || !is_space(text[5]))
+    if (!text.starts_with("<?xml") || text.size() < 6 || !is_xml_space(text[5]))
         return std::string_view::npos;
     std::string_view rest = text.substr(5);
     std::string_view value;
@@ -199,7 +197,7 @@ std::size_t after_declaration(std::string_view text) {
         rest = probe;
     }
     std::size_t i = 0;
-    while (i < rest.size() && is_space(rest[i])) ++i;
+    while (i < rest.size() && is_xml_space(rest[i])) ++i;
     if (rest.substr(i, 2) != "?>") return std::string_view::npos;
     return text.size() - rest.size() + i + 2;
 }
@@ -208,7 +206,7 @@ std::size_t after_declaration(std::string_view text) {
 bool only_misc(std::string_view text, std::size_t from, std::size_t to) {
     while (from < to) {
         const bool comment = text.substr(from, 4) == "<!--";
-        if (is_space(text[from])) {
+        if (is_xml_space(text[from])) {
             ++from;
         } else if (comment || text.substr(from, 2) == "<?") {
             const std::size_t close = text.find(comment ? "-->" : "?>", from + 2);
