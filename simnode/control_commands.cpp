@@ -24,7 +24,6 @@ constexpr std::uint64_t kMaxAddedNodes = 1000;
 // A value quoted back in an error is cut here: the error must stay readable.
 constexpr std::size_t kMaxQuoted = 64;
 constexpr std::size_t kMaxParseMessage = 200;
-constexpr std::uint8_t kAcdiUserSpace = 0xFB;
 constexpr std::uint64_t kMaxAddress = 0xFFFF'FFFFu;
 constexpr std::uint64_t kMaxSpace = 0xFF;
 
@@ -262,14 +261,9 @@ memory::MemorySpace* served_space(const SimNode& node, std::uint64_t number, std
     return nullptr;
 }
 
-std::string write_failure(memory::WriteStatus status, std::uint64_t number, std::uint64_t address) {
+std::string write_failure(memory::WriteStatus status, std::uint64_t number) {
     switch (status) {
         case memory::WriteStatus::kReadOnly:
-            if (number == kAcdiUserSpace && address == 0) {
-                return space_name(number) +
-                       ": byte 0 is the ACDI version byte, read-only (the fault "
-                       "acdi-version-writable accepts it)";
-            }
             return space_name(number) + " is read-only";
         case memory::WriteStatus::kOutOfBounds:
             return space_name(number) + ": the write does not fit";
@@ -473,7 +467,7 @@ Json ControlCommands::write(const Json& request) {
     const auto status = node->write_memory(static_cast<std::uint8_t>(*number),
                                            static_cast<std::uint32_t>(*address), *data);
     if (status != memory::WriteStatus::kOk) {
-        return refused(write_failure(status, *number, *address));
+        return refused(write_failure(status, *number));
     }
     log("control: node " + node->node_id().to_string() + ": wrote " + std::to_string(data->size()) +
         " byte(s) to " + space_name(*number) + " at " + std::to_string(*address));

@@ -12,6 +12,7 @@ constexpr std::chrono::milliseconds kDefaultUnsolicitedPeriod{1000};
 constexpr std::chrono::milliseconds kDefaultAbortSilence{3000};
 constexpr std::uint32_t kDefaultRebootOnWrite = 1;
 constexpr std::chrono::milliseconds kDefaultLatency{200};
+constexpr std::chrono::milliseconds kDefaultMaskIgnoredSilence{5000};
 // Bounds keep a typo from stalling a node for days or rejecting forever.
 constexpr std::uint32_t kMaxDelayMs = 600'000;
 constexpr std::uint32_t kMaxCount = 1'000'000;
@@ -76,8 +77,8 @@ constexpr FlagFault kFlagFaults[] = {
     {"readonly-0x1041", &FaultSet::readonly_0x1041},
     {"read-past-end-garbage", &FaultSet::read_past_end_garbage},
     {"write-past-end-spills", &FaultSet::write_past_end_spills},
+    {"write-past-end-grows", &FaultSet::write_past_end_grows},
     {"highest-unreadable", &FaultSet::highest_unreadable},
-    {"acdi-version-writable", &FaultSet::acdi_version_writable},
     {"events-stale-after-write", &FaultSet::events_stale_after_write},
     {"events-missing", &FaultSet::events_missing},
     {"duplicate-id-silent", &FaultSet::duplicate_id_silent},
@@ -107,6 +108,9 @@ constexpr NumberFault kNumberFaults[] = {
     {"abort-on-value", kDefaultAbortSilence.count(), 1, kMaxDelayMs,
      [](const FaultSet& f) { return static_cast<std::uint32_t>(f.abort_on_value.count()); },
      [](FaultSet& f, std::uint32_t v) { f.abort_on_value = Ms(v); }},
+    {"mask-ignored", kDefaultMaskIgnoredSilence.count(), 1, kMaxDelayMs,
+     [](const FaultSet& f) { return static_cast<std::uint32_t>(f.mask_ignored.count()); },
+     [](FaultSet& f, std::uint32_t v) { f.mask_ignored = Ms(v); }},
     {"reboot-on-write", kDefaultRebootOnWrite, 1, kMaxCount,
      [](const FaultSet& f) { return f.reboot_on_write; },
      [](FaultSet& f, std::uint32_t v) { f.reboot_on_write = v; }},
@@ -270,10 +274,16 @@ const std::vector<FaultInfo>& fault_catalog() {
         {"read-past-end-garbage", "",
          "a read of 0xFD at/after its end returns count 0xA5 bytes, not 0x1082"},
         {"write-past-end-spills", "",
-         "writes crossing a space's end accepted; 251's excess bytes land in 253 from byte 0"},
+         "writes crossing a space's end accepted; 251's excess bytes land in 253 at 0x80, past "
+         "its first 128 bytes (251 is the start of 253's file, as on OpenMRN)"},
+        {"write-past-end-grows", "",
+         "writes crossing a space's end accepted; the excess bytes are kept beside the image "
+         "(FILE.past-end) where no read reaches them, as OpenMRN's config file grows"},
+        {"mask-ignored", "MS (default 5000)",
+         "Write Under Mask stores the data bytes whole, ignoring the masks; then silent MS ms "
+         "and a restart"},
         {"highest-unreadable", "",
          "Space Info of 251 and 253 reports the size as highest address (one too high)"},
-        {"acdi-version-writable", "", "writes of the 251 version byte accepted (RAM only)"},
         {"events-stale-after-write", "",
          "events identified as at start-up: written event IDs not identified until a restart"},
         {"events-missing", "",

@@ -44,6 +44,9 @@ struct FaultSet {
     /// Silence after a SNIP request while the watched int differs from its value at creation,
     /// then a restart (abort-on-value=MS; 0 = off).
     std::chrono::milliseconds abort_on_value{0};
+    /// Write Under Mask stores its data bytes whole, ignoring the masks, then the node is silent
+    /// this long and restarts (mask-ignored=MS; 0 = off).
+    std::chrono::milliseconds mask_ignored{0};
     /// The Nth stored write restarts the node without its Write Reply (reboot-on-write=N; 0 =
     /// off); once per process.
     std::uint32_t reboot_on_write = 0;
@@ -58,8 +61,9 @@ struct FaultSet {
     bool readonly_0x1041 = false;           ///< write to a read-only space rejected 0x1041
     bool read_past_end_garbage = false;     ///< 0xFD read at/after the end returns 0xA5 bytes
     bool write_past_end_spills = false;     ///< crossing writes accepted; 251's tail lands in 253
+    /// Crossing writes accepted; the bytes past the end are kept (on disk) where no read reaches.
+    bool write_past_end_grows = false;
     bool highest_unreadable = false;        ///< 251/253 Space Info highest = size (one too high)
-    bool acdi_version_writable = false;     ///< writes of 251 byte 0 accepted (RAM only)
     bool events_stale_after_write = false;  ///< identifies the start-up event IDs until restart
     bool events_missing = false;            ///< eventid slots 1, 3, 5... never identified
     bool duplicate_id_silent = false;       ///< no PCER on a duplicate node ID

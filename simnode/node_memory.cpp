@@ -1,6 +1,11 @@
 #include "simnode/node_memory.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <utility>
@@ -47,37 +52,6 @@ public:
 private:
     bool writable_;
     std::vector<std::uint8_t> bytes_;
-};
-
-// Space 251's version byte belongs to the firmware (fact sheet 7; OlcbChecker cd40): a write
-// including it is refused as read-only (the server answers Datagram Rejected 0x1083). With
-// acdi-version-writable it is accepted instead and the new byte kept in RAM (the rest of the
-// write goes on to the image), forgotten at restart.
-class AcdiVersionGuard : public memory::ForwardingSpace {
-public:
-    AcdiVersionGuard(memory::MemorySpace& inner, bool writable)
-        : ForwardingSpace(inner), writable_(writable) {}
-    std::size_t read(std::uint32_t address, std::span<std::uint8_t> out) override {
-        const std::size_t got = ForwardingSpace::read(address, out);
-        if (address == 0 && got > 0 && version_) out[0] = *version_;
-        return got;
-    }
-    memory::WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override {
-        if (address != 0 || in.empty()) return ForwardingSpace::write(address, in);
-        if (!writable_ || read_only()) return memory::WriteStatus::kReadOnly;
-        if (!memory::fits(size(), address, in.size())) return memory::WriteStatus::kOutOfBounds;
-        if (in.size() > 1) {
-            const auto status = ForwardingSpace::write(1, in.subspan(1));
-            if (status != memory::WriteStatus::kOk) return status;
-        }
-        version_ = in[0];
-        return memory::WriteStatus::kOk;
-    }
-    void reload() { version_.reset(); }
-
-private:
-    bool writable_;
-    std::optional<std::uint8_t> version_;  // acdi-version-writable: the byte written last
 };
 
 // write-dropped: answers like a successful write and stores nothing.
@@ -211,13 +185,11 @@ struct NodeMemory::Slot {
     std::unique_ptr<memory::RamSpace> ram;
     std::vector<std::unique_ptr<memory::MemorySpace>> wrappers;  // each wraps the previous
     std::vector<RamOverlay*> overlays;
-    AcdiVersionGuard* version_guard = nullptr;  // 251 with <acdi/>, byte 0 not in the CDI
     memory::MemorySpace* top = nullptr;
 
     // Forgets what only RAM held (a power cycle).
     void reload() const {
         for (RamOverlay* o : overlays) o->reload();
-        if (version_guard != nullptr) version_guard->reload();
     }
 
     memory::MemorySpace& base() const {
@@ -394,11 +366,6 @@ bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool serv
         s->wrap<MisEncode>(*options_.model->layout, number, f);
     }
     if (f.write_dropped) s->wrap<DropWrites>();
-    // A CDI that lays a variable over byte 0 (a CDI bug the cdi checks report) makes it that
-    // variable's byte: the node then stores it as its CDI says, as such real nodes do.
-    if (s->acdi_layout && !options_.model->layout->find(number, 0).valid()) {
-        s->version_guard = s->wrap<AcdiVersionGuard>(f.acdi_version_writable);
-    }
     by_number_[number] = s.get();
     slots_.push_back(std::move(s));
     return true;
@@ -570,6 +537,32 @@ bool NodeMemory::factory_reset(std::string& error) {
 
 void NodeMemory::reboot() {
     for (const auto& s : slots_) s->reload();
+}
+
+bool NodeMemory::keep_past_end(std::uint8_t space, std::size_t offset,
+                               std::span<const std::uint8_t> bytes) {
+    if (options_.image_dir.empty()) {
+        std::vector<std::uint8_t>& kept = past_end_[space];
+        if (kept.size() < offset + bytes.size()) kept.resize(offset + bytes.size(), 0);
+        std::copy(bytes.begin(), bytes.end(), kept.begin() + static_cast<std::ptrdiff_t>(offset));
+        return true;
+    }
+    const std::string path = (options_.image_dir / (image_file_name(space) + ".past-end")).string();
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) return false;
+    const ssize_t n = ::pwrite(fd, bytes.data(), bytes.size(), static_cast<off_t>(offset));
+    const bool ok = n == static_cast<ssize_t>(bytes.size()) && ::fsync(fd) == 0;
+    ::close(fd);
+    return ok;
+}
+
+std::vector<std::uint8_t> NodeMemory::past_end(std::uint8_t space) const {
+    if (options_.image_dir.empty()) {
+        const auto it = past_end_.find(space);
+        return it == past_end_.end() ? std::vector<std::uint8_t>{} : it->second;
+    }
+    std::ifstream in(options_.image_dir / (image_file_name(space) + ".past-end"), std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 bool NodeMemory::store_unique_id_counter(std::uint32_t counter) {

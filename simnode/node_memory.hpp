@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -91,11 +92,16 @@ public:
     std::vector<std::uint8_t> factory_image(std::uint8_t number) const;
     /// Restores every writable space to its factory content; false with `error` on I/O failure.
     bool factory_reset(std::string& error);
-    /// Power cycle: forgets what only RAM held (write-not-persisted, readonly-writable,
-    /// acdi-version-writable).
+    /// Power cycle: forgets what only RAM held (write-not-persisted, readonly-writable).
     void reboot();
     /// The persisted Get Unique ID counter (never below the default event IDs handed out).
     std::uint32_t unique_id_counter() const { return unique_id_counter_; }
+    /// write-past-end-grows: keeps bytes written past the end of space (from `offset` past it)
+    /// where no read reaches them: in "<image>.past-end" beside the space's image (synced), or in
+    /// RAM without an image directory. False on I/O failure.
+    bool keep_past_end(std::uint8_t space, std::size_t offset, std::span<const std::uint8_t> bytes);
+    /// What keep_past_end() kept for space (empty when nothing).
+    std::vector<std::uint8_t> past_end(std::uint8_t space) const;
     /// Persists a new Get Unique ID counter; false on I/O failure.
     bool store_unique_id_counter(std::uint32_t counter);
     /// The CDI model.
@@ -121,6 +127,7 @@ private:
     std::vector<std::unique_ptr<Slot>> slots_;
     std::array<Slot*, 256> by_number_{};
     std::unique_ptr<memory::ImageFile> unique_id_image_;
+    std::map<std::uint8_t, std::vector<std::uint8_t>> past_end_;  // keep_past_end() without images
     std::uint32_t unique_id_counter_ = 0;
     std::uint32_t default_event_count_ = 0;
 };

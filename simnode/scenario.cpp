@@ -35,6 +35,7 @@ constexpr std::string_view kNodeKeys[] = {
     "fault",
     "watch-variable",
     "streams",
+    "memory-config",
 };
 // Keys of the whole process (top level only).
 constexpr std::string_view kProcessKeys[] = {"listen",
@@ -157,6 +158,10 @@ po::options_description node_options() {
         "watch-variable", po::value<std::string>()->value_name("PATH"),
         "the variable abort-on-value and factory-reset-on-version-change watch, as "
         "lcc-cdi layout names it (default: the first <int> of space 253)")(
+        "memory-config", po::value<std::string>()->value_name("BOOL"),
+        "serve Memory Configuration and the CDI (default true; false = a node such as a "
+        "throttle: its PIP has neither, memory-config datagrams are rejected 0x1042, the CDI "
+        "file gives only SNIP strings and events)")(
         "streams", po::value<std::string>()->value_name("BOOL"),
         "serve memory-config stream reads and accept streams (default true; false = "
         "datagram-only, as a node without stream support)");
@@ -656,6 +661,10 @@ private:
         const std::string* streams = single(keys, "streams");
         const auto streams_on = streams ? parse_bool(*streams) : std::optional<bool>(true);
         if (!streams_on) return fail(where + ": streams '" + *streams + "' must be true or false");
+        const std::string* memory = single(keys, "memory-config");
+        const auto memory_on = memory ? parse_bool(*memory) : std::optional<bool>(true);
+        if (!memory_on)
+            return fail(where + ": memory-config '" + *memory + "' must be true or false");
         for (std::uint64_t k = 0; k < g.count; ++k) {
             NodeConfig config;
             config.node_id = NodeId(g.base.value() + k);
@@ -673,7 +682,8 @@ private:
             }
             config.faults = g.faults;
             if (watch) config.watch_variable = *watch;
-            config.streams = *streams_on;
+            config.streams = *streams_on && *memory_on;
+            config.memory_config = *memory_on;
             scenario_.nodes.push_back(std::move(config));
         }
         return true;

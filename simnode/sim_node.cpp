@@ -166,10 +166,13 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     if (!memory) return nullptr;
 
     // PIP says what the node really serves (fact sheet 3.1).
-    ProtocolSet served{Protocol::kDatagram, Protocol::kMemoryConfiguration, Protocol::kSnip,
-                       Protocol::kCdi};
+    ProtocolSet served{Protocol::kDatagram, Protocol::kSnip};
+    if (config.memory_config) {
+        served.set(Protocol::kMemoryConfiguration);
+        served.set(Protocol::kCdi);
+        if (memory->has_acdi()) served.set(Protocol::kAcdi);
+    }
     if (!model->events.empty()) served.set(Protocol::kEventExchange);
-    if (memory->has_acdi()) served.set(Protocol::kAcdi);
     if (config.streams) served.set(Protocol::kStream);
 
     const NodeStackConfig sc = stack_config_for(config, served);
@@ -354,7 +357,8 @@ bool SimNode::answer_message(const Message& msg) {
         }
         case Mti::kSnipRequest: {
             if (config_.faults.abort_on_value.count() > 0 && watched_changed()) {
-                abort_node();  // the firmware trips over the value while building its reply
+                // The firmware trips over the value while building its reply.
+                abort_node(config_.faults.abort_on_value);
                 return true;
             }
             Message reply;
@@ -410,13 +414,13 @@ void SimNode::on_initialized() {
     }
 }
 
-void SimNode::abort_node() {
+void SimNode::abort_node(std::chrono::milliseconds silence) {
     ++counters_.aborts;
     ++boot_generation_;
     answer_delay_.reset();
     const std::uint32_t generation = boot_generation_;
     stack_.go_silent(stack_.now());
-    stack_.schedule(stack_.now() + config_.faults.abort_on_value,
+    stack_.schedule(stack_.now() + silence,
                     [this, generation](TimePoint now) {
                         if (generation == boot_generation_) power_up(now);
                     });
@@ -522,7 +526,7 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
         stack_.reject_datagram(src, base::to_u16(base::ErrorCode::kBufferUnavailable));
         return;
     }
-    if (d.payload.empty() || d.payload[0] != memory::kDatagramType) {
+    if (d.payload.empty() || d.payload[0] != memory::kDatagramType || !config_.memory_config) {
         stack_.reject_datagram(src, base::to_u16(base::ErrorCode::kCommandUnknown));
         return;
     }
@@ -536,6 +540,10 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
     if (write_reboot) decision.reply.clear();  // the OK still says Reply Pending
     send_answer(src, decision);
     if (fx.stream_read) start_stream_read(src, *fx.stream_read);
+    if (std::exchange(silence_after_answer_, false)) {
+        abort_node(config_.faults.mask_ignored);
+        return;
+    }
 
     if (fx.reboot || fx.factory_reset || write_reboot) {
         if (fx.factory_reset) {
@@ -581,9 +589,13 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
     memory::Source source;
     source.alias = src;
     source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
-    memory::Decision decision = config_.faults.write_past_end_spills
-                                    ? spilling_write(source, payload)
-                                    : server_.handle(source, payload);
+    const FaultSet& f = config_.faults;
+    const std::vector<std::uint8_t> request =
+        f.mask_ignored.count() > 0 ? unmasked(payload)
+                                   : std::vector<std::uint8_t>(payload.begin(), payload.end());
+    memory::Decision decision = f.write_past_end_spills || f.write_past_end_grows
+                                    ? crossing_write(source, request)
+                                    : server_.handle(source, request);
     apply_reject_faults(decision);
     apply_reply_faults(decision, payload);
     const memory::SideEffects& fx = decision.effects;
@@ -609,11 +621,24 @@ std::optional<memory::Decision> SimNode::command_faults(
     return std::nullopt;
 }
 
-// write-past-end-spills: a write crossing the end of its space stores what fits and answers
-// Write Reply OK; what lies past the end of 251 goes on into 253 from its byte 0, as OpenMRN's
-// file-backed 251 runs on into the next bytes of its file (real-world.md 1); of other spaces it
-// is dropped.
-memory::Decision SimNode::spilling_write(const memory::Source& source,
+// mask-ignored: a Write Under Mask becomes a Write of its data bytes (the masks ignored), and
+// the node goes silent once it has answered.
+std::vector<std::uint8_t> SimNode::unmasked(std::span<const std::uint8_t> payload) {
+    const memory::DecodeResult asked = memory::decode(payload);
+    const auto* masked = std::get_if<memory::WriteUnderMask>(&asked.message);
+    if (!asked.ok() || masked == nullptr) return {payload.begin(), payload.end()};
+    memory::Write whole{masked->space, masked->address, {}, masked->form};
+    for (const memory::MaskedByte& b : masked->bytes) whole.data.push_back(b.value);
+    silence_after_answer_ = true;
+    return memory::encode(whole);
+}
+
+// write-past-end-spills and write-past-end-grows: a write crossing the end of its space stores
+// what fits and answers Write Reply OK. Spills: what lies past the end of 251 goes on into 253 at
+// 251's size (0x80), since OpenMRN's 251 is the first 128 bytes of 253's file (real-world.md 1);
+// of other spaces it is dropped. Grows: the bytes past the end are kept beside the space's image,
+// where no read reaches them, as OpenMRN's config file grows by them.
+memory::Decision SimNode::crossing_write(const memory::Source& source,
                                          std::span<const std::uint8_t> payload) {
     const memory::DecodeResult asked = memory::decode(payload);
     const auto* write = std::get_if<memory::Write>(&asked.message);
@@ -627,12 +652,19 @@ memory::Decision SimNode::spilling_write(const memory::Source& source,
     memory::Write head = *write;
     head.data.resize(fits);
     memory::Decision decision = server_.handle(source, memory::encode(head));
-    if (!decision.accepted || write->space != memory::Space::kAcdiUser) return decision;
+    if (!decision.accepted) return decision;
+    const std::span<const std::uint8_t> tail = std::span(write->data).subspan(fits);
+    if (config_.faults.write_past_end_grows) {
+        if (!memory_->keep_past_end(memory::to_u8(write->space), 0, tail))
+            ++counters_.storage_errors;
+        return decision;
+    }
+    if (write->space != memory::Space::kAcdiUser) return decision;
     memory::MemorySpace* next = memory_->space(kConfigSpace);
-    if (next == nullptr) return decision;
-    std::span<const std::uint8_t> tail = std::span(write->data).subspan(fits);
-    tail = tail.first(std::min<std::size_t>(tail.size(), next->size()));
-    if (next->write(0, tail) != memory::WriteStatus::kOk) ++counters_.storage_errors;
+    if (next == nullptr || space->size() >= next->size()) return decision;
+    const std::size_t room = next->size() - space->size();
+    const std::span<const std::uint8_t> spilled = tail.first(std::min(tail.size(), room));
+    if (next->write(space->size(), spilled) != memory::WriteStatus::kOk) ++counters_.storage_errors;
     return decision;
 }
 

@@ -46,6 +46,9 @@ struct NodeConfig {
     /// Streams on (PIP stream bit, Options "stream reads", Read Stream served, incoming streams
     /// accepted), as an OpenMRN node; false = datagram-only.
     bool streams = true;
+    /// Memory Configuration and the CDI served (PIP bits, datagrams answered); false = a node
+    /// that is no configurable node (a throttle): memory-config datagrams rejected 0x1042.
+    bool memory_config = true;
 };
 
 /// Counters of what a node did, for tests and the program's statistics.
@@ -140,7 +143,7 @@ private:
     bool reboot_on_this_write();
     void find_watched();
     bool watched_changed() const;
-    void abort_node();
+    void abort_node(std::chrono::milliseconds silence);
     void factory_reset();
     void power_up(TimePoint now);
     void on_initialized();
@@ -151,8 +154,9 @@ private:
     void apply_reply_faults(memory::Decision& decision, std::span<const std::uint8_t> request);
     void apply_reject_faults(memory::Decision& decision) const;
     bool fill_past_end(memory::DecodeResult& reply, std::span<const std::uint8_t> request) const;
-    memory::Decision spilling_write(const memory::Source& source,
+    memory::Decision crossing_write(const memory::Source& source,
                                     std::span<const std::uint8_t> payload);
+    std::vector<std::uint8_t> unmasked(std::span<const std::uint8_t> payload);
     std::vector<std::pair<EventId, EventRole>> advertised_events() const;
     void schedule_unsolicited(TimePoint at);
     void start_stream_read(std::uint16_t src, const memory::StreamRead& read);
@@ -176,6 +180,7 @@ private:
     bool unsolicited_started_ = false;
     std::uint32_t stored_writes_ = 0;  // counts writes for reboot-on-write
     bool rebooted_on_write_ = false;   // reboot-on-write fires once per process
+    bool silence_after_answer_ = false;  // mask-ignored: go silent once this answer is out
     std::uint8_t watched_space_ = 253;
     std::optional<std::uint32_t> watched_address_;  // see watched_address()
     std::vector<std::uint8_t> watched_snapshot_;    // its bytes when the node was created

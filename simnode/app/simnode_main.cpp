@@ -41,6 +41,8 @@ using namespace olcb::simnode;
 
 constexpr int kExitRuntime = 1;
 constexpr int kExitUsage = 2;
+// How long --connect waits for the hub at start-up before giving up with exit status 2.
+constexpr std::chrono::seconds kFirstConnectWait{3};
 // How often start-up progress is checked for the "initialized" line.
 constexpr auto kStartupPoll = std::chrono::milliseconds(10);
 // Output a hub may fall behind by before simnode reconnects (see the --connect client).
@@ -166,7 +168,7 @@ public:
         if (!start_control()) return kExitRuntime;
         arm_stop();
         announce();
-        start_nodes();
+        if (!start_nodes()) return kExitUsage;
         watch_startup();
         io_.run();
         finish_audit();
@@ -358,7 +360,7 @@ private:
         }
     }
 
-    void start_nodes() {
+    bool start_nodes() {
         started_ = Clock::now();
         if (scenario_.start_on_connect && hub_) {
             // As a node that is itself a TCP server: a new client sees every node's login.
@@ -375,7 +377,7 @@ private:
         if (!client_) {
             nodes_started_ = true;
             registry_->start_all();
-            return;
+            return true;
         }
         // The nodes start once the hub is reached, so the hub's nodes see their alias
         // reservation and can object to a collision.
@@ -393,6 +395,20 @@ private:
         });
         say("connecting to hub " + where);
         client_->start();
+        // A hub that is not there at the start is a mistake to say at once (a wrong port), not
+        // a silent wait; one that goes away later is reconnected to.
+        const auto deadline = Clock::now() + kFirstConnectWait;
+        while (!client_->connected() && !client_->gave_up() && client_->last_error().empty() &&
+               Clock::now() < deadline)
+            io_.run_one_for(std::chrono::milliseconds(50));
+        if (client_->connected()) return true;
+        const std::string why = client_->last_error();
+        std::cerr << "simnode: cannot connect to hub " << where << ": "
+                  << (why.empty() ? "no answer within " +
+                                        std::to_string(kFirstConnectWait.count()) + " s"
+                                  : why)
+                  << "\n";
+        return false;
     }
 
     // One line once every node holds an alias and sent Initialization Complete: start-up time

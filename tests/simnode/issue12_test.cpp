@@ -72,23 +72,16 @@ protected:
 
 // ---- A1: ACDI write-back (cd40) ----
 
-TEST_F(Issue12Test, AcdiVersionByteWriteRejected1083AndNothingStored) {
+// ConfigurationDescriptionInformationS §5.1.2 lists 251, its version byte included, as read and
+// write, and MemoryConfigurationS §4.1 makes no space partly read-only: the byte is written.
+TEST_F(Issue12Test, AcdiVersionByteIsWritableLikeTheRestOf251) {
     start(default_config());
-    const auto before = read(0xFB, 0, 4);
-    ASSERT_EQ(before, (std::vector<std::uint8_t>{2, 'T', 'e', 's'}));
-    for (const auto& data : {std::vector<std::uint8_t>{2}, std::vector<std::uint8_t>{7, 'X'}}) {
-        const Answer a = exchange(write_cmd(0xFB, 0, data));
-        EXPECT_TRUE(a.rejected);
-        EXPECT_EQ(a.code, 0x1083);
-        EXPECT_FALSE(a.reply);
-    }
-    // Write Under Mask including byte 0 too, even with an empty mask for it.
-    Answer a = exchange({0x20, 0x08, 0, 0, 0, 0, 0xFB, 0x00, 0x07, 0xFF, 'X'});
-    EXPECT_TRUE(a.rejected);
-    EXPECT_EQ(a.code, 0x1083);
-    EXPECT_EQ(read(0xFB, 0, 4), before);
-    write_ok(0xFB, 1, bytes_of("Renamed"));  // the user name stays writable
-    EXPECT_EQ(read(0xFB, 0, 4), (std::vector<std::uint8_t>{2, 'R', 'e', 'n'}));
+    ASSERT_EQ(read(0xFB, 0, 4), (std::vector<std::uint8_t>{2, 'T', 'e', 's'}));
+    write_ok(0xFB, 0, {2, 'R'});
+    EXPECT_EQ(read(0xFB, 0, 4), (std::vector<std::uint8_t>{2, 'R', 'e', 's'}));
+    // Write Under Mask including byte 0, with an empty mask for it.
+    EXPECT_TRUE(exchange({0x20, 0x08, 0, 0, 0, 0, 0xFB, 0x00, 0x07, 0xFF, 'X'}).ok);
+    EXPECT_EQ(read(0xFB, 0, 4), (std::vector<std::uint8_t>{2, 'X', 'e', 's'}));
 }
 
 // A CDI laying a variable over 251 byte 0 (a CDI bug of some real devices, which the cdi checks
@@ -408,11 +401,14 @@ TEST_F(Issue12Test, ReadPastEndGarbage) {
 
 TEST_F(Issue12Test, WritePastEndSpills) {
     start_with({"write-past-end-spills"});
+    const auto start_of_253 = read(0xFD, 0, 3);
     const Answer a = exchange(write_cmd(0xFB, kUserSize - 2, {'a', 'b', 'c', 'd', 'e'}));
     ASSERT_TRUE(a.reply);
     EXPECT_EQ((*a.reply)[1], 0x10) << "Write Reply OK";
     EXPECT_EQ(read(0xFB, kUserSize - 2, 2), bytes_of("ab"));
-    EXPECT_EQ(read(0xFD, 0, 3), bytes_of("cde")) << "the rest lands in 253 from byte 0";
+    EXPECT_EQ(read(0xFD, kUserSize, 3), bytes_of("cde"))
+        << "the rest lands in 253 past its first 128 bytes, as in OpenMRN's shared file";
+    EXPECT_EQ(read(0xFD, 0, 3), start_of_253) << "253's start is untouched";
     write_ok(0xFD, kConfigSize - 2, {7, 7, 7, 7});
     EXPECT_EQ(read(0xFD, kConfigSize - 2, 4), (std::vector<std::uint8_t>{7, 7}));
     EXPECT_EQ(fail_code(exchange(write_cmd(0xFD, kConfigSize, {1}))), 0x1082)
@@ -429,13 +425,29 @@ TEST_F(Issue12Test, HighestUnreadable) {
     EXPECT_EQ(highest(0xFC), 124u);
 }
 
-TEST_F(Issue12Test, AcdiVersionWritable) {
-    start_with({"acdi-version-writable"});
-    write_ok(0xFB, 0, {7, 'X'});
-    EXPECT_EQ(read(0xFB, 0, 2), (std::vector<std::uint8_t>{7, 'X'}));
-    EXPECT_EQ(node_->snip_payload()[0], 4) << "SNIP's own version bytes are literal";
-    reboot();
-    EXPECT_EQ(read(0xFB, 0, 2), (std::vector<std::uint8_t>{2, 'X'})) << "the byte was RAM only";
+TEST_F(Issue12Test, WritePastEndGrowsKeepsTheBytesWhereNoReadReaches) {
+    start_with({"write-past-end-grows"});
+    const Answer a = exchange(write_cmd(0xFD, kConfigSize - 1, {9, 8, 7}));
+    ASSERT_TRUE(a.ok || a.reply) << "accepted";
+    EXPECT_EQ(read(0xFD, kConfigSize - 1, 1), std::vector<std::uint8_t>{9});
+    EXPECT_EQ(node_->memory().past_end(0xFD), (std::vector<std::uint8_t>{8, 7}))
+        << "kept past the end, as OpenMRN's config file grows";
+    EXPECT_EQ(fail_code(exchange(read_cmd(0xFD, kConfigSize, 1))), 0x1082)
+        << "and no read reaches it";
+    EXPECT_EQ(highest(0xFD), kConfigSize - 1) << "Space Info unchanged";
+}
+
+TEST_F(Issue12Test, MaskIgnoredStoresTheDataWholeThenGoesSilentAndRestarts) {
+    start_with({"mask-ignored=5000"});
+    const auto before = read(0xFD, 0, 1);
+    const std::uint8_t data = static_cast<std::uint8_t>(~before[0]);
+    const Answer a = exchange({0x20, 0x09, 0, 0, 0, 0, 0x00, data});  // mask 0: change nothing
+    EXPECT_TRUE(a.ok || a.reply) << "acknowledged";
+    net_.run_for(1s);
+    EXPECT_FALSE(node_->stack().initialized()) << "silent after the write";
+    net_.run_for(5s);
+    ASSERT_TRUE(node_->stack().initialized()) << "back after the silence";
+    EXPECT_EQ(read(0xFD, 0, 1), std::vector<std::uint8_t>{data}) << "the mask was ignored";
 }
 
 TEST_F(Issue12Test, EventsStaleAfterWrite) {
