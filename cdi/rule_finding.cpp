@@ -214,23 +214,25 @@ RuleFinding schema_location(const Document* document) {
                       loc.ends_with(".xsd");
     if (sane)
         return finding(kId, RuleStatus::kPass, "schema location names an openlcb.org CDI schema");
-    return finding(kId, RuleStatus::kFail, "schema location names an openlcb.org CDI schema",
-                   "http://openlcb.org/schema/cdi/.../cdi.xsd", clip(loc));
+    // The standard shows the URL but sets no rule for other spellings: a note, not a failure.
+    return finding(kId, RuleStatus::kWarn,
+                   "schema location " + clip(loc) +
+                       " does not name http(s)://openlcb.org/schema/cdi/.../cdi.xsd");
 }
 
-// A CDI that lays its own variables over the ACDI blocks (some real devices put configuration
-// in space 252) makes the node disagree with ACDI whatever it does: that is the CDI's fault.
+// A CDI may describe spaces 252/251 as segments too (§5.1.2 "may"); one whose variables there
+// contradict the ACDI layout (some real devices put configuration in 252) is worth a WARN.
 RuleFinding acdi_spaces(const ValidatedCdi& cdi) {
     static constexpr std::string_view kId = "cdi.acdi-spaces";
     if (!cdi.document)
         return finding(kId, RuleStatus::kSkip, "depends on cdi.well-formed: no document");
     if (!cdi.document->acdi) return finding(kId, RuleStatus::kSkip, "the CDI has no <acdi/>");
     const std::string conflict = cdi.layout ? acdi_block_conflict(*cdi.layout) : std::string();
-    static constexpr const char* kMessage =
-        "CDI segments leave the ACDI blocks of spaces 252/251 to <acdi/>";
-    if (conflict.empty()) return finding(kId, RuleStatus::kPass, kMessage);
-    return finding(kId, RuleStatus::kFail, kMessage,
-                   "no variable in 252; 251 variables within 1..127", conflict);
+    if (conflict.empty())
+        return finding(kId, RuleStatus::kPass,
+                       "CDI variables in spaces 252/251 (if any) agree with the ACDI layout");
+    return finding(kId, RuleStatus::kWarn,
+                   "CDI variables contradict the ACDI layout of spaces 252/251: " + conflict);
 }
 
 }  // namespace
@@ -278,16 +280,47 @@ std::vector<RuleFinding> check_rules(std::string_view text, const ValidatedCdi& 
     return out;
 }
 
-std::string acdi_block_conflict(const Layout& layout) {
-    std::string conflict;
-    for (const auto& ext : layout.extents()) {
-        if (ext.begin == ext.end) continue;
-        if (ext.space == 0xFC || (ext.space == 0xFB && (ext.begin < 1 || ext.end > 128))) {
-            conflict += (conflict.empty() ? "" : ", ") + std::string("space ") +
-                        std::to_string(ext.space) + " bytes " + std::to_string(ext.begin) + ".." +
-                        std::to_string(ext.end - 1);
-        }
+namespace {
+
+// One field of an ACDI block (ConfigurationDescriptionInformationS §5.1.2).
+struct AcdiField {
+    std::uint32_t space;
+    std::uint64_t offset, size;
+    bool version;  // the 1-byte version int; the others are strings
+};
+
+constexpr AcdiField kAcdiFields[] = {
+    {0xFC, 0, 1, true},     {0xFC, 1, 41, false}, {0xFC, 42, 41, false}, {0xFC, 83, 21, false},
+    {0xFC, 104, 21, false}, {0xFB, 0, 1, true},   {0xFB, 1, 63, false},  {0xFB, 64, 64, false},
+};
+
+// True when the variable lies inside one ACDI field and has its type.
+bool fits_acdi_field(const Cursor& c) {
+    for (const AcdiField& f : kAcdiFields) {
+        if (f.space != c.space() || c.address() < f.offset ||
+            c.address() + c.size() > f.offset + f.size)
+            continue;
+        const ElementKind k = c.element().kind;
+        return f.version ? k == ElementKind::kInt : k == ElementKind::kString;
     }
+    return false;
+}
+
+}  // namespace
+
+std::string acdi_block_conflict(const Layout& layout) {
+    // Segments may describe the ACDI blocks too (§5.1.2; CDI-TN §2.5.1.2): only variables that
+    // cross a field, lie past a block or have another type contradict it.
+    std::string conflict;
+    std::size_t listed = 0;
+    layout.visit([&](const Cursor& c) {
+        if ((c.space() != 0xFC && c.space() != 0xFB) || c.size() == 0 || fits_acdi_field(c))
+            return true;
+        conflict += (conflict.empty() ? "" : ", ") + c.path() + " (space " +
+                    std::to_string(c.space()) + " bytes " + std::to_string(c.address()) + ".." +
+                    std::to_string(c.address() + c.size() - 1) + ")";
+        return ++listed < 8;
+    });
     return conflict;
 }
 

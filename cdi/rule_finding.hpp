@@ -47,8 +47,9 @@ std::vector<RuleFinding> check_rules(std::string_view text);
 /// model): the text is parsed once, not twice.
 std::vector<RuleFinding> check_rules(std::string_view text, const ValidatedCdi& cdi);
 
-/// Where the CDI's own variables lie over the ACDI blocks (any byte of space 252, bytes outside
-/// 1..127 of space 251), as "space 252 bytes 0..7, ..."; "" when nowhere.
+/// The CDI variables in spaces 252/251 that contradict the ACDI layout (crossing one of its
+/// fields, past its block, or of another type than the field), as "Path (space 252 bytes 0..7),
+/// ..." (at most 8); "" when none.
 std::string acdi_block_conflict(const Layout& layout);
 
 }  // namespace olcb::cdi

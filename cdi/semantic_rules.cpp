@@ -152,8 +152,10 @@ private:
         check_hints(e);
         switch (e.kind) {
             case ElementKind::kGroup:
+                // §5.1.3 repeats the group N times and sets no lower bound: 0 is odd, not wrong.
                 if (e.replication < 1)
-                    error(e, "replication 0 is not valid; it must be at least 1");
+                    warning(e, "replication " + std::to_string(e.replication) +
+                                   " repeats the group no time at all");
                 break;
             case ElementKind::kInt:
                 check_int(e);
@@ -210,7 +212,8 @@ private:
             }
         }
         if (default_key && !e.map->entries.empty() && !keys.contains(*default_key)) {
-            error(e, "default " + default_text + " is not one of the map's properties");
+            // No clause ties a default to the map (values outside min/max are §5.1.4.2's).
+            warning(e, "default " + default_text + " is not one of the map's properties");
         }
     }
 

@@ -80,9 +80,9 @@ TEST(CheckRules, WithAKeptValidationJudgesThatValidation) {
 
     const std::string acdi_conflict =
         std::string("<?xml version=\"1.0\"?>\n") + kRoot +
-        "<acdi/><segment space=\"251\"><int size=\"1\"><name>V</name></int></segment>\n</cdi>\n";
+        "<acdi/><segment space=\"251\"><int size=\"2\"><name>V</name></int></segment>\n</cdi>\n";
     const auto conflict = check_rules(acdi_conflict, validate_model(acdi_conflict));
-    EXPECT_EQ(rule(conflict, "cdi.acdi-spaces").status, RuleStatus::kFail) << listing(conflict);
+    EXPECT_EQ(rule(conflict, "cdi.acdi-spaces").status, RuleStatus::kWarn) << listing(conflict);
 }
 
 TEST(XmlDeclarationRule, NoDeclarationFailsOnLineOne) {
@@ -185,7 +185,8 @@ TEST(WellFormedRule, QuotesTheFirstParseError) {
     EXPECT_EQ(rule(findings, "cdi.acdi-spaces").status, RuleStatus::kSkip);
 }
 
-TEST(SchemaLocationRule, WarnsWhenAbsentAndFailsOnAForeignUrl) {
+// The standard shows the URL but sets no rule for other spellings: both cases are notes.
+TEST(SchemaLocationRule, WarnsWhenAbsentOrForeign) {
     const std::string body = kBody;
     EXPECT_EQ(
         rule(check_rules("<?xml version=\"1.0\"?>\n<cdi>\n" + body), "cdi.schema-location").status,
@@ -194,16 +195,30 @@ TEST(SchemaLocationRule, WarnsWhenAbsentAndFailsOnAForeignUrl) {
         "<?xml version=\"1.0\"?>\n<cdi xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
         "xsi:noNamespaceSchemaLocation=\"http://example.com/cdi.xsd\">\n" +
         body;
-    EXPECT_EQ(rule(check_rules(foreign), "cdi.schema-location").status, RuleStatus::kFail);
+    const RuleFinding f = rule(check_rules(foreign), "cdi.schema-location");
+    EXPECT_EQ(f.status, RuleStatus::kWarn);
+    EXPECT_NE(f.message.find("http://example.com/cdi.xsd"), std::string::npos) << f.message;
 }
 
-TEST(AcdiSpacesRule, FailsWhenTheCdiLaysVariablesOverSpace252) {
+// §5.1.2 lets a CDI describe 252/251 as segments too (the TN's own example lays the version
+// ints at byte 0): only variables that contradict the ACDI layout are noted.
+TEST(AcdiSpacesRule, SegmentsThatFollowTheAcdiLayoutPass) {
+    const std::string text =
+        std::string("<?xml version=\"1.0\"?>\n") + kRoot +
+        "<acdi/>\n<segment space=\"252\"><int size=\"1\"><name>Version</name></int>"
+        "<string size=\"41\"><name>Manufacturer</name></string></segment>\n"
+        "<segment space=\"251\"><int size=\"1\"/><string size=\"63\"><name>Name</name></string>"
+        "<string size=\"64\"><name>Description</name></string></segment>\n</cdi>\n";
+    EXPECT_EQ(rule(check_rules(text), "cdi.acdi-spaces").status, RuleStatus::kPass);
+}
+
+TEST(AcdiSpacesRule, VariablesAcrossAnAcdiFieldWarn) {
     const std::string text = std::string("<?xml version=\"1.0\"?>\n") + kRoot +
-                             "<acdi/>\n<segment space=\"252\"><int size=\"1\"/></segment>\n"
-                             "</cdi>\n";
+                             "<acdi/>\n<segment space=\"252\"><int size=\"4\"><name>Speed</name>"
+                             "</int></segment>\n</cdi>\n";
     const RuleFinding f = rule(check_rules(text), "cdi.acdi-spaces");
-    EXPECT_EQ(f.status, RuleStatus::kFail);
-    EXPECT_EQ(f.seen, "space 252 bytes 0..0");
+    EXPECT_EQ(f.status, RuleStatus::kWarn);
+    EXPECT_NE(f.message.find("Speed (space 252 bytes 0..3)"), std::string::npos) << f.message;
 }
 
 std::string read_text(const fs::path& p) {

@@ -113,7 +113,8 @@ TEST(IntDefault, MustBeAMapProperty) {
     e.int_default = 2;
     EXPECT_THAT(check(e), IsEmpty());
     e.int_default = 1;
-    EXPECT_THAT(check(e), ElementsAre(error_like("default 1 is not one of the map's properties")));
+    EXPECT_THAT(check(e),
+                ElementsAre(warning_like("default 1 is not one of the map's properties")));
 }
 
 TEST(IntMinMax, MinAboveMaxFails) {
@@ -204,7 +205,7 @@ TEST(EventIdMap, DuplicatesAndDefaultCompareAsIds) {
     e.text_default = "05.01.01.01.22.00.00.FF";
     EXPECT_THAT(check(e), IsEmpty());
     e.text_default = "05.01.01.01.22.00.00.FE";
-    EXPECT_THAT(check(e), ElementsAre(error_like("not one of the map's properties")));
+    EXPECT_THAT(check(e), ElementsAre(warning_like("not one of the map's properties")));
     e.text_default = "nonsense";
     EXPECT_THAT(check(e), ElementsAre(error_like("default \"nonsense\" is not an event ID")));
 }
@@ -225,7 +226,7 @@ TEST(FloatMap, DefaultMustBeAPropertyNumerically) {
     e.float_default = 0.5;
     EXPECT_THAT(check(e), IsEmpty());
     e.float_default = 0.25;
-    EXPECT_THAT(check(e), ElementsAre(error_like("default 0.25 is not one of")));
+    EXPECT_THAT(check(e), ElementsAre(warning_like("default 0.25 is not one of")));
 }
 
 TEST(StringMap, PropertiesMustLeaveRoomForTheNul) {
@@ -245,7 +246,7 @@ TEST(StringMap, DuplicatesWarnAndDefaultMustFitAndBeListed) {
     e.text_default = "b";
     EXPECT_THAT(check(e), IsEmpty());
     e.text_default = "c";
-    EXPECT_THAT(check(e), ElementsAre(error_like("default \"c\" is not one of")));
+    EXPECT_THAT(check(e), ElementsAre(warning_like("default \"c\" is not one of")));
     e.map.reset();
     e.text_default = "toolong";
     EXPECT_THAT(check(e), ElementsAre(error_like("default is 7 bytes; at most 3")));
@@ -321,12 +322,13 @@ TEST(ActionValue, MustFitItsSize) {
 
 // --- groups, segments, identification, acdi ------------------------------------------------
 
-TEST(Replication, MustBeAtLeastOne) {
+// §5.1.3 sets no lower bound: a group repeated no time is odd, so a warning, not an error.
+TEST(Replication, ZeroWarns) {
     Element group = variable(ElementKind::kGroup, 0, "Port");
     group.replication = 1;
     EXPECT_THAT(check(group), IsEmpty());
     group.replication = 0;
-    EXPECT_THAT(check(group), ElementsAre(error_like("<group> \"Port\": replication 0")));
+    EXPECT_THAT(check(group), ElementsAre(warning_like("<group> \"Port\": replication 0")));
 }
 
 TEST(Groups, NestedVariablesAreChecked) {
