@@ -81,19 +81,61 @@ std::vector<RangeRequest> merge_ranges(std::vector<RangeRequest> requests) {
     return out;
 }
 
+std::vector<RangeRequest> SafetyBackup::uncovered(std::uint8_t space, std::uint32_t address,
+                                                  std::uint32_t length) const {
+    std::vector<RangeRequest> out{{space, address, length}};
+    for (const BackupRange& saved : ranges_) {
+        if (saved.space != space || saved.bytes.empty()) continue;
+        const std::uint64_t s0 = saved.address;
+        const std::uint64_t s1 = s0 + saved.bytes.size();
+        std::vector<RangeRequest> rest;
+        for (const RangeRequest& r : out) {
+            const std::uint64_t r0 = r.address;
+            const std::uint64_t r1 = r0 + r.length;
+            if (s1 <= r0 || s0 >= r1) {
+                rest.push_back(r);
+                continue;
+            }
+            if (r0 < s0) rest.push_back({space, r.address, static_cast<std::uint32_t>(s0 - r0)});
+            if (s1 < r1)
+                rest.push_back(
+                    {space, static_cast<std::uint32_t>(s1), static_cast<std::uint32_t>(r1 - s1)});
+        }
+        out = std::move(rest);
+    }
+    return out;
+}
+
+std::string SafetyBackup::save_bytes(MemoryAccess& memory, const RangeRequest& r) {
+    // Bytes saved earlier keep their first value: a later read may see what a write changed.
+    for (const RangeRequest& piece : uncovered(r.space, r.address, r.length)) {
+        AccessResult got = memory.read(piece.space, piece.address, piece.length);
+        if (got.ok && got.data.size() == piece.length) {
+            ranges_.push_back({piece.space, piece.address, std::move(got.data)});
+            continue;
+        }
+        char buf[64];
+        if (got.ok) {
+            std::snprintf(buf, sizeof buf, "%zu of %u bytes came back", got.data.size(),
+                          piece.length);
+        } else {
+            std::snprintf(
+                buf, sizeof buf, "read failed with 0x%04X%s", got.error,
+                got.error == base::to_u16(base::ErrorCode::kTimeout) ? " (timed out)" : "");
+        }
+        return buf;
+    }
+    return {};
+}
+
 bool SafetyBackup::capture(MemoryAccess& memory, const std::vector<RangeRequest>& requests,
                            std::string& error) {
     for (const RangeRequest& r : merge_ranges(requests)) {
-        AccessResult got = memory.read(r.space, r.address, r.length);
-        if (!got.ok || got.data.size() != r.length) {
-            char buf[96];
-            std::snprintf(buf, sizeof buf,
-                          "cannot read %u bytes at %s for the backup (error 0x%04X)", r.length,
-                          where(r.space, r.address).c_str(), got.error);
-            error = buf;
+        if (std::string why = save_bytes(memory, r); !why.empty()) {
+            error = "cannot read " + std::to_string(r.length) + " bytes at " +
+                    where(r.space, r.address) + " for the backup (" + why + ")";
             return false;
         }
-        ranges_.push_back({r.space, r.address, std::move(got.data)});
     }
     return save(error);
 }
@@ -103,20 +145,7 @@ bool SafetyBackup::capture_available(MemoryAccess& memory,
                                      std::vector<std::pair<RangeRequest, std::string>>& missing,
                                      std::string& error) {
     for (const RangeRequest& r : requests) {
-        AccessResult got = memory.read(r.space, r.address, r.length);
-        if (got.ok && got.data.size() == r.length) {
-            ranges_.push_back({r.space, r.address, std::move(got.data)});
-            continue;
-        }
-        char buf[64];
-        if (got.ok) {
-            std::snprintf(buf, sizeof buf, "%zu of %u bytes came back", got.data.size(), r.length);
-        } else {
-            std::snprintf(
-                buf, sizeof buf, "read failed with 0x%04X%s", got.error,
-                got.error == base::to_u16(base::ErrorCode::kTimeout) ? " (timed out)" : "");
-        }
-        missing.emplace_back(r, buf);
+        if (std::string why = save_bytes(memory, r); !why.empty()) missing.emplace_back(r, why);
     }
     return save(error);
 }
@@ -268,7 +297,7 @@ void SafetyBackup::remove_file() const {
 std::string RestoreOutcome::summary() const {
     if (identical) {
         return "node memory byte-identical to before (" + std::to_string(bytes) +
-               " bytes restored and read back)";
+               " saved bytes read back, " + std::to_string(rewritten) + " of them written back)";
     }
     std::string s = "node memory NOT identical to before:";
     for (const std::string& d : differences) s += " " + d + ";";
@@ -276,46 +305,59 @@ std::string RestoreOutcome::summary() const {
     return s;
 }
 
-RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
-    RestoreOutcome outcome;
-    for (const BackupRange& r : backup.ranges()) {
-        AccessResult w = memory.write(r.space, r.address, r.bytes);
-        if (!w.ok) {
-            char buf[32];
-            std::snprintf(buf, sizeof buf, " (error 0x%04X)", w.error);
-            outcome.differences.push_back("write of " + std::to_string(r.bytes.size()) +
-                                          " bytes at " + where(r.space, r.address) + " failed" +
-                                          buf);
+namespace {
+
+// "N bytes differ from space S @A: expected .., seen .." for a range that read back wrong.
+std::string difference(const BackupRange& r, const AccessResult& got) {
+    std::size_t first = 0, count = 0;
+    bool found = false;
+    for (std::size_t i = 0; i < r.bytes.size(); ++i) {
+        if (i >= got.data.size() || got.data[i] != r.bytes[i]) {
+            if (!found) first = i;
+            found = true;
+            ++count;
         }
+    }
+    const auto at = static_cast<std::uint32_t>(r.address + first);
+    std::span<const std::uint8_t> want(r.bytes);
+    std::span<const std::uint8_t> seen(got.data);
+    return std::to_string(count) + " bytes differ from " + where(r.space, at) + ": expected " +
+           hex_bytes(want.subspan(first), 8) + ", seen " +
+           hex_bytes(first < seen.size() ? seen.subspan(first) : seen.subspan(0, 0), 8);
+}
+
+std::string access_failed(const char* what, const BackupRange& r, const AccessResult& a) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, " (error 0x%04X)", a.error);
+    return std::string(what) + " of " + std::to_string(r.bytes.size()) + " bytes at " +
+           where(r.space, r.address) + " failed" +
+           (a.not_sent.empty() ? buf : " (" + a.not_sent + ")");
+}
+
+}  // namespace
+
+RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
+    // Only what differs is written: a node is touched as little as the restore allows, and a
+    // range of a read-only space that a refused probe left unchanged needs no write at all.
+    RestoreOutcome outcome;
+    std::vector<const BackupRange*> written;
+    for (const BackupRange& r : backup.ranges()) {
         outcome.bytes += r.bytes.size();
+        const AccessResult now = memory.read(r.space, r.address, r.bytes.size());
+        if (now.ok && now.data == r.bytes) continue;
+        const AccessResult w = memory.write(r.space, r.address, r.bytes);
+        if (!w.ok) outcome.differences.push_back(access_failed("write", r, w));
+        outcome.rewritten += r.bytes.size();
+        written.push_back(&r);
     }
     // Read back only after every write: a node may mirror one space into another (251 and 253).
-    for (const BackupRange& r : backup.ranges()) {
-        AccessResult got = memory.read(r.space, r.address, r.bytes.size());
+    for (const BackupRange* r : written) {
+        const AccessResult got = memory.read(r->space, r->address, r->bytes.size());
         if (!got.ok) {
-            char buf[32];
-            std::snprintf(buf, sizeof buf, " (error 0x%04X)", got.error);
-            outcome.differences.push_back("read back at " + where(r.space, r.address) + " failed" +
-                                          buf);
-            continue;
+            outcome.differences.push_back(access_failed("read back", *r, got));
+        } else if (got.data != r->bytes) {
+            outcome.differences.push_back(difference(*r, got));
         }
-        if (got.data == r.bytes) continue;
-        std::size_t first = 0, count = 0;
-        bool found = false;
-        for (std::size_t i = 0; i < r.bytes.size(); ++i) {
-            if (i >= got.data.size() || got.data[i] != r.bytes[i]) {
-                if (!found) first = i;
-                found = true;
-                ++count;
-            }
-        }
-        auto at = static_cast<std::uint32_t>(r.address + first);
-        std::span<const std::uint8_t> want(r.bytes);
-        std::span<const std::uint8_t> seen(got.data);
-        outcome.differences.push_back(
-            std::to_string(count) + " bytes differ from " + where(r.space, at) + ": expected " +
-            hex_bytes(want.subspan(first), 8) + ", seen " +
-            hex_bytes(first < seen.size() ? seen.subspan(first) : seen.subspan(0, 0), 8));
     }
     outcome.identical = outcome.differences.empty();
     return outcome;

@@ -17,6 +17,8 @@ struct AccessResult {
     bool ok = false;
     std::uint16_t error = 0;         ///< the node's error code when !ok (0x2010 on timeout)
     std::vector<std::uint8_t> data;  ///< read data (may be short at the end of a space)
+    /// A write lcc-conform kept back (its ledger's gate refused it): why; the node saw nothing.
+    std::string not_sent{};
 };
 
 /// Byte access to one node's memory spaces. The runner adapts its Session to it; tests use a fake.
@@ -66,6 +68,12 @@ public:
     bool capture_available(MemoryAccess& memory, const std::vector<RangeRequest>& requests,
                            std::vector<std::pair<RangeRequest, std::string>>& missing,
                            std::string& error);
+    /// The parts of [address, address + length) of space no saved range holds yet.
+    std::vector<RangeRequest> uncovered(std::uint8_t space, std::uint32_t address,
+                                        std::uint32_t length) const;
+    /// Reads and keeps the parts of r not saved yet (saved bytes keep their first value); ""
+    /// when all came, else why not (the file is not written: save() does that).
+    std::string save_bytes(MemoryAccess& memory, const RangeRequest& r);
     /// Writes the file atomically (temporary file, fsync, rename).
     bool save(std::string& error) const;
     /// Loads a backup file; nullopt with `error` set when it is missing or malformed.
@@ -95,13 +103,14 @@ private:
 /// What a restore found when reading the bytes back.
 struct RestoreOutcome {
     bool identical = false;                ///< every saved byte reads back as saved
-    std::size_t bytes = 0;                 ///< bytes restored
+    std::size_t bytes = 0;                 ///< saved bytes read back
+    std::size_t rewritten = 0;             ///< of them, bytes that differed and were written
     std::vector<std::string> differences;  ///< one line per range that differs or failed
     /// "node memory byte-identical to before (N bytes in M ranges restored)" or what differs.
     std::string summary() const;
 };
 
-/// Writes every saved range back and reads it again.
+/// Reads every saved range; writes back those that differ and reads them again.
 RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory);
 
 /// Restores a backup when the run leaves without finish() (an exception, an early return):

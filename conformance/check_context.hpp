@@ -45,6 +45,10 @@ struct CheckContext {
     std::optional<RunTiming> timing;
     /// Called with the bytes read so far while the CDI downloads (progress display).
     std::function<void(std::size_t)> cdi_progress;
+    /// The protocol check after which the node stopped answering ("" when it never did), and
+    /// how many selected checks were not run because of it.
+    std::string lost_after;
+    std::size_t not_run = 0;
     /// Called with each protocol check's ID as it starts (progress display).
     std::function<void(std::string_view)> check_started;
 };

@@ -21,11 +21,25 @@ using CheckFn = void (*)(CheckRun&);
 /// in its place ("memory.read-past-end.<sp>" gives "memory.read-past-end.fd").
 inline constexpr std::string_view kPerSpace = ".<sp>";
 
+/// How strongly the standard asks for what a check judges: the strongest verdict it may give.
+enum class Strength : std::uint8_t {
+    kShall,   ///< "shall", "must", "required": a violation FAILs
+    kShould,  ///< "should", "recommended": WARN at most
+    kMay,     ///< optional behaviour: WARN at most (an optional command rejected 0x1041 SKIPs)
+    kNone,    ///< no clause (informative text, a technical note, consistency only): WARN at most
+    kRun,     ///< not a verdict on the node: the run itself (the link); makes the run incomplete
+};
+
+/// "shall", "should", "may", "none" or "run".
+std::string_view strength_name(Strength strength);
+
 /// One check of docs/checks.md.
 struct CheckSpec {
     std::string_view id;           ///< stable ID, e.g. "cdi.nul-terminated"; may end in kPerSpace
     Category category;             ///< its category (the first field of the ID)
     std::string_view section;      ///< standard and section, e.g. "MemoryConfigurationS §4.4"
+    Strength strength;             ///< the normative word of the clause it judges
+    std::string_view clause;       ///< what the clause asks, in our words (never quoted)
     std::string_view olcbchecker;  ///< OlcbChecker checks it covers, e.g. "mc60"; "" for none
     std::string_view summary;      ///< what is sent and what passes, one line
     /// The check; nullptr when a phase of the node's run produces it (encoding, node, link).
@@ -35,6 +49,9 @@ struct CheckSpec {
     /// disturb another lcc-conform run on the segment (and be disturbed by it); SKIP while one is
     /// seen.
     bool exclusive = false;
+    /// Writes across the end of a space, which a node without a bounds check keeps for good
+    /// where no tool can read or restore it: runs only with --write-past-end.
+    bool past_end_writes = false;
 };
 
 /// Every check, in the order a node's run produces them.
@@ -43,6 +60,10 @@ const std::vector<CheckSpec>& check_registry();
 /// The entry a result ID belongs to (a per-space result finds its ".<sp>" entry); nullptr when
 /// none.
 const CheckSpec* find_check(std::string_view result_id);
+
+/// Gives a result its entry's category and section, and holds it to the entry's strength: a FAIL
+/// of a check whose clause is no "shall" becomes a WARN saying so (the one place that rule lives).
+void cite(CheckResult& result);
 
 /// True when a pattern names checks, not variables: its first dot-separated field is a check
 /// category ("memory.*", "frame.collision"). Others select variables by backup key (--only).
@@ -54,6 +75,10 @@ struct CheckSelection {
     std::vector<std::string> only;  ///< empty: every check
     std::vector<std::string> skip;
     bool thorough = false;
+    bool write_past_end = false;  ///< --write-past-end: the crossing writes may run
+    /// Only checks of these categories (empty: every category): a node that is not a
+    /// configurable node gets the protocol checks alone.
+    std::vector<Category> categories;
 
     /// True when some result of the entry can be selected (and, if thorough-only, --thorough).
     bool wants(const CheckSpec& spec) const;
@@ -63,7 +88,8 @@ struct CheckSelection {
     bool wants_writes() const;
 };
 
-/// The registry as a text table (--list-checks): ID, category, section, OlcbChecker, summary.
+/// The registry as a text table (--list-checks): ID, category, section, strength, OlcbChecker,
+/// summary.
 std::string format_check_list();
 
 /// One OlcbChecker node check and how lcc-conform covers it.

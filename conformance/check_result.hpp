@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -69,6 +70,23 @@ struct NodeIdentity {
     std::string user_description;  ///< SNIP user-provided description
 };
 
+/// Bytes a node may keep past the end of a space: written there, never readable or restorable.
+struct PastEndRun {
+    std::uint8_t space = 0;
+    std::uint32_t address = 0;  ///< the first such byte
+    std::uint32_t count = 0;
+};
+
+/// What the run wrote to a node and how the restore ended, from the write ledger.
+struct RestoreRecord {
+    std::size_t writes = 0;            ///< writes the node received (restores excluded)
+    std::size_t saved_bytes = 0;       ///< bytes the safety backup held, read back at the end
+    std::size_t rewritten_bytes = 0;   ///< of them, bytes that differed and were written back
+    std::optional<bool> identical;     ///< every saved byte read back as saved (unset: no restore)
+    std::vector<PastEndRun> past_end;  ///< bytes stored past the end of a space (unrestorable)
+    std::string backup_kept;           ///< the backup file's path when it was kept
+};
+
 /// Every check run against one node, in the order they ran.
 struct NodeReport {
     std::string node_id;    ///< dotted hex, e.g. "05.01.01.01.22.00"
@@ -78,11 +96,16 @@ struct NodeReport {
     Duration elapsed{};                               ///< how long the node's run took
     std::vector<CheckResult> checks;
     std::string restore_summary;  ///< "memory byte-identical to before" or what differs
+    RestoreRecord restore;        ///< the numbers behind restore_summary
+    /// How the node was checked: "configurable" (every check) or "protocol only: WHY".
+    std::string scope = "configurable";
     /// The windows the run used, from the node's measured latency.
     RunTiming timing;
-    /// The run could not finish: the node never came back (its backup file is kept) or the
-    /// node was gone before anything could be checked; the exit status is then 2.
+    /// The run's verdict has a hole: checks were not run because the node stopped answering,
+    /// or the node never came back (its backup file is kept); the exit status is then 2.
     bool incomplete = false;
+    /// Why incomplete, one line each ("29 checks not run: the node stopped answering after ID").
+    std::vector<std::string> incomplete_reasons;
     /// Every space of the node's CDI layout with each listed variable's verdict (empty when the
     /// CDI gave no layout).
     std::vector<MemoryMapSpace> memory_map;

@@ -72,6 +72,7 @@ std::string quoted(std::string_view text) {
 }
 
 std::string describe(const MemResult& r) {
+    if (!r.not_sent.empty()) return "not sent by lcc-conform (" + r.not_sent + ")";
     if (r.timed_out) return "no answer";
     if (r.rejected)
         return r.error ? "Datagram Rejected " + hex(r.error)
@@ -81,15 +82,19 @@ std::string describe(const MemResult& r) {
 }
 
 Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t want) {
-    const std::string standard = "; the standard gives " + hex(want);
-    if (r.timed_out) return {false, what + ": no answer" + standard, "no answer"};
+    const std::string standard =
+        "; it must fail with an error code (" + hex(want) + " recommended)";
+    if (r.timed_out) return {Status::kFail, what + ": no answer" + standard, "no answer"};
     if (r.ok) {
         const std::string got = r.data.empty() ? "accepted" : "returned " + describe(r);
-        return {false, what + " " + got + standard, got};
+        return {Status::kFail, what + " " + got + standard, got};
     }
     const std::string code = r.error ? hex(r.error) : "no error code";
-    if (r.error == want) return {true, what + " refused with " + code, code};
-    return {false, what + " refused with " + code + standard, code};
+    if (r.error == want) return {Status::kPass, what + " refused with " + code, code};
+    return {Status::kWarn,
+            what + " refused with " + code + ", not the recommended " + hex(want) +
+                " (MemoryConfigurationTN §2.4.3)",
+            code};
 }
 
 std::string space_suffix(std::uint8_t space) {
@@ -105,6 +110,11 @@ void Verdict::judge(bool ok, std::string message, std::string expected, std::str
 
 void Verdict::warn(std::string message, std::vector<std::string> details) {
     add(Status::kWarn, std::move(message), {}, {}, std::move(details));
+}
+
+void Verdict::refusal(const Refusal& r, std::string expected) {
+    if (r.status == Status::kFail) return fail(r.message, std::move(expected), r.seen);
+    add(r.status, r.message, {}, {});
 }
 
 void Verdict::skip(std::string why) {
@@ -150,18 +160,46 @@ Verdict CheckRun::out(std::uint8_t space) {
     return Verdict(*this, id + "." + space_suffix(space));
 }
 
+bool CheckRun::space_selected(std::uint8_t space) const {
+    if (current_ == nullptr || !current_->id.ends_with(kPerSpace)) return true;
+    std::string id(current_->id.substr(0, current_->id.size() - kPerSpace.size()));
+    return o_.selection.wants_id(id + "." + space_suffix(space));
+}
+
+std::vector<std::uint8_t> CheckRun::selected_spaces(const std::vector<std::uint8_t>& spaces) const {
+    std::vector<std::uint8_t> out;
+    for (std::uint8_t sp : spaces)
+        if (space_selected(sp)) out.push_back(sp);
+    return out;
+}
+
 void CheckRun::run(const CheckSpec& spec) {
     current_ = &spec;
-    if (spec.run) spec.run(*this);
+    const std::size_t first = out_.size();
+    const std::size_t planned = s_.ledger().entries().size();
+    {
+        WriteLedger::Origin origin(s_.ledger(), std::string(spec.id));
+        if (spec.run) spec.run(*this);
+    }
     current_ = nullptr;
+    // A write our own gate kept back proves nothing about the node: the check is not judged.
+    const auto& entries = s_.ledger().entries();
+    for (std::size_t i = planned; i < entries.size(); ++i) {
+        if (entries[i].outcome != WriteOutcome::kNotSent) continue;
+        for (std::size_t r = first; r < out_.size(); ++r) {
+            out_[r].status = Status::kSkip;
+            out_[r].message =
+                "not judged: lcc-conform kept a write back (" + entries[i].refused_why + ")";
+            out_[r].expected.clear();
+            out_[r].seen.clear();
+        }
+        break;
+    }
 }
 
 void CheckRun::add(CheckResult result) {
-    // The registry is the one source of categories and citations.
-    if (const CheckSpec* spec = find_check(result.id)) {
-        result.category = spec->category;
-        result.section = std::string(spec->section);
-    }
+    // The registry is the one source of categories, citations and how strong a verdict may be.
+    cite(result);
     out_.push_back(std::move(result));
 }
 
@@ -186,7 +224,10 @@ MemResult CheckRun::note(MemResult r) {
 }
 
 void CheckRun::tally(const MemResult& r) {
+    if (!r.not_sent.empty()) return;  // the node never saw it
     ctx_.temporary_rejects += r.temporary_rejects;
+    // Datagram Rejected is a datagram answer too: the node implements the transport.
+    if (!r.timed_out) datagram_answered_ = true;
     if (r.ok || (!r.rejected && !r.timed_out)) memory_works_ = true;
 }
 
@@ -215,11 +256,11 @@ const FrameProbe& CheckRun::frame_probe() {
     auto count_answers = [&] {
         count_probe_frames(p, frames_seen);
         count_probe_messages(p, messages_seen);
-        return p.amd >= 2 && p.rid >= 1 && p.oir && p.verified;
+        return p.amd >= 2 && p.rid >= 1 && p.oir.has_value() && p.verified;
     };
     for (int round = 0; round <= kSegmentAnswerRounds; ++round) {
         const std::size_t segment_before = p.segment_amd;
-        if (s_.link().run_until(count_answers, o_.answer_window)) break;
+        if (s_.run_until(count_answers, o_.answer_window)) break;
         if (p.segment_amd == segment_before) break;
     }
     count_answers();
@@ -252,8 +293,8 @@ void CheckRun::count_probe_messages(FrameProbe& p, std::size_t& seen) {
         const Message& m = r.message;
         if (m.source.alias != alias()) continue;
         if (m.mti == Mti::kOptionalInteractionRejected && m.payload.size() >= 4 &&
-            (m.payload[2] << 8 | m.payload[3]) == kUnknownAddressedMti && (m.payload[0] & 0x10))
-            p.oir = true;
+            (m.payload[2] << 8 | m.payload[3]) == kUnknownAddressedMti)
+            p.oir = static_cast<std::uint16_t>(m.payload[0] << 8 | m.payload[1]);
         if ((m.mti == Mti::kVerifiedNodeId || m.mti == Mti::kVerifiedNodeIdSimple) &&
             NodeId::from_bytes(m.payload) == node_.id) {
             p.verified = true;
@@ -430,6 +471,11 @@ bool CheckRun::acdi_blocks() {
 bool CheckRun::memory_works() {
     if (!memory_works_) config_options();
     return memory_works_;
+}
+
+bool CheckRun::datagrams_answered() {
+    if (!datagram_answered_) config_options();
+    return datagram_answered_;
 }
 
 std::vector<std::uint8_t> CheckRun::layout_spaces() {

@@ -36,12 +36,12 @@ inline constexpr int kSegmentAnswerRounds = 30;
 
 /// Answers to the injected control frames and first messages (AME, CID, unknown MTI, Verify).
 struct FrameProbe {
-    std::size_t amd = 0;              ///< AMD frames from the node with its node ID
-    std::size_t rid = 0;              ///< RID frames from the node
-    std::size_t segment_amd = 0;      ///< AMD frames from every other node (the global AME's)
-    bool oir = false;                 ///< OIR with a permanent code echoing the unknown MTI
-    bool verified = false;            ///< Verified Node ID to the addressed Verify
-    std::optional<Mti> verified_mti;  ///< which Verified MTI (simple or full) it used
+    std::size_t amd = 0;               ///< AMD frames from the node with its node ID
+    std::size_t rid = 0;               ///< RID frames from the node
+    std::size_t segment_amd = 0;       ///< AMD frames from every other node (the global AME's)
+    std::optional<std::uint16_t> oir;  ///< the code of an OIR echoing the unknown MTI
+    bool verified = false;             ///< Verified Node ID to the addressed Verify
+    std::optional<Mti> verified_mti;   ///< which Verified MTI (simple or full) it used
 };
 
 /// 8-byte reads of the data space in both forms (the short form only for 0xFD-0xFF).
@@ -59,11 +59,12 @@ struct CdiDownload {
     std::uint32_t beyond_highest = 0;
 };
 
-/// Judges one request the standard refuses with a given code.
+/// Judges one request the standard refuses. MemoryConfigurationS requires a failure with an error
+/// code (§4.5, §4.9); the code itself is only recommended (MemoryConfigurationTN §2.4.3).
 struct Refusal {
-    bool pass = false;
-    std::string message;  ///< what happened, with the code the standard gives when it differs
-    std::string seen;     ///< the code, "accepted", "returned N bytes" or "no answer"
+    Status status = Status::kFail;  ///< PASS: the recommended code; WARN: another; FAIL: none
+    std::string message;            ///< what happened, with the recommended code when it differs
+    std::string seen;               ///< the code, "accepted", "returned N bytes" or "no answer"
 };
 
 /// "0x1082" (width hex digits).
@@ -75,7 +76,7 @@ std::string clip(std::string_view text);
 std::string quoted(std::string_view text);
 /// What an exchange did, in words ("no answer", "Datagram Rejected 0x1081", "8 bytes").
 std::string describe(const MemResult& r);
-/// Judges r against the refusal code `want` the standard gives for `what`.
+/// Judges r against the refusal the standard asks for `what`, `want` the recommended code.
 Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t want);
 /// "fd" for 0xFD: how per-space IDs carry the space.
 std::string space_suffix(std::uint8_t space);
@@ -94,6 +95,8 @@ public:
     }
     void warn(std::string message, std::vector<std::string> details = {});
     void skip(std::string why);
+    /// A judged refusal, `expected` naming what passes.
+    void refusal(const Refusal& r, std::string expected);
     /// A result with every field given (details: one line each, e.g. every CDI error).
     void add(Status status, std::string message, std::string expected, std::string seen,
              std::vector<std::string> details = {});
@@ -122,6 +125,11 @@ public:
     Verdict out();
     /// Results of the per-space check being run for one space.
     Verdict out(std::uint8_t space);
+    /// True when the per-space check being run is selected for space (--only/--skip name
+    /// per-space results exactly: `--only memory.write-past-end.fd` probes 0xFD alone).
+    bool space_selected(std::uint8_t space) const;
+    /// The spaces of `spaces` space_selected() keeps, in order.
+    std::vector<std::uint8_t> selected_spaces(const std::vector<std::uint8_t>& spaces) const;
     /// Runs one entry (sets it current, then calls its function).
     void run(const CheckSpec& spec);
     /// Adds a finished result (Verdict uses it).
@@ -174,6 +182,9 @@ public:
     std::string highest_too_small(std::uint8_t space);
     /// True when any memory-config exchange got an answer (asks Options when none was made).
     bool memory_works();
+    /// True when any datagram got an answer, Datagram Rejected included (asks Options when none
+    /// did).
+    bool datagrams_answered();
     /// The spaces the CDI's segments use, in ascending order.
     std::vector<std::uint8_t> layout_spaces();
     /// The space the form checks read (a CDI space, 0xFD-0xFF preferred; else 0xFF).
@@ -207,6 +218,7 @@ private:
     std::size_t start_frame_ = 0;
     TimePoint started_{};
     bool memory_works_ = false;
+    bool datagram_answered_ = false;
     std::optional<FrameProbe> frame_probe_;
     bool snip_asked_ = false;
     std::optional<std::vector<std::uint8_t>> snip_raw_;

@@ -63,12 +63,18 @@ struct Tally {
     std::size_t variables = 0;
     std::size_t failures = 0;
     std::string first_message, expected, seen;
+    // Values the node refused: no clause makes a node take every value its CDI allows.
+    std::size_t refusals = 0;
+    std::string first_refusal;
     void fail(std::string message, std::string want, std::string got) {
         if (failures++ == 0) {
             first_message = std::move(message);
             expected = std::move(want);
             seen = std::move(got);
         }
+    }
+    void refuse(std::string message) {
+        if (refusals++ == 0) first_refusal = std::move(message);
     }
 };
 
@@ -105,7 +111,7 @@ std::vector<std::pair<std::string, Bytes>> test_writes(const Probe& p) {
 }
 
 // Why a cycle stopped early.
-enum class Stop : std::uint8_t { kNone, kAsked, kNodeDied, kRestoreFailed };
+enum class Stop : std::uint8_t { kNone, kAsked, kNodeDied, kRestoreFailed, kNotSent };
 
 class EncodingRun {
 public:
@@ -150,6 +156,12 @@ public:
 private:
     // One access through the hooks; false when the node died (the run stops at once).
     bool step(const std::string& what, const std::string& key, const AccessResult& r) {
+        if (!r.not_sent.empty()) {
+            // Our own safety gate, not the node: writing stops, nothing is judged.
+            stop_ = Stop::kNotSent;
+            not_sent_ = r.not_sent;
+            return false;
+        }
         if (!hooks_.after_access) return true;
         AccessStep s{what, key, last_label_, last_bytes_, &r};
         if (hooks_.after_access(s)) return true;
@@ -226,8 +238,11 @@ private:
         AccessResult r;
         if (!w.ok) {
             tried.error = "write refused (" + code_text(w) + ")";
-            fail(p.key + ": write of " + label + " refused (" + code_text(w) + ")",
-                 "write accepted", "error " + code_text(w));
+            const std::string message =
+                p.key + ": write of " + label + " refused (" + code_text(w) + ")";
+            if (verdict.verdict != MapVerdict::kFailed) verdict.reason = message;
+            verdict.verdict = MapVerdict::kFailed;  // not verified: the value never went in
+            t.refuse(message);
         } else {
             r = memory_.read(p.space, p.address, p.size);
             if (!step("reading back", p.key, r)) return false;
@@ -328,6 +343,7 @@ private:
     Stop stop_ = Stop::kNone;
     std::vector<InFlight> in_flight_;
     std::string restore_problem_, restore_expected_, restore_seen_;
+    std::string not_sent_;  // why our gate kept a write back (Stop::kNotSent)
     std::string last_label_;
     Bytes last_bytes_;
     std::vector<std::pair<const Probe*, Bytes>> tested_;  // probes cycled, with their originals
@@ -342,6 +358,8 @@ std::string EncodingRun::not_run_reason() const {
             return "not run: the node stopped answering or restarted (see node.*)";
         case Stop::kRestoreFailed:
             return "not run: an original value did not read back, writing stopped";
+        case Stop::kNotSent:
+            return "not run: lcc-conform kept a write back (" + not_sent_ + ")";
         case Stop::kNone:
             break;
     }
@@ -387,6 +405,12 @@ void EncodingRun::add_tally_results(std::vector<CheckResult>& out) const {
                         " written values wrong; first: " + t.first_message;
             c.expected = t.expected;
             c.seen = t.seen;
+        } else if (t.refusals) {
+            c.status = Status::kWarn;
+            c.message = std::to_string(t.refusals) + " of " + std::to_string(t.values) +
+                        " values the CDI allows were refused (no clause makes a node take every "
+                        "one; each accepted value read back as encoded); first: " +
+                        t.first_refusal;
         } else if (t.values == 0) {
             c.status = Status::kSkip;
             c.message = cut.empty() ? "no " + id.substr(9) + " variable to write" : cut;

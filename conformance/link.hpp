@@ -8,6 +8,7 @@
 #include <string>
 
 #include "openlcb/can_frame.hpp"
+#include "openlcb/can_timing.hpp"
 #include "openlcb/clock.hpp"
 #include "openlcb/node_id.hpp"
 #include "openlcb/node_stack.hpp"
@@ -37,6 +38,10 @@ public:
     /// Sets the observer of every frame (replaces any previous one).
     virtual void set_frame_observer(FrameObserver observer) = 0;
 
+    /// The bit rate of the segment behind the link: answer and silence windows start once our
+    /// frames could be through it (0: frames arrive at once, as on an unpaced simulation). A
+    /// real segment (a hub, an adapter, SocketCAN) may be a 125 kbit/s CAN bus.
+    virtual std::uint32_t bus_bitrate() { return kLccBitrate; }
     /// True while the transport under the link works (adapter present, hub connected).
     virtual bool up() { return true; }
     /// Times the transport went away since the link was opened.

@@ -41,6 +41,34 @@ auto wall() {
     return std::chrono::steady_clock::now();
 }
 
+// "space 0xFD at 0x00000157" for one run of bytes past the end of a space.
+std::string past_end_text(const PastEndBytes& p) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%u byte%s past the end of space 0x%02X (at 0x%08X)", p.count,
+                  p.count == 1 ? "" : "s", p.space, p.address);
+    return b;
+}
+
+// The restore line, computed from what was written (the ledger) and what read back.
+std::string restore_line(const RestoreOutcome& outcome, const std::vector<PastEndBytes>& kept,
+                         std::size_t writes) {
+    const std::string counts = std::to_string(writes) + (writes == 1 ? " write" : " writes") +
+                               " sent; " + std::to_string(outcome.bytes) +
+                               " saved bytes read back, " + std::to_string(outcome.rewritten) +
+                               " of them written back";
+    if (!outcome.identical) return outcome.summary() + " (" + counts + ")";
+    if (kept.empty()) return "node memory byte-identical to before (" + counts + ")";
+    std::uint64_t total = 0;
+    std::string where;
+    for (const PastEndBytes& p : kept) {
+        total += p.count;
+        where += (where.empty() ? "" : ", ") + past_end_text(p);
+    }
+    return "node memory identical to before except " + std::to_string(total) +
+           " unrestorable byte" + (total == 1 ? "" : "s") + " past the end: " + where +
+           ", stored by the node where no tool can read them back or restore them (" + counts + ")";
+}
+
 bool inside(const RangeRequest& outer, std::uint8_t space, std::uint32_t address,
             std::uint32_t size) {
     return outer.space == space && address >= outer.address &&
@@ -58,11 +86,16 @@ NodeRun::NodeRun(Session& session, const NodeInfo& node, const RunOptions& optio
       progress_(progress),
       bar_(progress, options.progress),
       watch_(session, node),
-      memory_(session, node) {}
+      memory_(session, node),
+      cover_(session, node,
+             options.backup_path.empty() ? default_backup_path(node.id.to_string())
+                                         : options.backup_path,
+             options.read_only) {}
 
 NodeReport NodeRun::run() {
     losses_before_ = session_.link().losses();
     report_.node_id = node_.id.to_string();
+    if (!options_.protocol_only.empty()) report_.scope = "protocol only: " + options_.protocol_only;
     report_.started = std::chrono::system_clock::now();
     const auto began = wall();
     timed("measure", &NodeRun::measure);
@@ -75,11 +108,12 @@ NodeReport NodeRun::run() {
         if (timed("backup", &NodeRun::capture_backup) && timed("lock", &NodeRun::take_lock)) {
             timed("encoding checks", &NodeRun::encode);
             timed("event write", &NodeRun::follow_event_write);
-            timed("recovery", &NodeRun::after_incident);
-            timed("restore", &NodeRun::restore_and_verify);
-            timed("unlock", &NodeRun::release_lock);
         }
     }
+    // Whatever wrote (a protocol probe, the encoding checks) is restored from the ledger's backup.
+    timed("recovery", &NodeRun::after_incident);
+    timed("restore", &NodeRun::restore_and_verify);
+    timed("unlock", &NodeRun::release_lock);
     timed("memory map", &NodeRun::map_memory);
     timed("findings", &NodeRun::findings);
     select_results();
@@ -129,6 +163,7 @@ bool NodeRun::timed(std::string_view name, const std::function<bool()>& step) {
     const bool long_phase =
         std::find(std::begin(kLongPhases), std::end(kLongPhases), name) != std::end(kLongPhases);
     if (long_phase) say(std::string(name) + "...");
+    WriteLedger::Origin origin(session_.ledger(), std::string(name));
     const bool ok = step();
     // Results the phase judged together share its time, so durations add up to the run's.
     const Duration spent = wall() - since;
@@ -148,14 +183,14 @@ void NodeRun::select_results() {
     // One result per ID (per-variable SKIPs and the like become one, with details), and only
     // what --only / --skip asked for; the registry is the one source of every citation.
     merge_duplicate_ids(report_.checks);
-    for (CheckResult& c : report_.checks) {
-        if (const CheckSpec* spec = find_check(c.id)) {
-            c.category = spec->category;
-            c.section = std::string(spec->section);
-        }
-    }
-    std::erase_if(report_.checks,
-                  [&](const CheckResult& c) { return !options_.selection.wants_id(c.id); });
+    for (CheckResult& c : report_.checks) cite(c);
+    // What happened to the node (a restart, a lost link, the restore) is reported whatever
+    // --only / --skip chose: it is not a check one picks but what the run did to the node.
+    std::erase_if(report_.checks, [&](const CheckResult& c) {
+        const bool incident = c.id == "encoding.restore" || c.category == Category::kNode ||
+                              c.category == Category::kLink;
+        return !incident && !options_.selection.wants_id(c.id);
+    });
 }
 
 void NodeRun::measure() {
@@ -192,22 +227,30 @@ void NodeRun::protocol() {
     begin_task("protocol checks, reading CDI");
     report_.checks = protocol_checks_(session_, node_, ctx_);
     bar_.finish();
+    // A check not run because the node seemed gone is a hole in the verdict, never a pass.
+    if (!ctx_.lost_after.empty())
+        mark_incomplete(std::to_string(ctx_.not_run) +
+                        " checks not run: the node stopped "
+                        "answering after " +
+                        ctx_.lost_after);
     // Nothing has been written yet; a node that died meanwhile gets no write at all.
     incident_ = watch_.check_now("running the protocol checks");
 }
 
 void NodeRun::skip_writes(const std::string& reason, const std::string& summary) {
     for (auto& c : skipped_encoding_checks(reason)) report_.checks.push_back(c);
-    report_.restore_summary = summary;
+    not_written_ = summary;
     evidence_.not_written = reason;
 }
 
 bool NodeRun::writes_allowed() {
+    if (!options_.protocol_only.empty()) {
+        skip_writes(options_.protocol_only, "nothing written (" + options_.protocol_only + ")");
+        return false;
+    }
     if (incident_) {
-        report_.checks.push_back(incident_result(*incident_));
-        skip_writes("the node stopped answering or restarted before any write",
-                    "nothing written (see node.*)");
-        if (!watch_.wait_for_return(options_.node_wait)) report_.incomplete = true;
+        skip_writes("the node stopped answering or restarted during the protocol checks",
+                    "nothing written by the encoding checks (see node.*)");
         return false;
     }
     if (options_.read_only) {
@@ -255,7 +298,6 @@ void NodeRun::read_stored_strings() {
     begin_task("stored strings");
     *skipped = check_stored_strings(read_plan.probes, memory_, hooks());
     bar_.finish();
-    if (incident_) report_.checks.push_back(incident_result(*incident_));
 }
 
 bool NodeRun::ensure_layout() {
@@ -298,19 +340,12 @@ void NodeRun::plan() {
 }
 
 bool NodeRun::capture_backup() {
-    backup_ = std::make_unique<SafetyBackup>(
-        options_.backup_path.empty() ? default_backup_path(report_.node_id) : options_.backup_path,
-        report_.node_id);
     Missing missing;
     std::string error;
-    bool saved =
-        backup_->capture_available(memory_, ranges_to_backup(plan_.probes, eo_), missing, error);
+    bool saved = cover_.capture(ranges_to_backup(plan_.probes, eo_), missing, error);
     if (saved && !missing.empty()) saved = retry_one_by_one(missing, error);
     // Without the user name's original the ACDI user-name check writes nothing.
-    const auto& ranges = backup_->ranges();
-    const bool name_saved = std::any_of(ranges.begin(), ranges.end(), [](auto& r) {
-        return inside({r.space, r.address, static_cast<std::uint32_t>(r.bytes.size())}, 251, 1, 63);
-    });
+    const bool name_saved = cover_.backup() && cover_.backup()->uncovered(251, 1, 63).empty();
     if (eo_.acdi_user && !name_saved) {
         eo_.acdi_user = false;
         std::string why = "not readable";
@@ -322,10 +357,9 @@ bool NodeRun::capture_backup() {
     }
     if (!saved) {
         skip_writes("no safety backup, nothing written: " + error,
-                    "nothing written (" + error + ")");
+                    "nothing written by the encoding checks (" + error + ")");
         return false;
     }
-    guard_ = std::make_unique<RestoreGuard>(*backup_, memory_);
     return true;
 }
 
@@ -340,7 +374,7 @@ bool NodeRun::retry_one_by_one(const Missing& missing, std::string& error) {
         }
     }
     Missing still;
-    const bool saved = backup_->capture_available(memory_, singles, still, error);
+    const bool saved = cover_.capture(singles, still, error);
     for (const auto& entry : still) {
         const RangeRequest& range = entry.first;
         const std::string& why = entry.second;
@@ -371,11 +405,11 @@ bool NodeRun::take_lock() {
             return true;
         }
         if (held->node_id != 0) {
-            guard_->abandon();  // nothing was written
-            backup_->remove_file();
+            // The restore phase still reads back what the backup holds (a protocol probe may
+            // have written): it writes only what differs.
             const std::string who = NodeId(held->node_id).to_string();
             skip_writes("node is locked by " + who + " (Lock/Reserve): nothing written",
-                        "nothing written (locked by " + who + ")");
+                        "nothing written by the encoding checks (locked by " + who + ")");
             return false;
         }
     }
@@ -387,15 +421,19 @@ bool NodeRun::take_lock() {
         std::snprintf(code, sizeof code, "0x%04X", r.error);
         how += std::string(" with ") + code;
     }
+    // An optional command: "not implemented" is no finding, only a caution for the user.
+    const bool absent =
+        !r.timed_out && r.error == base::to_u16(base::ErrorCode::kSubcommandUnknown);
     report_.checks.push_back(
-        {"encoding.lock", Category::kEncoding, Status::kWarn,
-         "Lock/Reserve " + how + ": a second tool writing at the same time cannot be excluded", "",
-         "", ""});
+        {"encoding.lock", Category::kEncoding, absent ? Status::kSkip : Status::kWarn,
+         (absent ? "not implemented (0x1041): Lock/Reserve is optional" : "Lock/Reserve " + how) +
+             "; a second tool writing at the same time cannot be excluded",
+         "", "", ""});
     return true;
 }
 
 void NodeRun::release_lock() {
-    if (!locked_ || report_.incomplete || !session_.link().up()) return;
+    if (!locked_ || abandoned_ || !session_.link().up()) return;
     session_.command(node_, memory::encode(memory::Lock{0}));
     locked_ = false;
 }
@@ -418,6 +456,11 @@ EncodingHooks NodeRun::hooks() {
 }
 
 RebootOutcome NodeRun::reboot() {
+    // A node may commit written configuration only on Update Complete (MemoryConfigurationS
+    // §4.23: tools send it after writing); it may restart on it, so it is settled first.
+    session_.command(node_, memory::encode(memory::UpdateComplete{}));
+    session_.ping(node_, report_.timing.answer);
+    watch_.rebase();
     const NodeTrack before = session_.track(node_.id);
     const std::uint8_t reset[] = {0x20, 0xA9};
     MemResult r = session_.command(node_, reset);
@@ -477,6 +520,12 @@ void NodeRun::after_incident() {
     if (!incident_) return;
     const CheckResult failed = incident_result(*incident_);
     report_.checks.push_back(failed);
+    // Nothing more was written or checked after it: a hole in the verdict, never a pass.
+    mark_incomplete(std::string(incident_->kind == NodeIncident::Kind::kRebooted
+                                    ? "the node restarted"
+                                    : "the node stopped answering") +
+                    " while lcc-conform was " + incident_->step +
+                    ": the checks after it were not run");
     // The message names the node's own variable names: untrusted bytes.
     progress_ << "lcc-conform: " << printable(failed.message) << "; waiting up to "
               << options_.node_wait.count() << " s for it to come back\n"
@@ -484,18 +533,36 @@ void NodeRun::after_incident() {
     if (!watch_.wait_for_return(options_.node_wait)) {
         keep_backup("the node did not come back within " +
                     std::to_string(options_.node_wait.count()) + " s");
-        report_.incomplete = true;
+        abandoned_ = true;
+        mark_incomplete("the node did not come back within " +
+                        std::to_string(options_.node_wait.count()) + " s");
         return;
     }
     // The variable in flight first: it is the one a node may act on at its next start.
+    WriteLedger::Restoring restoring(session_.ledger());
     for (const InFlight& f : in_flight_) memory_.write(f.space, f.address, f.original);
     in_flight_.clear();
 }
 
+void NodeRun::mark_incomplete(const std::string& why) {
+    report_.incomplete = true;
+    report_.incomplete_reasons.push_back(why);
+}
+
 void NodeRun::keep_backup(const std::string& why) {
-    guard_->abandon();
-    const std::string path = std::filesystem::absolute(backup_->path()).string();
-    report_.restore_summary = "not restored: " + why;
+    const std::size_t writes = session_.ledger().sent(node_.id);
+    if (!cover_.armed() && writes == 0) {
+        report_.restore_summary = "nothing written; " + why;
+        return;
+    }
+    cover_.abandon();
+    const std::string path = std::filesystem::absolute(cover_.path()).string();
+    report_.restore.writes = writes;
+    report_.restore.backup_kept = path;
+    report_.restore_summary =
+        "not restored: " + why + "; " + std::to_string(writes) +
+        (writes == 1 ? " write" : " writes") + " sent; backup kept in " + path +
+        "; when the node is reachable again run: " + options_.restore_command + " " + path;
     report_.checks.push_back(
         {"encoding.restore", Category::kEncoding, Status::kFail,
          "not restored: " + why + "; backup kept in " + path +
@@ -532,7 +599,14 @@ void NodeRun::wait_for_link() {
 }
 
 void NodeRun::restore_and_verify() {
-    if (report_.incomplete) return;  // the backup is kept for the user
+    if (abandoned_) return;  // the backup is kept for the user
+    const std::size_t writes = session_.ledger().sent(node_.id);
+    report_.restore.writes = writes;
+    if (!cover_.armed() && writes == 0) {
+        // The ledger is the only evidence: no write went out, so there is nothing to restore.
+        report_.restore_summary = not_written_.empty() ? "nothing written" : not_written_;
+        return;
+    }
     if (link_lost()) {
         evidence_.not_judged = "not judged: the link went down mid-run";
         // What ran after the loss measured the link, not the node.
@@ -550,21 +624,30 @@ void NodeRun::restore_and_verify() {
             return;
         }
     }
-    const RestoreOutcome outcome = guard_->finish();
-    report_.restore_summary = outcome.summary();
+    const RestoreOutcome outcome = cover_.finish();
+    const std::vector<PastEndBytes> kept = session_.ledger().unrestorable(node_.id);
+    report_.restore.saved_bytes = outcome.bytes;
+    report_.restore.rewritten_bytes = outcome.rewritten;
+    report_.restore.identical = outcome.identical;
+    for (const PastEndBytes& p : kept)
+        report_.restore.past_end.push_back({p.space, p.address, p.count});
+    report_.restore_summary = restore_line(outcome, kept, writes);
     CheckResult restored{"encoding.restore",
                          Category::kEncoding,
-                         outcome.identical ? Status::kPass : Status::kFail,
-                         outcome.summary(),
+                         !outcome.identical ? Status::kFail
+                         : kept.empty()     ? Status::kPass
+                                            : Status::kWarn,
+                         report_.restore_summary,
                          "",
                          "",
                          ""};
     if (outcome.identical) {
-        backup_->remove_file();
+        cover_.remove_file();
     } else {
         restored.expected = "memory byte-identical to before the run";
         restored.seen = outcome.summary();
-        const std::string path = std::filesystem::absolute(backup_->path()).string();
+        const std::string path = std::filesystem::absolute(cover_.path()).string();
+        report_.restore.backup_kept = path;
         restored.message += "; backup kept in " + path +
                             "; when the node is reachable again run: " + options_.restore_command +
                             " " + path;
@@ -603,6 +686,11 @@ void NodeRun::note_not_tested() {
     // "everything is fine" when whole rules were never looked at.
     std::vector<std::string>& out = report_.not_tested;
     const CheckSelection& sel = options_.selection;
+    if (!options_.protocol_only.empty()) {
+        out.push_back(options_.protocol_only +
+                      ": checked for frame, message, SNIP, PIP and events only");
+        return;
+    }
     if (options_.read_only && sel.wants_writes())
         out.push_back(
             "writes not tested (encoding checks, write refusals, persistence): run "
@@ -636,12 +724,23 @@ void NodeRun::note_not_tested() {
     if (count != 0)
         out.push_back(std::to_string(count) + " thorough-only checks not run (" + thorough +
                       "): add --thorough");
+    CheckSelection crossing = sel;
+    crossing.write_past_end = true;
+    crossing.thorough = true;
+    for (const CheckSpec& spec : check_registry()) {
+        if (!spec.past_end_writes || sel.write_past_end || options_.read_only ||
+            !crossing.wants(spec))
+            continue;
+        out.push_back("writes crossing the end of a space not tested (" + std::string(spec.id) +
+                      "): add --write-past-end (a node without a bounds check keeps the bytes "
+                      "past the end for good)");
+    }
 }
 
 void NodeRun::findings() {
     note_slow_node();
     Link& link = session_.link();
-    if (!report_.incomplete && link.up() && !link_lost()) {
+    if (!abandoned_ && link.up() && !link_lost()) {
         for (auto& c : short_read_checks(session_, node_, ctx_)) report_.checks.push_back(c);
     }
     if (link.losses() == losses_before_ && link.up()) return;

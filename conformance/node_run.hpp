@@ -18,6 +18,7 @@
 #include "conformance/report.hpp"
 #include "conformance/runner.hpp"
 #include "conformance/session_memory.hpp"
+#include "conformance/write_cover.hpp"
 
 namespace olcb::conform {
 
@@ -76,6 +77,8 @@ private:
     bool link_lost() const;
     void wait_for_link();
     void keep_backup(const std::string& why);
+    /// The run's verdict has a hole (checks not run, the node gone): exit status 2.
+    void mark_incomplete(const std::string& why);
 
     Session& session_;
     NodeInfo node_;
@@ -91,8 +94,9 @@ private:
     EncodingPlan plan_;
     std::size_t read_only_skipped_ = 0;
     SessionMemory memory_;
-    std::unique_ptr<SafetyBackup> backup_;
-    std::unique_ptr<RestoreGuard> guard_;
+    WriteCover cover_;         // every write of the run saved first; owns the restore
+    bool abandoned_ = false;   // the node never came back: the backup is kept, nothing restored
+    std::string not_written_;  // why the encoding checks wrote nothing ("" when they ran)
     bool locked_ = false;
     std::optional<NodeIncident> incident_;
     std::vector<InFlight> in_flight_;

@@ -38,6 +38,7 @@ struct Summary {
 struct RunInfo {
     std::string error;                    ///< why the run ended early ("" when it did not)
     std::vector<std::string> late_nodes;  ///< nodes that appeared during the run, not checked
+    std::vector<std::string> other_runs;  ///< other lcc-conform runs seen (their tool IDs)
     std::string connection;  ///< how the run reached the bus, e.g. "tcp 127.0.0.1:12021"
     std::vector<std::string> arguments;               ///< the command line, program first
     std::chrono::system_clock::time_point started{};  ///< when the run began

@@ -60,6 +60,21 @@ nlohmann::ordered_json map_json(const std::vector<MemoryMapSpace>& map) {
     return nlohmann::ordered_json::parse(text);
 }
 
+// The numbers behind the restore line: what the ledger says was written and how it read back.
+nlohmann::ordered_json writes_json(const RestoreRecord& r) {
+    nlohmann::ordered_json past = nlohmann::ordered_json::array();
+    for (const PastEndRun& p : r.past_end)
+        past.push_back({{"space", p.space}, {"address", p.address}, {"count", p.count}});
+    nlohmann::ordered_json identical = nullptr;
+    if (r.identical) identical = *r.identical;
+    return {{"sent", r.writes},
+            {"saved_bytes", r.saved_bytes},
+            {"rewritten_bytes", r.rewritten_bytes},
+            {"identical", identical},
+            {"past_end", std::move(past)},
+            {"backup_kept", r.backup_kept}};
+}
+
 nlohmann::ordered_json node_json(const NodeReport& report) {
     nlohmann::ordered_json checks = nlohmann::ordered_json::array();
     for (const CheckResult& c : report.checks) checks.push_back(check_json(c));
@@ -75,11 +90,14 @@ nlohmann::ordered_json node_json(const NodeReport& report) {
               {"user_description", id.user_description}}},
             {"started", iso_timestamp(report.started)},
             {"elapsed_s", seconds(report.elapsed)},
+            {"scope", report.scope},
             {"incomplete", report.incomplete},
+            {"incomplete_reasons", report.incomplete_reasons},
             {"timing", timing_json(report.timing)},
             {"checks", std::move(checks)},
             {"summary", summary_json(summarize({report}))},
             {"restore", report.restore_summary},
+            {"writes", writes_json(report.restore)},
             {"not_tested", report.not_tested},
             {"memory_map", map_json(report.memory_map)}};
 }
@@ -117,6 +135,7 @@ std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run) 
                                            {"arguments", run.arguments},
                                            {"error", printable(run.error)},
                                            {"late_nodes", run.late_nodes},
+                                           {"other_runs", run.other_runs},
                                            {"summary", summary_json(summarize(reports))}}},
                                          {"nodes", std::move(nodes)}};
     return dump_json(root);

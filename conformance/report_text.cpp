@@ -80,6 +80,8 @@ void write_text(std::ostream& out, const NodeReport& report, bool colour) {
     out << "timing: " << report.timing.describe() << '\n';
     for (const CheckResult& c : report.checks) out << format_check(c, colour) << '\n';
     if (!report.restore_summary.empty()) out << "restore: " << report.restore_summary << '\n';
+    for (const std::string& why : report.incomplete_reasons)
+        out << "INCOMPLETE: " << printable(why) << '\n';
     Summary s = summarize({report});
     out << s.total() << " checks: " << s.pass << " passed, " << s.fail << " failed, " << s.warn
         << " warnings, " << s.skip << " skipped\n";

@@ -39,6 +39,9 @@ struct RunOptions {
     CheckSelection selection;
     /// Multiplies every answer and silence window (--timeout-scale).
     double timeout_scale = 1.0;
+    /// Why the node gets the protocol checks only ("" for a configurable node): e.g. its PIP
+    /// has neither Memory Configuration nor CDI.
+    std::string protocol_only;
     /// The command that restores a kept backup FILE later, e.g. "lcc-conform --serial DEV
     /// restore" (named in the message when the restore cannot happen now).
     std::string restore_command = "lcc-conform restore";

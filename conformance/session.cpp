@@ -6,6 +6,7 @@
 #include "base/error_codes.hpp"
 #include "memory/snip.hpp"
 #include "openlcb/can_defs.hpp"
+#include "openlcb/can_timing.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -57,6 +58,45 @@ bool expects_no_reply(std::span<const std::uint8_t> payload) {
 bool is_write_command(std::span<const std::uint8_t> payload) {
     return payload.size() >= 2 && (payload[1] & 0xC0) == 0x00;
 }
+
+// The write a memory-config payload asks for; nullopt for every other command. A write command
+// that does not decode is planned as a stream write: its extent is unknown, so no gate lets it
+// out unbacked.
+std::optional<PlannedWrite> planned_write(NodeId node, std::span<const std::uint8_t> payload) {
+    if (payload.empty() || payload[0] != memory::kDatagramType || !is_write_command(payload))
+        return std::nullopt;
+    PlannedWrite w;
+    w.node = node;
+    const memory::DecodeResult d = memory::decode(payload);
+    if (const auto* m = std::get_if<memory::Write>(&d.message); d.ok() && m) {
+        w.space = memory::to_u8(m->space);
+        w.address = m->address;
+        w.data = m->data;
+    } else if (const auto* u = std::get_if<memory::WriteUnderMask>(&d.message); d.ok() && u) {
+        w.space = memory::to_u8(u->space);
+        w.address = u->address;
+        for (const memory::MaskedByte& b : u->bytes) {
+            w.mask.push_back(b.mask);
+            w.data.push_back(b.value);
+        }
+    } else {
+        if (const auto* st = std::get_if<memory::WriteStream>(&d.message); d.ok() && st) {
+            w.space = memory::to_u8(st->space);
+            w.address = st->address;
+        }
+        w.stream = true;
+    }
+    return w;
+}
+
+WriteOutcome outcome_of_write(const MemResult& r) {
+    if (r.ok) return WriteOutcome::kAccepted;
+    if (r.timed_out) return WriteOutcome::kNoAnswer;
+    return WriteOutcome::kRefused;
+}
+
+// How long after Update Complete a restart of the node counts as its doing (it may reset then).
+constexpr Duration kUpdateCompleteRestart = std::chrono::seconds(3);
 
 // Fills ok, data and error from a reply datagram.
 void take_reply(const memory::Message& reply, MemResult& result) {
@@ -125,8 +165,27 @@ Session::Session(Link& link) : link_(link) {
     });
     link_.set_frame_observer([this](const CanFrame& f, TimePoint at) {
         if (frames_.size() < kMaxFrames) frames_.push_back(f);
+        if (injecting_ || (f.extended && can::source_alias(f.id) == link_.stack().alias()))
+            queue_on_wire(f, at);
         if (!injecting_) observe(f, at);
     });
+}
+
+void Session::queue_on_wire(const CanFrame& f, TimePoint at) {
+    // Each of our frames occupies the bus for its worst-case length after the frames ahead of
+    // it: on a real or paced segment, an answer cannot come before they are through.
+    const std::uint32_t bitrate = link_.bus_bitrate();
+    if (bitrate == 0) return;
+    backlog_end_ = std::max(backlog_end_, at) + can_frame_time(f.len, bitrate);
+}
+
+Duration Session::backlog() {
+    const TimePoint now = link_.now();
+    return backlog_end_ > now ? backlog_end_ - now : Duration::zero();
+}
+
+bool Session::run_until(const std::function<bool()>& pred, Duration window) {
+    return link_.run_until(pred, window + backlog());
 }
 
 void Session::inject(const CanFrame& frame) {
@@ -159,7 +218,7 @@ void Session::set_alias(NodeId id, std::uint16_t alias) {
     t->alias = alias;
 }
 
-void Session::observe_control(const CanFrame& f, TimePoint) {
+void Session::observe_control(const CanFrame& f, TimePoint at) {
     const std::uint16_t src = can::source_alias(f.id);
     switch (can::classify_control(f.id)) {
         case can::ControlFrame::kCid7:
@@ -192,7 +251,10 @@ void Session::observe_control(const CanFrame& f, TimePoint) {
             a.rid_pending.reset();
             a.cid_parts = 0;
             set_alias(*id, src);
-            if (NodeTrack* t = track_for(*id); t && reserved) ++t->reservations;
+            // A restart that Update Complete may cause (MemoryConfigurationS §4.23) is allowed.
+            const auto excused = excused_until_.find(*id);
+            const bool allowed = excused != excused_until_.end() && at <= excused->second;
+            if (NodeTrack* t = track_for(*id); t && reserved && !allowed) ++t->reservations;
             break;
         }
         default:
@@ -357,7 +419,7 @@ std::optional<Duration> Session::round_trip(const NodeInfo& node, Duration timeo
     addressed.destination = NodeHandle{node.id, alias_of(node)};
     const TimePoint sent = link_.now();
     send(addressed);
-    if (!link_.run_until(answered, timeout)) return std::nullopt;
+    if (!run_until(answered, timeout)) return std::nullopt;
     return link_.now() - sent;
 }
 
@@ -381,7 +443,7 @@ std::optional<Message> Session::wait_for(const std::function<bool(const Message&
     const std::size_t mark = messages_.size();
     std::size_t scanned = mark;
     std::optional<Message> found;
-    link_.run_until(
+    run_until(
         [&] {
             for (; scanned < messages_.size(); ++scanned) {
                 if (!match || match(messages_[scanned].message)) {
@@ -420,7 +482,7 @@ std::optional<ProtocolSet> Session::protocol_support(const NodeInfo& node) {
     if (send(msg) != SendStatus::kSent) return std::nullopt;
     std::size_t scanned = mark;
     std::optional<ProtocolSet> out;
-    link_.run_until(
+    run_until(
         [&] {
             for (; scanned < messages_.size(); ++scanned) {
                 if (reply(messages_[scanned].message)) {
@@ -445,7 +507,7 @@ std::optional<std::vector<std::uint8_t>> Session::snip_payload(const NodeInfo& n
     bool any = false;
     std::size_t scanned = mark;
     // Legacy nodes send each frame as its own message: concatenate until six NULs are in.
-    link_.run_until(
+    run_until(
         [&] {
             for (; scanned < messages_.size(); ++scanned) {
                 const Message& m = messages_[scanned].message;
@@ -463,6 +525,26 @@ std::optional<std::vector<std::uint8_t>> Session::snip_payload(const NodeInfo& n
 
 MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                             bool always_reply, memory::Message* reply) {
+    // Every write goes through the ledger first: recorded, and sent only when its gate (the
+    // safety backup) has what it may change.
+    std::optional<PlannedWrite> write = planned_write(node.id, payload);
+    if (!write) return send_exchange(node, payload, always_reply, reply);
+    // A restart after this write is not the earlier Update Complete's doing.
+    excused_until_.erase(node.id);
+    std::string why;
+    const std::optional<std::size_t> entry = ledger_.open(std::move(*write), why);
+    if (!entry) {
+        MemResult kept;
+        kept.not_sent = why.empty() ? std::string("kept back") : why;
+        return kept;
+    }
+    MemResult result = send_exchange(node, payload, always_reply, reply);
+    ledger_.close(*entry, outcome_of_write(result));
+    return result;
+}
+
+MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
+                                 bool always_reply, memory::Message* reply) {
     MemResult result;
     const bool request_short = is_short_form(payload);
     const std::size_t mark = messages_.size();
@@ -482,7 +564,7 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     // A transport that goes away mid-exchange ends the wait at once: no reply can come.
     const std::uint64_t losses = link_.losses();
     auto lost = [&] { return link_.losses() != losses; };
-    link_.run_until([&] { return outcome_of(*id) != nullptr || find_reply() || lost(); }, ack_wait);
+    run_until([&] { return outcome_of(*id) != nullptr || find_reply() || lost(); }, ack_wait);
     const OutcomeRecord* oc = outcome_of(*id);
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
     if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !scan.index) {
@@ -492,6 +574,7 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     }
     if (oc && oc->outcome.status == DatagramOutcome::Status::kAccepted) {
         result.reply_pending = datagram::is_reply_pending(oc->outcome.flags);
+        result.reply_timeout_exponent = datagram::timeout_exponent(oc->outcome.flags);
         const bool reply_expected = always_reply || result.reply_pending;
         if (!reply_expected && !find_reply()) {
             result.ok = true;
@@ -499,7 +582,7 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
         }
     }
     if (!scan.index && !lost()) {
-        link_.run_until([&] { return find_reply() || lost(); }, reply_timeout_);
+        run_until([&] { return find_reply() || lost(); }, reply_timeout_);
     }
     if (!scan.index) {
         result.timed_out = true;
@@ -540,6 +623,9 @@ MemResult Session::write(const NodeInfo& node, memory::Space space, std::uint32_
 
 MemResult Session::command(const NodeInfo& node, std::span<const std::uint8_t> payload,
                            memory::Message* reply) {
+    if (payload.size() >= 2 && payload[0] == memory::kDatagramType &&
+        payload[1] == memory::to_u8(memory::Command::kUpdateComplete))
+        excused_until_[node.id] = link_.now() + kUpdateCompleteRestart + backlog();
     const bool always = !expects_no_reply(payload) && !is_write_command(payload);
     return exchange(node, payload, always, reply);
 }
@@ -570,6 +656,8 @@ MemResult Session::read_range(const NodeInfo& node, memory::Space space, std::ui
         }
         total.datagram_ok_seen = total.datagram_ok_seen && r.datagram_ok_seen;
         total.reply_pending = total.reply_pending && r.reply_pending;
+        total.reply_timeout_exponent =
+            std::max(total.reply_timeout_exponent, r.reply_timeout_exponent);
         total.reply_in_request_form = total.reply_in_request_form && r.reply_in_request_form;
         if (r.data.size() > count) r.data.resize(count);  // never trust the node's length
         if (r.data.empty()) break;                        // the end of the space

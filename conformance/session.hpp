@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "conformance/link.hpp"
+#include "conformance/write_ledger.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/datagram_transport.hpp"
 #include "openlcb/message.hpp"
@@ -37,16 +38,20 @@ struct NodeInfo {
 
 /// Outcome of one memory-configuration exchange.
 struct MemResult {
-    bool ok = false;                    ///< reply OK (read data / write done)
-    std::uint16_t error = 0;            ///< reject or fail code when !ok (0x2010 on timeout)
-    bool rejected = false;              ///< Datagram Rejected (vs Reply Fail)
-    bool timed_out = false;             ///< no answer in time
-    std::vector<std::uint8_t> data;     ///< read data
-    bool datagram_ok_seen = false;      ///< Datagram Received OK arrived before the reply
-    bool reply_pending = false;         ///< its Reply Pending flag
+    bool ok = false;                 ///< reply OK (read data / write done)
+    std::uint16_t error = 0;         ///< reject or fail code when !ok (0x2010 on timeout)
+    bool rejected = false;           ///< Datagram Rejected (vs Reply Fail)
+    bool timed_out = false;          ///< no answer in time
+    std::vector<std::uint8_t> data;  ///< read data
+    bool datagram_ok_seen = false;   ///< Datagram Received OK arrived before the reply
+    bool reply_pending = false;      ///< its Reply Pending flag
+    /// The reply timeout the OK announced (reply within 2^N s; 0 = none); the largest of a range.
+    std::uint8_t reply_timeout_exponent = 0;
     bool reply_in_request_form = true;  ///< reply used the same short/byte-6 form as the request
     Duration reply_latency{};           ///< request sent -> reply datagram received
     unsigned temporary_rejects = 0;     ///< 0x2xxx rejects that were retried
+    /// A write the ledger's gate kept back: nothing was sent (not_sent says why).
+    std::string not_sent;
 };
 
 /// Buffer lcc-conform grants a node's stream by default: the largest, so a CDI read needs no
@@ -166,8 +171,14 @@ public:
     std::size_t message_mark() const { return messages_.size(); }
     /// Puts a raw frame on the segment (our own stack does not see it, nor does node tracking).
     void inject(const CanFrame& frame);
-    /// Drives the network for d (silence windows).
-    void wait(Duration d) { link_.run_until({}, d); }
+    /// Drives the network for d after the frames we queued are through (silence windows).
+    void wait(Duration d) { link_.run_until({}, d + backlog()); }
+    /// Drives the network until pred() or `window` after the frames we queued are through: an
+    /// answer or silence window on a CAN segment starts when our request is on the wire.
+    bool run_until(const std::function<bool()>& pred, Duration window);
+    /// How long the frames we sent still need on the link's bus (worst-case frame lengths),
+    /// counted from each frame's sending: zero once the bus could have carried them all.
+    Duration backlog();
     /// The link under this session.
     Link& link() { return link_; }
     /// Our node ID.
@@ -203,6 +214,10 @@ public:
     StreamReadResult read_stream(const NodeInfo& node, memory::Space space, std::uint32_t address,
                                  const StreamReadOptions& options = {});
 
+    /// Every write this session sent or was asked to send (its gate decides which go out).
+    WriteLedger& ledger() { return ledger_; }
+    const WriteLedger& ledger() const { return ledger_; }
+
     /// How long to wait for the reply datagram after Datagram Received OK.
     void set_reply_timeout(Duration d) { reply_timeout_ = d; }
     /// How long to wait for the reply datagram after Datagram Received OK.
@@ -237,12 +252,15 @@ private:
 
     MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                        bool always_reply, memory::Message* reply);
+    MemResult send_exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
+                            bool always_reply, memory::Message* reply);
     const OutcomeRecord* outcome_of(std::uint32_t datagram_id) const;
     struct StreamWait;  // session_stream.cpp
     bool stream_progress(StreamWait& w);
     void stream_event(StreamWait& w, const StreamEvent& e);
     void stream_hold(StreamWait& w);
     void observe(const CanFrame& frame, TimePoint at);
+    void queue_on_wire(const CanFrame& frame, TimePoint at);
     void observe_control(const CanFrame& frame, TimePoint at);
     void set_alias(NodeId id, std::uint16_t alias);
     NodeTrack* track_for(NodeId id);
@@ -262,6 +280,11 @@ private:
     std::vector<ShortRead> short_reads_;
     std::multimap<ReadKey, std::size_t> open_short_reads_;  // keyed by where the data ended
     std::map<std::pair<std::uint64_t, std::uint8_t>, std::uint64_t> reads_;
+    WriteLedger ledger_;
+    TimePoint backlog_end_{};
+    std::map<NodeId, TimePoint>
+        excused_until_;  // restarts allowed after an Update Complete  // when the frames we sent
+                         // are through the link's bus
     Duration reply_timeout_ = std::chrono::milliseconds(3000);
     Duration answer_timeout_ = std::chrono::seconds(1);
 };

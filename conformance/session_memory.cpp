@@ -11,7 +11,7 @@ namespace {
 constexpr std::size_t kChunk = 64;
 
 AccessResult to_access(const MemResult& r) {
-    return {r.ok, r.error, r.data};
+    return {r.ok, r.error, r.data, r.not_sent};
 }
 
 }  // namespace

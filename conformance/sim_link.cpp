@@ -24,6 +24,7 @@ public:
 
     NodeStack& stack() override { return stack_; }
     TimePoint now() override { return network_.now(); }
+    std::uint32_t bus_bitrate() override { return network_.bitrate(); }
 
     bool run_until(const std::function<bool()>& pred, Duration max) override {
         const TimePoint limit = network_.now() + max;

@@ -7,6 +7,9 @@
 
 namespace olcb {
 
+/// The bit rate of an OpenLCB CAN segment (CanPhysicalS).
+inline constexpr std::uint32_t kLccBitrate = 125'000;
+
 /// Worst-case bit count on the wire of one 29-bit data frame with `len` (0..8) data bytes.
 ///
 /// Fields before the CRC delimiter are subject to stuffing: SOF 1 + base ID 11 + SRR 1 + IDE 1 +

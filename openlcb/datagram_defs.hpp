@@ -45,6 +45,11 @@ constexpr std::uint8_t ok_flags(bool reply_pending, std::uint8_t timeout_exponen
                                      (timeout_exponent > 15 ? 15 : timeout_exponent));
 }
 /// True when the flags announce a reply.
+/// The reply timeout a Datagram Received OK announces: the reply within 2^N s (0: none given).
+constexpr std::uint8_t timeout_exponent(std::uint8_t flags) {
+    return static_cast<std::uint8_t>(flags & 0x0F);
+}
+
 constexpr bool is_reply_pending(std::uint8_t flags) {
     return (flags & kReplyPending) != 0;
 }

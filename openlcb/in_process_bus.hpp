@@ -46,6 +46,8 @@ public:
     void enable_timing(std::uint32_t bitrate = 125000);
     /// True when the bit-timing model is on.
     bool timing_enabled() const { return pacer_.has_value(); }
+    /// The modelled bit rate (0 without the timing model).
+    std::uint32_t bitrate() const { return pacer_ ? pacer_->bitrate() : 0; }
 
     /// Delivers frames whose time has come (all queued ones without the timing model), including
     /// frames handlers send meanwhile, up to `max_frames`; returns how many were delivered.

@@ -43,6 +43,8 @@ public:
 
     /// Models 29-bit CAN frame times at bitrate bit/s (call before any frame is sent).
     void enable_timing(std::uint32_t bitrate = 125000) { bus_.enable_timing(bitrate); }
+    /// The modelled bit rate (0 without the timing model: frames arrive at once).
+    std::uint32_t bitrate() const { return bus_.bitrate(); }
     /// Attaches stack as a new port (not started: call start_all() or stack.start(now())). The
     /// stack must stay alive while the network runs; its output handler is taken over (and
     /// becomes a no-op once the network is destroyed).

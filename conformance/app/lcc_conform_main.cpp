@@ -151,9 +151,12 @@ po::options_description check_options() {
         "skip", po::value<std::vector<std::string>>()->composing(),
         "do not run checks whose ID matches PATTERN (repeatable), e.g. 'frame.capacity'")(
         "thorough", "also run the long and disruptive checks (docs/checks.md, --thorough)")(
-        "list-checks", po::value<std::string>()->implicit_value("text"),
-        "print every check (ID, category, section, OlcbChecker checks, summary); "
-        "--list-checks=markdown prints docs/checks.md's registry tables")(
+        "write-past-end",
+        "also write across the end of each writable space (memory.write-past-end): a node "
+        "without a bounds check keeps those bytes for good, where no tool can read or restore "
+        "them")("list-checks", po::value<std::string>()->implicit_value("text"),
+                "print every check (ID, category, section, OlcbChecker checks, summary); "
+                "--list-checks=markdown prints docs/checks.md's registry tables")(
         "write-protected",
         "also probe protected settings (read-only hints, 'do not change'), one at a time")(
         "node-wait", po::value<unsigned>()->default_value(30),
@@ -321,6 +324,7 @@ RunOptions run_options(const po::variables_map& vm) {
     }
     if (vm.count("skip")) ro.selection.skip = vm["skip"].as<std::vector<std::string>>();
     ro.selection.thorough = vm.count("thorough") > 0;
+    ro.selection.write_past_end = vm.count("write-past-end") > 0;
     ro.protection.write_protected = vm.count("write-protected") > 0;
     ro.restore_command = "lcc-conform" + transport_arguments(vm) + " restore";
     ro.progress = is_terminal(2);
@@ -340,30 +344,107 @@ std::vector<std::string> late_nodes(Session& session, const std::vector<NodeInfo
     return out;
 }
 
+// One node a run checks, and how much of it.
+struct Target {
+    NodeInfo node;
+    std::string protocol_only;  // why it gets the protocol checks alone ("" for every check)
+};
+
+// Without --node: every configurable node found (PIP Memory Configuration or CDI) gets every
+// check; any other node (a throttle, a command station, JMRI's own node) the protocol checks a
+// node of any kind owes; nodes of lcc-conform's own ID range are other runs, never checked (two
+// runs on one bus testing each other's tool node gave FAILs for not being configurable).
+std::vector<Target> choose_targets(Session& session, const std::vector<NodeInfo>& found,
+                                   bool chosen, RunInfo& run) {
+    std::vector<Target> out;
+    for (const NodeInfo& n : found) {
+        if (is_tool_id(n.id) && !chosen) {
+            run.other_runs.push_back(n.id.to_string());
+            continue;
+        }
+        Target t{n, {}};
+        if (!chosen) {
+            const auto pip = session.protocol_support(n);
+            if (!pip)
+                t.protocol_only = "no Protocol Support Reply, so not known as a configurable node";
+            else if (!pip->has(Protocol::kMemoryConfiguration) && !pip->has(Protocol::kCdi))
+                t.protocol_only =
+                    "not a configurable node (its PIP has neither Memory "
+                    "Configuration nor CDI)";
+        }
+        out.push_back(std::move(t));
+    }
+    return out;
+}
+
+// "05.01.01.01.22.00  configurable  97 passed, 0 failed, 1 warning, 2 skipped": one line per
+// node at the end of a run over several.
+void print_node_summaries(const std::vector<NodeReport>& reports, const RunInfo& run) {
+    std::cout << "summary of " << reports.size() << " node(s):\n";
+    for (const NodeReport& r : reports) {
+        const Summary s = summarize({r});
+        std::cout << "  " << r.node_id << "  "
+                  << (r.scope == "configurable" ? "configurable" : "protocol only") << "  "
+                  << s.pass << " passed, " << s.fail << " failed, " << s.warn << " warnings, "
+                  << s.skip << " skipped" << (r.incomplete ? "  INCOMPLETE" : "") << "\n";
+    }
+    for (const std::string& id : run.other_runs)
+        std::cout << "  " << id << "  another lcc-conform run (not checked)\n";
+}
+
 int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes,
                 const po::variables_map& vm, const Reports& out) {
     const RunOptions ro = run_options(vm);
+    RunInfo run;
+    const std::vector<Target> targets = choose_targets(session, nodes, vm.count("node") > 0, run);
+    for (const std::string& id : run.other_runs)
+        std::cerr << "lcc-conform: node " << id << " is another lcc-conform run: not checked\n";
+    if (targets.empty()) {
+        run.error = "no node to check: only other lcc-conform runs answered";
+        std::cerr << "lcc-conform: " << run.error << "\n";
+        return out.finish({}, run, kUsage);
+    }
     const bool colour = is_terminal(1) && !vm.count("no-color");
+    // The selection of the node being run (a protocol-only node's is narrower).
+    CheckSelection selection = ro.selection;
     ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
         ProtocolOptions po_opts;
         po_opts.read_only = ro.read_only;
         po_opts.reboot = ro.reboot;
         po_opts.no_stream = vm.count("no-stream") > 0;
-        po_opts.selection = ro.selection;
+        po_opts.selection = selection;
         return run_protocol_checks(s, n, po_opts, ctx);
     };
     install_stop_handlers();
+    if (ro.selection.write_past_end && !ro.read_only) {
+        std::cerr << "lcc-conform: warning: --write-past-end writes across the end of every "
+                     "writable space; a node without a bounds check (OpenMRN's file-backed "
+                     "spaces) keeps those bytes for good, where no tool can read them back or "
+                     "restore them\n";
+    }
     std::vector<NodeReport> reports;
-    for (const NodeInfo& n : nodes) {
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+        const Target& t = targets[k];
         RunOptions one = ro;
-        if (nodes.size() > 1 && !ro.backup_path.empty()) {
-            one.backup_path = ro.backup_path + "." + n.id.to_string();
+        if (targets.size() > 1 && !ro.backup_path.empty()) {
+            one.backup_path = ro.backup_path + "." + t.node.id.to_string();
         }
-        reports.push_back(run_node(session, n, one, protocol, std::cerr));
+        one.protocol_only = t.protocol_only;
+        if (!t.protocol_only.empty()) {
+            one.selection.categories = {Category::kFrame, Category::kMessage, Category::kSnip,
+                                        Category::kPip, Category::kEvents};
+        }
+        selection = one.selection;
+        if (targets.size() > 1) {
+            std::cerr << "lcc-conform: node " << k + 1 << " of " << targets.size() << ": "
+                      << t.node.id.to_string()
+                      << (t.protocol_only.empty() ? "" : " (" + t.protocol_only + ")") << "\n";
+        }
+        reports.push_back(run_node(session, t.node, one, protocol, std::cerr));
         write_text(std::cout, reports.back(), colour);
         if (stop_requested() || !link.up()) break;  // the next node cannot be reached either
     }
-    RunInfo run;
+    if (targets.size() > 1 || !run.other_runs.empty()) print_node_summaries(reports, run);
     // With --node the user chose one node of a segment they know: the others, which answer the
     // frame probe's global AME, did not appear late and are not news.
     if (!vm.count("node")) run.late_nodes = late_nodes(session, nodes);

@@ -59,10 +59,23 @@ void acdi_space_info(CheckRun& run) {
         if (!i.present) return std::string(i.answered ? "not present" : "no answer");
         return std::to_string(i.highest_address) + (i.read_only ? " RO" : " RW");
     };
-    run.out().judge(fc.present && fc.read_only && fc.highest_address == 124 && fb.present &&
-                        fb.highest_address == 127,
-                    "Space Info: 252 read-only highest 124, 251 highest 127", "124 RO / 127",
-                    seen(fc) + " / " + seen(fb));
+    const std::string got = seen(fc) + " / " + seen(fb);
+    if (!fc.answered || !fb.answered)
+        return run.out().skip(
+            "Get Address Space Information not answered (an optional "
+            "command): " +
+            got);
+    // §5.1.2 asks for bytes 0-124 of 252 readable and 0-127 of 251 readable and writable; the
+    // exact size and the read-only flag of 252 are only what the layout implies.
+    const bool room = fc.present && fc.highest_address >= 124 && fb.present &&
+                      fb.highest_address >= 127 && !fb.read_only;
+    if (!room)
+        return run.out().fail("Space Info: 252 and 251 too small, absent or 251 read-only",
+                              ">= 124 / >= 127 RW", got);
+    const bool exact = fc.read_only && fc.highest_address == 124 && fb.highest_address == 127;
+    if (exact) return run.out().pass("Space Info: 252 read-only highest 124, 251 highest 127");
+    run.out().warn("Space Info: " + got +
+                   " (the ACDI blocks end at 124 and 127, 252 is read-only)");
 }
 
 void acdi_utf8(CheckRun& run) {
@@ -86,7 +99,7 @@ void acdi_utf8(CheckRun& run) {
          {"space 252 @104 software version", slot(m, kSoftwareVersionOffset, kSoftwareVersionSize)},
          {"space 251 @1 user name", slot(u, kUserNameOffset, kUserNameSize)},
          {"space 251 @64 user description", slot(u, kUserDescriptionOffset, kUserDescriptionSize)}},
-        "the six ACDI strings of spaces 252/251 are valid UTF-8");
+        "the six ACDI strings of spaces 252/251 are valid UTF-8", Status::kFail);
 }
 
 }  // namespace olcb::conform::checks

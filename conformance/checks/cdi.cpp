@@ -45,15 +45,23 @@ void text_rule(CheckRun& run, std::string_view id) {
 
 void cdi_space_info(CheckRun& run) {
     const SpaceInfo& ff = run.space_info(0xFF);
+    // Get Address Space Information is not mandatory: unanswered says nothing about 0xFF.
+    if (!ff.answered) return run.out().skip("Get Address Space Information not answered");
+    if (!ff.present && !run.cdi().read_ok)
+        return run.out().skip("space 0xFF not present and no CDI read: the node has no CDI");
     run.out().judge(ff.present && ff.read_only, "Space Info for 0xFF: present and read-only",
-                    "present, read-only",
-                    ff.present ? "writable" : (ff.answered ? "not present" : "no answer"));
+                    "present, read-only", ff.present ? "writable" : "not present");
 }
 
 void cdi_read(CheckRun& run) {
     const CdiDownload& d = run.cdi();
-    run.out().judge(d.read_ok, "space 0xFF read in 64-byte reads", "data",
-                    d.result.ok ? "no data" : describe(d.result));
+    if (d.read_ok) return run.out().pass("space 0xFF read in 64-byte reads");
+    // §4.2 asks only a node that has a CDI to serve it; one that claims none owes nothing.
+    const auto& pip = run.pip();
+    if (pip && !pip->has(Protocol::kCdi) && d.result.rejected)
+        return run.out().skip("the node claims no CDI (PIP) and rejects reads of 0xFF");
+    run.out().fail("space 0xFF returned no data", "data",
+                   d.result.ok ? "no data" : describe(d.result));
 }
 
 void cdi_nul_terminated(CheckRun& run) {
@@ -69,9 +77,14 @@ void cdi_nul_at_highest(CheckRun& run) {
         return run.out().skip(
             "depends on cdi.nul-terminated and cdi.space-info: no NUL or no Space Info");
     const auto size = static_cast<unsigned>(run.ctx().cdi_bytes.size());
-    run.out().judge(ff.highest_address == size,
-                    "the NUL is at the highest address Space Info gives", hex(size, 8),
-                    hex(ff.highest_address, 8));
+    if (ff.highest_address == size)
+        return run.out().pass("the NUL is at the highest address Space Info gives");
+    // Padding after the NUL is legal; a space that ends before the text does is a note.
+    if (ff.highest_address > size)
+        return run.out().pass("the NUL (at " + hex(size, 8) + ") lies within space 0xFF (highest " +
+                              hex(ff.highest_address, 8) + ")");
+    run.out().warn("Space Info's highest address " + hex(ff.highest_address, 8) +
+                   " lies before the CDI's NUL at " + hex(size, 8));
 }
 
 // The text-only checks: their verdicts are cdi::check_rules()', so `lcc-cdi validate` on a file

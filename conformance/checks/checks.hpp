@@ -82,7 +82,10 @@ struct NamedText {
 };
 /// PASS (what) when every text is valid UTF-8; else FAIL naming each invalid one with its bytes
 /// in hex (snip.cpp).
-void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what);
+/// PASS when every text is UTF-8, else `bad` (FAIL where the standard asks for UTF-8, WARN where
+/// only a technical note does) naming each invalid one with its bytes.
+void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what,
+                Status bad);
 
 /// What the node sent in one silence window after four probes that must go unanswered: an
 /// unknown global MTI, and Verify Node ID, Protocol Support Inquiry and an unknown MTI addressed
@@ -114,8 +117,6 @@ std::vector<CheckSpec> datagram_protocol_checks();
 /// memory_bounds.cpp: per-space highest address, past the end, crossing writes, write under
 /// mask, Update Complete, Options write lengths.
 std::vector<CheckSpec> memory_bounds_checks();
-/// acdi_writes.cpp: writes to the ACDI version byte and to 252 refused (OlcbChecker cd40).
-std::vector<CheckSpec> acdi_write_checks();
 /// events.cpp: Identify Events / Producer / Consumer against the CDI's event IDs.
 std::vector<CheckSpec> event_checks();
 /// event_robustness.cpp: event messages a configurable node need not act on (ev60, ev70).

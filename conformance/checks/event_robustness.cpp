@@ -29,10 +29,15 @@ void judge_unharmed(CheckRun& run, const NodeTrack& before, const std::string& w
     const bool restarted =
         now.initializations != before.initializations || now.reservations != before.reservations;
     const bool answers = s.ping(run.node(), run.options().answer_window);
-    std::string seen;
-    if (restarted) seen = "the node restarted (Initialization Complete)";
-    if (!answers) seen = "the node no longer answers Verify Node ID";
-    run.out().judge(seen.empty(), what, "no restart, still answering", seen);
+    // A node that stops answering breaks MessageNetworkS §3.4.2; a restart breaks no clause.
+    if (!answers)
+        return run.out().fail(what + ": the node no longer answers Verify Node ID",
+                              "still answering", "no answer");
+    if (restarted)
+        return run.out().warn(what +
+                              ": the node restarted (Initialization Complete), then "
+                              "answered again");
+    run.out().pass(what);
 }
 
 }  // namespace
@@ -65,11 +70,17 @@ void learn_tolerated(CheckRun& run) {
 
 std::vector<CheckSpec> event_robustness_checks() {
     return {
-        {"events.pcer-payload-tolerated", Category::kEvents, "EventTransportS §4.1, §7", "ev60",
+        {"events.pcer-payload-tolerated", Category::kEvents,
+         "MessageNetworkS §3.4.2; EventTransportS §4.1", Strength::kShall,
+         "the node keeps answering Verify Node ID after PCERs with payload; a restart or a payload "
+         "past 256 bytes WARNs",
+         "ev60",
          "PCERs with payload (first/middle/last frames, 4 to 2,044 payload bytes) of an event in "
          "lcc-conform's own range: no restart, the node still answers Verify Node ID",
          pcer_payload_tolerated},
-        {"events.learn-tolerated", Category::kEvents, "EventTransportS §4.9, §6.5", "ev70",
+        {"events.learn-tolerated", Category::kEvents,
+         "MessageNetworkS §3.4.2; EventTransportS §6.5", Strength::kShall,
+         "the node keeps answering Verify Node ID after Learn Event; a restart WARNs", "ev70",
          "Learn Event with an event of lcc-conform's own range: no restart, the node still "
          "answers (only with --thorough: a node in learn mode would store the event)",
          learn_tolerated, true},

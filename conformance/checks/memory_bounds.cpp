@@ -28,12 +28,11 @@ constexpr std::uint16_t kOutOfBounds = base::to_u16(base::ErrorCode::kOutOfBound
 // OlcbChecker mc60 reads this far past the highest address of 0xFD, 64 bytes in the byte-6 form.
 constexpr std::uint32_t kFarPastEnd = 0x100;
 constexpr std::uint8_t kFarCount = 64;
-// Bytes of 0xFD watched while 0xFB is written across its end: OpenMRN's file-backed 251 runs on
-// into the first bytes of 253 (real-world.md §1).
 // Most bytes memory.write-past-end watches (and would put back) for a spilling write.
 constexpr std::size_t kMaxSnapshot = std::size_t{16} * 1024;
-// Options write-lengths: the bits the current standard has sent as 1, ignoring the stream bit.
-constexpr std::uint8_t kWriteLengthsMask = 0xFE;
+// Options write-lengths (§4.14): 0x80, 0x40, 0x20, 0x02 sent as 1 and 0x08, 0x04 as 0; 0x10 is
+// reserved with no value to send and 0x01 is the stream bit, so neither is judged.
+constexpr std::uint8_t kWriteLengthsMask = 0xEE;
 constexpr std::uint8_t kWriteLengthsWant = 0xE2;
 
 Space as_space(std::uint8_t sp) {
@@ -117,14 +116,14 @@ std::string restore(CheckRun& run, std::uint8_t sp, std::uint32_t address,
         std::equal(original.begin(), original.end(), back.data.begin()))
         return {};
     return "original not restored: writing " + byte_list(original) + " back to " + space_name(sp) +
-           " at " + hex(address, 8) + " got " + describe(w) + ", it reads " +
+           " at " + hex(address, 8) + " got " + describe(w) + ", then its read got " +
            (back.ok ? byte_list(back.data) : describe(back));
 }
 
 // ---- memory.read-at-highest.<sp> ----
 
 void read_at_highest(CheckRun& run) {
-    for (std::uint8_t sp : bounded_spaces(run)) {
+    for (std::uint8_t sp : run.selected_spaces(bounded_spaces(run))) {
         const std::uint32_t highest = run.space_info(sp).highest_address;
         const MemResult r = read(run, sp, highest, 1);
         const std::string what = "1-byte read at " + hex(highest, 8) + " of " + space_name(sp) +
@@ -149,7 +148,7 @@ void read_at_highest(CheckRun& run) {
 // ---- memory.read-past-end.<sp> ----
 
 void read_past_end(CheckRun& run) {
-    for (std::uint8_t sp : bounded_spaces(run)) {
+    for (std::uint8_t sp : run.selected_spaces(bounded_spaces(run))) {
         // Past a highest address that is too small lies data: that is the other check's finding.
         if (std::string doubt = run.highest_too_small(sp); !doubt.empty()) {
             run.out(sp).skip(doubt);
@@ -173,14 +172,18 @@ void read_past_end(CheckRun& run) {
             const Refusal v = judge_refusal(
                 r, "64-byte read at " + hex(far, 8) + ", past the end of " + space_name(sp) + ",",
                 kOutOfBounds);
-            if (verdict.pass && !v.pass) verdict = v;
+            // The worse of the two verdicts (FAIL before WARN before PASS); the first on a tie.
+            const auto rank = [](Status st) {
+                return st == Status::kFail ? 2 : st == Status::kWarn;
+            };
+            if (rank(v.status) > rank(verdict.status)) verdict = v;
             also = " and at " + hex(far, 8);
         }
-        if (verdict.pass)
+        if (verdict.status == Status::kPass)
             run.out(sp).pass("reads past the end of " + space_name(sp) + " (at " +
                              hex(highest + 1, 8) + also + ") refused with 0x1082");
         else
-            run.out(sp).fail(verdict.message, "0x1082", verdict.seen);
+            run.out(sp).refusal(verdict, "a failure with an error code (0x1082)");
     }
 }
 
@@ -241,6 +244,14 @@ std::optional<Snapshot> snapshot(CheckRun& run, std::string& why) {
                   " bytes: too many to watch for a spilling write";
             return std::nullopt;
         }
+        // Saved in the safety backup first: a spill undone here is restored at the end too.
+        std::string unsaved;
+        if (!run.session().ledger().save_ahead(run.node().id, sp, range.first, range.second,
+                                               unsaved)) {
+            why = space_name(sp) + " bytes " + hex(range.first, 8) + ".. cannot be saved (" +
+                  unsaved + "), so a write spilling into them could not be undone";
+            return std::nullopt;
+        }
         const MemResult r = run.note(run.session().read_range(
             run.node(), static_cast<memory::Space>(sp), range.first, range.second, false));
         if (!r.ok || r.data.size() != range.second) {
@@ -284,27 +295,39 @@ std::string undo_changes(CheckRun& run, std::uint8_t sp, const LastByte& last,
     return found;
 }
 
+// The byte of a 2-byte crossing write that lies past the end: no tool can read or restore it.
+std::string stored_past_end(std::uint8_t sp, const LastByte& last) {
+    return "1 byte past the end of " + space_name(sp) + " (at " + hex(last.address + 1, 8) + ")";
+}
+
+// No "shall" of MemoryConfigurationS makes a node refuse a write crossing the end of a space
+// (§4.3 defines 0x1082 for use; the TN says "should"), so an accepted one is a WARN; an unanswered
+// write breaks DatagramTransportS §6 (every datagram answered) and FAILs.
 void judge_crossing(CheckRun& run, std::uint8_t sp, const LastByte& last, const MemResult& w,
-                    const std::string& changed) {
+                    const std::string& past_end, const std::string& changed) {
     std::string what =
         "2-byte write at " + hex(last.address, 8) + " crossing the end of " + space_name(sp);
     if (last.below_highest)
         what += " (Space Info's highest address " + hex(last.address + 1, 8) + " does not read)";
     const std::string after = changed.empty() ? "" : "; memory changed: " + changed;
+    const std::string kept = past_end.empty()
+                                 ? ""
+                                 : "; the node may have stored " + past_end +
+                                       ", where no tool can read it back or restore it";
     if (w.ok) {
-        run.out(sp).fail(what + " was accepted" +
-                             (changed.empty() ? " (no byte a tool can read changed)" : after) +
-                             "; the byte past the end may be stored where no tool reads it",
-                         "refused with 0x1082", "accepted");
+        run.out(sp).warn(what + " was accepted" + kept +
+                         (changed.empty() ? "; no byte a tool can read changed" : after) +
+                         " (0x1082 is the code MemoryConfigurationS §4.3 defines for it)");
     } else if (w.timed_out) {
-        run.out(sp).fail(what + ": no answer" + after, "refused with 0x1082", "no answer");
+        run.out(sp).fail(what + ": no answer" + kept + after +
+                             " (DatagramTransportS §6: every datagram is answered)",
+                         "Datagram Rejected or a Write Reply", "no answer");
     } else if (!changed.empty()) {
-        run.out(sp).fail(what + " was refused with " + hex(w.error) + after, "memory unchanged",
-                         changed);
+        run.out(sp).warn(what + " was refused with " + hex(w.error) + after);
     } else {
         const std::string code = w.error ? hex(w.error) : "no error code";
         run.out(sp).pass(what + " refused with " + code +
-                         (w.error == kOutOfBounds ? "" : " (the standard gives 0x1082)"));
+                         (w.error == kOutOfBounds ? "" : " (0x1082 is the code defined for it)"));
     }
 }
 
@@ -318,17 +341,24 @@ void write_past_end_space(CheckRun& run, std::uint8_t sp) {
     if (std::string p = protected_at(run, sp, last->address); !p.empty())
         return run.out(sp).skip("the last byte of " + space_name(sp) + " belongs to " + p);
     // Where a spilling node puts the extra byte is its own business (OpenMRN's 251: onto 253's
-    // internal data): everything a tool can read is kept and put back at once when it changed.
+    // internal data): everything a tool can read is saved and put back at once when it changed.
     std::string unsafe;
     const std::optional<Snapshot> before = snapshot(run, unsafe);
     if (!before) return run.out(sp).skip(unsafe);
     const std::array<std::uint8_t, 2> data{last->value, last->value};
-    const MemResult w = write(run, sp, last->address, data);
-    judge_crossing(run, sp, *last, w, undo_changes(run, sp, *last, *before));
+    MemResult w;
+    {
+        // The one write of the run allowed past the end of a space (--write-past-end).
+        WriteLedger::PastEndPermit permit(run.session().ledger(), sp);
+        w = write(run, sp, last->address, data);
+    }
+    if (!w.not_sent.empty()) return run.out(sp).skip("not sent: " + w.not_sent);
+    judge_crossing(run, sp, *last, w, stored_past_end(sp, *last),
+                   undo_changes(run, sp, *last, *before));
 }
 
 void write_past_end(CheckRun& run) {
-    for (std::uint8_t sp : writable_spaces(run)) {
+    for (std::uint8_t sp : run.selected_spaces(writable_spaces(run))) {
         if (run.options().read_only)
             run.out(sp).skip("--read-only");
         else
@@ -383,9 +413,9 @@ std::string masked_step(CheckRun& run, const MaskTarget& t, std::uint8_t v, std:
     std::string problem;
     if (!w.ok) problem = what + ": " + describe(w) + " although Options advertise it (0x8000)";
     if (!kept) {
-        problem = what + " left " +
-                  (back.ok && !back.data.empty() ? hex(back.data[0], 2) : describe(back)) +
-                  " instead of " + hex(v, 2);
+        problem = what + (back.ok && !back.data.empty()
+                              ? " left " + hex(back.data[0], 2) + " instead of " + hex(v, 2)
+                              : ": the byte does not read back (" + describe(back) + ")");
         const std::string undone = restore(run, t.space, t.address, std::span(&v, 1));
         problem += undone.empty() ? "; restored" : "; " + undone;
     }
@@ -454,10 +484,10 @@ void options_write_lengths(CheckRun& run) {
     const std::uint8_t wl = options->write_lengths;
     const std::string what = "Options write-lengths byte " + hex(wl, 2);
     if ((wl & kWriteLengthsMask) == kWriteLengthsWant)
-        return out.pass(what + ": 0x80, 0x40, 0x20, 0x02 set, 0x10 clear" +
+        return out.pass(what + ": 0x80, 0x40, 0x20, 0x02 set, 0x08, 0x04 clear" +
                         ((wl & 1) ? ", streams" : ""));
-    out.fail(what + ": the current standard sends 0x80, 0x40, 0x20 and 0x02 as 1 and 0x10 as 0",
-             "0xE2 (0xE3 with streams)", hex(wl, 2));
+    out.fail(what + ": the standard sends 0x80, 0x40, 0x20 and 0x02 as 1 and 0x08, 0x04 as 0",
+             "(byte & 0xEE) == 0xE2", hex(wl, 2));
 }
 
 }  // namespace
@@ -465,34 +495,54 @@ void options_write_lengths(CheckRun& run) {
 std::vector<CheckSpec> memory_bounds_checks() {
     return {
         {"memory.read-at-highest.<sp>", Category::kMemory, "MemoryConfigurationS §4.5, §4.16",
+         Strength::kShall,
+         "the highest address is the highest valid address, so a read there returns data",
          "mc20, mc30",
          "1-byte read at Space Info's highest address of 0xFF, 0xFD, 0xFC, 0xFB and every CDI "
          "space (each present per Space Info): data; 0x1082 there means Space Info gives the size",
          read_at_highest},
-        {"memory.read-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.3, §4.5", "mc60",
+        {"memory.read-past-end.<sp>", Category::kMemory,
+         "MemoryConfigurationS §4.3, §4.5; MemoryConfigurationTN §2.4.3", Strength::kShall,
+         "a read that yields no bytes fails with an error code; 0x1082 is the recommended one "
+         "(another code WARNs)",
+         "mc60",
          "8-byte read at highest+1 of each space (and 64 bytes at highest+0x100 of 0xFD): refused "
          "with exactly 0x1082 (Datagram Rejected or Read Reply Fail); data or OK fails; SKIP "
          "\"depends on\" the check that found the highest address too small",
          read_past_end},
-        {"memory.write-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.3, §4.8", "",
-         "(--thorough) writable spaces the CDI uses (0xFB, CDI spaces): every byte the CDI lays "
-         "out there read first, 2 bytes written at the last byte (its value twice), everything "
-         "read again: refused (0x1082 preferred) and nothing changed, a changed byte put back at "
-         "once; thorough because a node without the bounds check stores the extra byte where no "
-         "tool can read it back (OpenMRN: 251's lands on 253's internal data, put back; 253's "
-         "grows its config file by a byte); SKIP on a protected last byte and with --read-only",
-         write_past_end, true},
-        {"memory.write-under-mask", Category::kMemory, "MemoryConfigurationS §4.10", "mc70",
+        {"memory.write-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.3, §4.8",
+         Strength::kNone,
+         "no clause makes a node refuse a write crossing the end of a space (0x1082 is defined for "
+         "it): accepted WARNs, unanswered FAILs by DatagramTransportS §6",
+         "",
+         "(--write-past-end only) writable spaces the CDI uses (0xFB, CDI spaces): every byte the "
+         "CDI lays out there saved first, 2 bytes written at the last byte (its value twice), "
+         "everything read again: refused passes (0x1082 preferred); accepted WARNs (no clause "
+         "requires the refusal), naming the bytes the node may keep past the end, which no tool "
+         "can read back or restore (OpenMRN: 253's config file grows by a byte; 251's lands on "
+         "253's internal data, put back at once); no answer FAILs; SKIP on a protected last byte "
+         "and with --read-only",
+         write_past_end, false, false, true},
+        {"memory.write-under-mask", Category::kMemory, "MemoryConfigurationS §4.10, §4.14",
+         Strength::kShall,
+         "when advertised, mask bits 1 take the data and mask bits 0 keep the memory", "mc70",
          "when Options advertise 0x8000: write under mask mask 0x00 data ~v, then mask 0xFF data "
          "v, on the first byte of the first unprotected writable CDI variable: reads v after each "
          "(a changed byte is written back at once)",
          write_under_mask},
-        {"memory.update-complete", Category::kMemory, "MemoryConfigurationS §4.23", "",
+        {"memory.update-complete", Category::kMemory, "MemoryConfigurationS §4.23",
+         Strength::kShall,
+         "receiving Update Complete must be permitted; the node may answer with a "
+         "re-initialization",
+         "",
          "Update Complete (20 A8): Datagram Received OK (or a re-initialization), then the node "
          "still answers Verify Node ID",
          update_complete},
-        {"memory.options-write-lengths", Category::kMemory, "MemoryConfigurationS §4.14", "mc10",
-         "Get Configuration Options write-lengths byte: (byte & 0xFE) == 0xE2",
+        {"memory.options-write-lengths", Category::kMemory, "MemoryConfigurationS §4.14",
+         Strength::kShall,
+         "write-lengths bits 0x80, 0x40, 0x20, 0x02 are sent as 1 and 0x08, 0x04 as 0", "mc10",
+         "Get Configuration Options write-lengths byte: (byte & 0xEE) == 0xE2 (0x10 reserved, 0x01 "
+         "streams)",
          options_write_lengths},
     };
 }

@@ -20,7 +20,7 @@ void pip_snip_bit(CheckRun& run) {
 }
 
 void pip_datagram_bit(CheckRun& run) {
-    bit_agrees(run, Protocol::kDatagram, run.memory_works(),
+    bit_agrees(run, Protocol::kDatagram, run.datagrams_answered(),
                "PIP Datagram bit agrees with datagram answers");
 }
 

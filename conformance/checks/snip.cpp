@@ -1,5 +1,6 @@
 // SNIP: its version bytes, and its strings against the ACDI spaces and the CDI.
-#include <initializer_list>
+#include <span>
+#include <vector>
 
 #include "base/utf8.hpp"
 #include "conformance/checks/checks.hpp"
@@ -17,7 +18,7 @@ struct Field {
 };
 
 // "SNIP model "B" differs from <source> "A"" for the first field that differs; "" when none.
-std::string first_difference(std::initializer_list<Field> fields, const std::string& source,
+std::string first_difference(std::span<const Field> fields, const std::string& source,
                              std::string& want, std::string& got) {
     for (const Field& f : fields) {
         if (*f.want == *f.got) continue;
@@ -36,13 +37,22 @@ std::string first_difference(std::initializer_list<Field> fields, const std::str
 void snip_version_bytes(CheckRun& run) {
     const auto& raw = run.snip_raw();
     if (!raw || raw->empty() || !run.ctx().snip) return run.out().skip("no SNIP reply");
-    const bool ok = (*raw)[0] == 4 && run.ctx().snip->user_version == 2;
-    run.out().judge(
-        ok, "SNIP version bytes 4 and 2", "4, 2",
-        std::to_string((*raw)[0]) + ", " + std::to_string(run.ctx().snip->user_version));
+    // SimpleNodeInformationS §5.1: 0x01 counts as the current version; §5.2: higher ones are
+    // later versions with more strings.
+    const unsigned fixed = (*raw)[0];
+    const unsigned user = run.ctx().snip->user_version;
+    const std::string seen = std::to_string(fixed) + ", " + std::to_string(user);
+    if ((fixed == 1 || fixed == 4) && (user == 1 || user == 2))
+        return run.out().pass("SNIP version bytes " + seen);
+    if (fixed >= 4 && user >= 2)
+        return run.out().warn("SNIP version bytes " + seen +
+                              ": a later version than the standard knows (tools ignore the extra "
+                              "strings)");
+    run.out().fail("SNIP version bytes " + seen + ": not a valid version", "1 or 4, 1 or 2", seen);
 }
 
-void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what) {
+void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what,
+                Status bad_status) {
     std::vector<const NamedText*> bad;
     for (const NamedText& t : texts)
         if (!base::is_valid_utf8(t.text)) bad.push_back(&t);
@@ -57,7 +67,7 @@ void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::s
         message += " (and " + std::to_string(bad.size() - 1) + " more: see the details)";
         for (const NamedText* t : bad) details.push_back(shown(*t));
     }
-    run.out().add(Status::kFail, std::move(message), "valid UTF-8", shown(*bad.front()),
+    run.out().add(bad_status, std::move(message), "valid UTF-8", shown(*bad.front()),
                   std::move(details));
 }
 
@@ -72,7 +82,8 @@ void snip_utf8(CheckRun& run) {
                 {"software version", sn.software_version},
                 {"user name", sn.user_name},
                 {"user description", sn.user_description}},
-               "the six SNIP strings are valid UTF-8");
+               "the six SNIP strings are valid UTF-8",
+               Status::kWarn);  // only CommonInformationTN §2.5 says SNIP text is UTF-8
 }
 
 void snip_matches_acdi(CheckRun& run) {
@@ -85,17 +96,14 @@ void snip_matches_acdi(CheckRun& run) {
     const memory::Snip from = memory::snip_from_acdi(*ctx.acdi_manufacturer, *ctx.acdi_user);
     const memory::Snip& sn = *ctx.snip;
     std::string want, got;
-    std::string diff =
-        first_difference({{"manufacturer", &from.manufacturer, &sn.manufacturer},
-                          {"model", &from.model, &sn.model},
-                          {"hardware version", &from.hardware_version, &sn.hardware_version},
-                          {"software version", &from.software_version, &sn.software_version}},
-                         "ACDI 252", want, got);
-    if (diff.empty())
-        diff =
-            first_difference({{"user name", &from.user_name, &sn.user_name},
-                              {"user description", &from.user_description, &sn.user_description}},
-                             "ACDI 251", want, got);
+    const Field fixed[] = {{"manufacturer", &from.manufacturer, &sn.manufacturer},
+                           {"model", &from.model, &sn.model},
+                           {"hardware version", &from.hardware_version, &sn.hardware_version},
+                           {"software version", &from.software_version, &sn.software_version}};
+    const Field user[] = {{"user name", &from.user_name, &sn.user_name},
+                          {"user description", &from.user_description, &sn.user_description}};
+    std::string diff = first_difference(fixed, "ACDI 252", want, got);
+    if (diff.empty()) diff = first_difference(user, "ACDI 251", want, got);
     run.out().judge(diff.empty(),
                     diff.empty() ? "SNIP strings equal the ACDI 252/251 strings" : diff, want, got);
 }
@@ -109,13 +117,17 @@ void snip_matches_cdi(CheckRun& run) {
         return run.out().skip("the CDI has no <identification> (or did not parse)");
     const auto& id = *ctx.document->identification;
     const memory::Snip& sn = *ctx.snip;
+    // §5.1.1 compares the tags the CDI has: all four are optional in the schema.
+    std::vector<Field> present;
+    for (const Field& f : {Field{"manufacturer", &id.manufacturer, &sn.manufacturer},
+                           Field{"model", &id.model, &sn.model},
+                           Field{"hardware version", &id.hardware_version, &sn.hardware_version},
+                           Field{"software version", &id.software_version, &sn.software_version}})
+        if (!f.want->empty()) present.push_back(f);
+    if (present.empty())
+        return run.out().skip("the CDI's <identification> names none of the four strings");
     std::string want, got;
-    const std::string diff =
-        first_difference({{"manufacturer", &id.manufacturer, &sn.manufacturer},
-                          {"model", &id.model, &sn.model},
-                          {"hardware version", &id.hardware_version, &sn.hardware_version},
-                          {"software version", &id.software_version, &sn.software_version}},
-                         "CDI <identification>", want, got);
+    const std::string diff = first_difference(present, "CDI <identification>", want, got);
     run.out().judge(diff.empty(),
                     diff.empty() ? "SNIP strings equal the CDI <identification>" : diff, want, got);
 }

@@ -25,6 +25,7 @@ constexpr Duration kHold = std::chrono::milliseconds(200);
 struct StreamSupport {
     bool pip = false;      // PIP Stream bit
     bool options = false;  // Options: stream reads (0x1000) or the stream lengths bit
+    bool lengths = false;  // Options write-lengths 0x01 (the standard's stream bit)
     std::string skip;      // why the stream-read checks SKIP ("" = they run)
 };
 
@@ -35,8 +36,9 @@ const StreamSupport& support(CheckRun& run) {
     s.pip = pip && pip->has(Protocol::kStream);
     run.config_options();
     if (const auto& o = run.ctx().options) {
-        s.options = (o->available_commands & memory::available_commands::kStreamReads) != 0 ||
-                    (o->write_lengths & memory::write_lengths::kStreams) != 0;
+        s.lengths = (o->write_lengths & memory::write_lengths::kStreams) != 0;
+        s.options =
+            (o->available_commands & memory::available_commands::kStreamReads) != 0 || s.lengths;
     }
     if (run.options().no_stream) {
         s.skip = "--no-stream";
@@ -90,10 +92,16 @@ void stream_advertised(CheckRun& run) {
     const StreamSupport& s = support(run);
     if (run.options().no_stream) return v.skip("--no-stream");
     if (!s.pip && !s.options) return v.skip("node does not advertise streams");
-    if (s.options && !s.pip) {
-        return v.fail("Options offers stream reads but PIP has no Stream bit",
+    // Only write-lengths 0x01 is the standard's claim (§4.14); 0x1000 of the available commands
+    // is reserved there (a proposal some stacks send), so it alone proves nothing.
+    if (s.lengths && !s.pip) {
+        return v.fail("Options write-lengths offer streams (0x01) but PIP has no Stream bit",
                       "PIP Stream bit with Options stream reads", "PIP without Stream");
     }
+    if (s.options && !s.pip)
+        return v.warn(
+            "Options sets the reserved stream-reads bit 0x1000 but PIP has no Stream "
+            "bit");
     v.pass(s.options ? "PIP Stream bit and Options stream reads agree"
                      : "PIP Stream bit; Options offers no stream reads (streams for other uses)");
 }
@@ -198,7 +206,12 @@ void stream_read_past_end(CheckRun& run) {
         return v.warn("an empty stream at " + hex(end, 8) +
                       " instead of Read Stream Reply Fail 0x1082 (a datagram read fails there)");
     }
-    v.fail("read at highest+1 of 0xFF not refused 0x1082", "0x1082", outcome(r));
+    // MemoryConfigurationS §4.7: a failure with an error code; the code is a recommendation.
+    if (!r.mem.ok && !r.mem.timed_out && r.mem.error != 0)
+        return v.warn("read at highest+1 of 0xFF refused with " + hex(r.mem.error) +
+                      ", not the recommended 0x1082 (MemoryConfigurationTN §2.4.3)");
+    v.fail("read at highest+1 of 0xFF not refused", "a failure with an error code (0x1082)",
+           outcome(r));
 }
 
 }  // namespace
@@ -206,27 +219,36 @@ void stream_read_past_end(CheckRun& run) {
 std::vector<CheckSpec> stream_checks() {
     return {
         {"stream.advertised", Category::kStream,
-         "MessageNetworkS §3.4.3; MemoryConfigurationS §4.14", "cd20",
+         "MessageNetworkS §3.3.7; MemoryConfigurationS §4.14", Strength::kShall,
+         "the PIP Stream bit is set when the node offers stream reads (write-lengths 0x01)", "cd20",
          "PIP Stream bit and Get Configuration Options stream reads (0x1000, or write-lengths "
          "0x01) agree: Options offering stream reads without the PIP bit fails; neither: SKIP",
          stream_advertised},
-        {"stream.cdi-read", Category::kStream, "MemoryConfigurationS §4.6, §4.7", "cd20",
+        {"stream.cdi-read", Category::kStream, "MemoryConfigurationS §4.6, §4.7", Strength::kShall,
+         "a Read Stream returns the space's bytes through a stream", "cd20",
          "Read Stream of 0xFF from 0 to the end (count 0xFFFFFFFF), lcc-conform granting the "
          "largest buffer: the stream's bytes start with the datagram download, byte for byte",
          stream_cdi_read},
-        {"stream.complete", Category::kStream, "StreamTransportS §4.6, §6.4", "",
+        {"stream.complete", Category::kStream, "StreamTransportS §6.4", Strength::kNone,
+         "StreamTransportS is not adopted: its rules WARN", "",
          "(the same read) Read Stream Reply OK, Data Complete, its count (if any) equals the bytes "
          "the stream carried",
          stream_complete},
-        {"stream.buffer-negotiation", Category::kStream, "StreamTransportS §4.2, §6.3", "",
+        {"stream.buffer-negotiation", Category::kStream, "StreamTransportS §4.2, §6.3",
+         Strength::kNone, "StreamTransportS is not adopted: its rules WARN", "",
          "Read Stream of 0xFF granting a 64-byte buffer: the node proposed > 0 and never sends "
          "more than 64 bytes before lcc-conform's Data Proceed",
          stream_buffer_negotiation},
-        {"stream.proceed", Category::kStream, "StreamTransportS §6.3", "",
+        {"stream.proceed", Category::kStream, "StreamTransportS §6.3", Strength::kNone,
+         "StreamTransportS is not adopted: its rules WARN", "",
          "(the same read) each full buffer held 200 ms before the Proceed: no data meanwhile; "
          "the bytes match the datagram download",
          stream_proceed},
-        {"stream.read-past-end", Category::kStream, "MemoryConfigurationS §4.6", "",
+        {"stream.read-past-end", Category::kStream,
+         "MemoryConfigurationS §4.3, §4.7; MemoryConfigurationTN §2.4.3", Strength::kShall,
+         "an error before the stream is set up is a Read Stream Reply failure with an error code; "
+         "0x1082 is recommended (another code WARNs)",
+         "",
          "Read Stream at highest+1 of 0xFF: refused 0x1082 (Read Stream Reply Fail, as a "
          "datagram read); an empty stream WARNs; data or no answer fails; SKIP \"depends on\" "
          "the check that found the highest address too small",

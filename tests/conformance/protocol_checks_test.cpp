@@ -95,49 +95,63 @@ TEST(ProtocolChecksTest, DefaultNodeHasNoFailure) {
 struct FaultCase {
     const char* fault;
     Category category;
+    /// FAIL where a "shall" is broken; WARN where the standard only recommends or is silent.
+    Status flagged = Status::kFail;
 };
 
 class FaultTest : public ::testing::TestWithParam<FaultCase> {};
 
-TEST_P(FaultTest, FailsWithTheFaultsCategory) {
+TEST_P(FaultTest, IsFlaggedInTheFaultsCategory) {
     Bench b({GetParam().fault});
     CheckContext ctx;
     auto results = b.run(ctx);
     const bool caught = std::any_of(results.begin(), results.end(), [](const CheckResult& r) {
-        return r.status == Status::kFail && r.category == GetParam().category;
+        return r.status == GetParam().flagged && r.category == GetParam().category;
     });
+    // A fault that breaks only a recommendation is never a FAIL anywhere.
+    if (GetParam().flagged == Status::kWarn) {
+        for (const CheckResult& r : results) EXPECT_NE(r.status, Status::kFail) << dump(results);
+    }
     EXPECT_TRUE(caught) << GetParam().fault << "\n" << dump(results);
     expect_no_empty_code(results);
 }
 
-INSTANTIATE_TEST_SUITE_P(Faults, FaultTest,
-                         ::testing::Values(FaultCase{"snip-mismatch", Category::kSnip},
-                                           FaultCase{"acdi-version", Category::kAcdi},
-                                           FaultCase{"pip-missing-bit", Category::kPip},
-                                           FaultCase{"cdi-unterminated", Category::kCdi},
-                                           FaultCase{"cdi-padding", Category::kCdi},
-                                           FaultCase{"cdi-invalid", Category::kCdi},
-                                           FaultCase{"readonly-writable", Category::kMemory},
-                                           FaultCase{"read-past-end", Category::kMemory},
-                                           FaultCase{"space-info-short", Category::kMemory},
-                                           FaultCase{"reply-form", Category::kMemory},
-                                           FaultCase{"no-datagram-ack", Category::kDatagram},
-                                           FaultCase{"slow-reply", Category::kMemory},
-                                           FaultCase{"alias-conflict-ignored", Category::kFrame},
-                                           FaultCase{"unsolicited-traffic", Category::kMessage},
-                                           FaultCase{"unknown-space-0x1041", Category::kMemory},
-                                           FaultCase{"readonly-0x1041", Category::kMemory},
-                                           FaultCase{"snip-invalid-utf8", Category::kSnip},
-                                           FaultCase{"stream-wrong-count", Category::kStream},
-                                           FaultCase{"stream-no-complete", Category::kStream},
-                                           FaultCase{"stream-ignore-proceed", Category::kStream},
-                                           FaultCase{"stream-exceed-buffer", Category::kStream}),
-                         [](const auto& info) {
-                             std::string n = info.param.fault;
-                             for (char& c : n)
-                                 if (c == '-') c = '_';
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Faults, FaultTest,
+    ::testing::Values(
+        FaultCase{"snip-mismatch", Category::kSnip}, FaultCase{"acdi-version", Category::kAcdi},
+        FaultCase{"pip-missing-bit", Category::kPip}, FaultCase{"cdi-unterminated", Category::kCdi},
+        FaultCase{"cdi-invalid", Category::kCdi}, FaultCase{"readonly-writable", Category::kMemory},
+        FaultCase{"read-past-end", Category::kMemory},
+        FaultCase{"space-info-short", Category::kAcdi},
+        FaultCase{"reply-form", Category::kMemory, Status::kWarn},
+        FaultCase{"no-datagram-ack", Category::kDatagram, Status::kWarn},
+        FaultCase{"slow-reply", Category::kMemory},
+        FaultCase{"alias-conflict-ignored", Category::kFrame},
+        FaultCase{"unsolicited-traffic", Category::kMessage, Status::kWarn},
+        FaultCase{"unknown-space-0x1041", Category::kMemory, Status::kWarn},
+        FaultCase{"readonly-0x1041", Category::kMemory, Status::kWarn},
+        FaultCase{"snip-invalid-utf8", Category::kSnip},
+        FaultCase{"stream-wrong-count", Category::kStream, Status::kWarn},
+        FaultCase{"stream-no-complete", Category::kStream},
+        FaultCase{"stream-ignore-proceed", Category::kStream, Status::kWarn},
+        FaultCase{"stream-exceed-buffer", Category::kStream, Status::kWarn}),
+    [](const auto& info) {
+        std::string n = info.param.fault;
+        for (char& c : n)
+            if (c == '-') c = '_';
+        return n;
+    });
+
+// Bytes after the CDI's NUL break no rule (the space may be larger than the text).
+TEST(FaultTest, CdiPaddingIsNoFault) {
+    Bench b({"cdi-padding"});
+    CheckContext ctx;
+    auto results = b.run(ctx);
+    for (const auto& r : results) EXPECT_EQ(r.status == Status::kFail, false) << dump(results);
+    ASSERT_NE(find_check(results, "cdi.nul-at-highest"), nullptr);
+    EXPECT_EQ(find_check(results, "cdi.nul-at-highest")->status, Status::kPass) << dump(results);
+}
 
 TEST(FaultTest, TemporaryRejectsAreRetriedAndPass) {
     Bench b({"reject-temporary=3"});
@@ -168,8 +182,8 @@ TEST(ShortReadChecksTest, FieldReadsOnlyNodeIsReadCompletelyAndCaught) {
     for (const char* id : {"memory.short-read.fc", "memory.short-read.fb"}) {
         const CheckResult* c = find_check(shorts, id);
         ASSERT_NE(c, nullptr) << id << "\n" << dump(shorts);
-        EXPECT_EQ(c->status, Status::kFail) << dump(shorts);
-        EXPECT_EQ(c->section, "MemoryConfigurationS §4.5");
+        EXPECT_EQ(c->status, Status::kWarn) << dump(shorts);
+        EXPECT_EQ(c->section, "MemoryConfigurationS §4.5; MemoryConfigurationTN §2.4.5");
         EXPECT_EQ(c->category, Category::kMemory);
         EXPECT_EQ(c->expected,
                   "the count asked: only the end of the space may shorten a Read Reply");
@@ -191,7 +205,7 @@ TEST(ShortReadChecksTest, AShortReplyNothingFollowedIsSettledByAProbe) {
     auto shorts = short_read_checks(*b.session, *node, ctx);
     ASSERT_EQ(shorts.size(), 1u) << dump(shorts);
     EXPECT_EQ(shorts[0].id, "memory.short-read.fc");
-    EXPECT_EQ(shorts[0].status, Status::kFail);
+    EXPECT_EQ(shorts[0].status, Status::kWarn);
     EXPECT_TRUE(ctx.spaces.count(0xFC));  // Space Info was asked
     EXPECT_TRUE(b.session->short_reads().front().continued);
 }
@@ -215,31 +229,31 @@ TEST(ProtocolChecksTest, SnipMismatchNamesTheFieldAndBothValues) {
     EXPECT_EQ(cdi->expected, "\"simnode default\"");  // <model> of scenarios/default.xml
 }
 
-TEST(RejectCodeTest, OtherCodesFailQuotingTheCodeGot) {
+// MemoryConfigurationS asks for a failure with an error code; the codes 0x1081/0x1083 are the
+// technical note's recommendation: another code WARNs, quoting both.
+TEST(RejectCodeTest, OtherCodesWarnQuotingTheCodeGot) {
     Bench b({"unknown-space-0x1041", "readonly-0x1041"});
     CheckContext ctx;
     auto results = b.run(ctx);
     const CheckResult* unknown = find_check(results, "memory.unknown-space");
     ASSERT_NE(unknown, nullptr);
-    EXPECT_EQ(unknown->status, Status::kFail);
-    EXPECT_NE(unknown->message.find("refused with 0x1041; the standard gives 0x1081"),
+    EXPECT_EQ(unknown->status, Status::kWarn);
+    EXPECT_NE(unknown->message.find("refused with 0x1041, not the recommended 0x1081"),
               std::string::npos)
         << unknown->message;
-    EXPECT_EQ(unknown->seen, "0x1041");
     std::vector<std::string> readonly;
     for (const auto& r : results)
         if (r.id.starts_with("memory.readonly-refused.")) readonly.push_back(r.message);
     ASSERT_EQ(readonly.size(), 2u) << dump(results);
     EXPECT_EQ(readonly[0],
-              "write to read-only space 255 refused with 0x1041; the standard gives "
-              "0x1083");
+              "write to read-only space 0xFF refused with 0x1041, not the recommended 0x1083 "
+              "(MemoryConfigurationTN §2.4.3)");
     EXPECT_EQ(readonly[1],
-              "write to read-only space 252 refused with 0x1041; the standard gives "
-              "0x1083");
+              "write to read-only space 0xFC refused with 0x1041, not the recommended 0x1083 "
+              "(MemoryConfigurationTN §2.4.3)");
     for (const auto& r : results) {
-        if (r.id.starts_with("memory.readonly-refused.")) {
-            EXPECT_EQ(r.status, Status::kFail);
-        }
+        EXPECT_NE(r.status, Status::kFail) << dump(results);
+        if (r.id.starts_with("memory.readonly-refused.")) EXPECT_EQ(r.status, Status::kWarn);
     }
 }
 
@@ -250,22 +264,21 @@ TEST(RejectCodeTest, ReadPastEndQuotesWhatCame) {
     const CheckResult* past = find_check(results, "memory.read-past-end.ff");
     ASSERT_NE(past, nullptr);
     EXPECT_EQ(past->status, Status::kFail);
-    EXPECT_NE(past->message.find("past the end of space 0xFF, returned 8 bytes; the standard "
-                                 "gives 0x1082"),
+    EXPECT_NE(past->message.find("past the end of space 0xFF, returned 8 bytes; it must fail "
+                                 "with an error code (0x1082 recommended)"),
               std::string::npos)
         << past->message;
 }
 
-TEST(RejectCodeTest, ARejectedLockWarnsWithItsCode) {
+// Lock/Reserve is optional: "not implemented" (0x1041) is a SKIP quoting the code.
+TEST(RejectCodeTest, ANotImplementedLockSkipsWithItsCode) {
     Bench b({"lock-rejected"});
     CheckContext ctx;
     auto results = b.run(ctx);
     const CheckResult* lock = find_check(results, "memory.lock");
     ASSERT_NE(lock, nullptr);
-    EXPECT_EQ(lock->status, Status::kWarn);
-    EXPECT_EQ(lock->message,
-              "Lock/Reserve rejected with 0x1041 (optional command; lcc-conform writes without the "
-              "lock)");
+    EXPECT_EQ(lock->status, Status::kSkip);
+    EXPECT_EQ(lock->message, "not implemented (0x1041): Lock/Reserve is optional");
     Bench good;
     CheckContext good_ctx;
     EXPECT_EQ(find_check(good.run(good_ctx), "memory.lock")->status, Status::kPass);
@@ -355,9 +368,11 @@ TEST(ProtocolChecksTest, AFailureWithoutACodeSaysWhatHappened) {
     ASSERT_NE(read, nullptr);
     EXPECT_EQ(read->status, Status::kFail);
     EXPECT_EQ(read->seen, "no data");
+    // Get Configuration Options is optional: a rejection says so, quoting the code.
     const CheckResult* options = find_check(results, "memory.config-options");
     ASSERT_NE(options, nullptr);
-    EXPECT_EQ(options->seen, "Datagram Rejected 0x1041");
+    EXPECT_EQ(options->status, Status::kSkip);
+    EXPECT_NE(options->message.find("rejected with 0x1041"), std::string::npos) << options->message;
     expect_no_empty_code(results);
 }
 
@@ -383,7 +398,7 @@ TEST(ShortReadChecksTest, SpaceInfoSettlesAShortReplyNothingElseCould) {
     auto inside = short_read_with_highest(100);
     ASSERT_EQ(inside.size(), 1u) << dump(inside);
     EXPECT_EQ(inside[0].id, "memory.short-read.fd");
-    EXPECT_EQ(inside[0].status, Status::kFail) << dump(inside);
+    EXPECT_EQ(inside[0].status, Status::kWarn) << dump(inside);
     auto at_end = short_read_with_highest(0);  // a 1-byte space: the reply was whole
     ASSERT_EQ(at_end.size(), 1u) << dump(at_end);
     EXPECT_EQ(at_end[0].status, Status::kPass) << dump(at_end);

@@ -167,6 +167,14 @@ inline std::pair<int, std::string> run_program(const std::string& program,
     return {child->wait(), child->output()};
 }
 
+/// run_program() with the program's stderr in the output too (through /bin/sh).
+inline std::pair<int, std::string> run_program_with_stderr(const std::string& program,
+                                                           const std::vector<std::string>& args) {
+    std::string command = "exec '" + program + "'";
+    for (const auto& a : args) command += " '" + a + "'";
+    return run_program("/bin/sh", {"-c", command + " 2>&1"});
+}
+
 /// A fresh empty directory under the system temp directory, removed when destroyed.
 class TempDir {
 public:

@@ -107,6 +107,74 @@ TEST(LccConformDiscovery, FourConcurrentReadOnlyRunsAllPass) {
     }
 }
 
+// Four runs without --node (two CI jobs, a developer and CI): each checks the one simnode node and
+// lists the other runs' tool nodes as lcc-conform runs; none checks another (that gave 11-12
+// FAILs each and timeouts).
+TEST(LccConformDiscovery, FourConcurrentRunsWithoutNodeCheckTheNodeAndNotEachOther) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    std::vector<std::unique_ptr<Child>> runs;
+    for (int i = 0; i < 4; ++i) {
+        runs.push_back(Child::spawn(LCC_CONFORM_PATH,
+                                    {"--connect", sim.connect(), "--read-only", "--json",
+                                     (out.path() / ("r" + std::to_string(i) + ".json")).string()}));
+        ASSERT_TRUE(runs.back());
+        // Later runs start while the earlier ones are on the segment.
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    }
+    std::size_t listed = 0;
+    for (int i = 0; i < 4; ++i) {
+        runs[i]->wait_line("\x01never", milliseconds(90000));
+        ASSERT_TRUE(runs[i]->wait_for(milliseconds(90000)));
+        EXPECT_EQ(runs[i]->wait(), 0) << failures(runs[i]->output()) << runs[i]->output();
+        const auto j = read_report(out.path() / ("r" + std::to_string(i) + ".json"));
+        ASSERT_EQ(j["nodes"].size(), 1u) << runs[i]->output();
+        EXPECT_EQ(j["nodes"][0]["id"], kNode);
+        for (const auto& id : j["run"]["other_runs"])
+            EXPECT_TRUE(id.get<std::string>().starts_with("05.01.01.01.3F.")) << id;
+        listed += j["run"]["other_runs"].size();
+        EXPECT_EQ(runs[i]->output().find("05.01.01.01.3F.") != std::string::npos,
+                  !j["run"]["other_runs"].empty());
+    }
+    EXPECT_GT(listed, 0u) << "the runs saw each other";
+}
+
+// A node that is no configurable node (a throttle) on the segment gets the protocol checks a node
+// of any kind owes, no FAIL, and a line saying why it got no more.
+TEST(LccConformDiscovery, ANonConfigurableNodeGetsTheShortCheckAndNoFailure) {
+    Simnode sim(source_path("scenarios/default.ini"));
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    TempDir images("lcc-conform-discovery-throttle");
+    auto throttle = Child::spawn(
+        SIMNODE_PATH, {"--scenario", source_path("scenarios/throttle.ini").string(), "--connect",
+                       sim.connect(), "--image-dir", images.str(), "--run-for", "120"});
+    ASSERT_TRUE(throttle);
+    ASSERT_TRUE(throttle->wait_line("simnode: 1 node(s) initialized", milliseconds(10000)));
+    const std::string json = (out.path() / "r.json").string();
+    const auto [code, text] =
+        conform({"--connect", sim.connect(), "--read-only", "--json", json}, milliseconds(90000));
+    EXPECT_EQ(code, 0) << failures(text) << text;
+    EXPECT_NE(text.find("not a configurable node (its PIP has neither Memory Configuration nor "
+                        "CDI): checked for frame, message, SNIP, PIP and events only"),
+              std::string::npos)
+        << text;
+    EXPECT_NE(text.find("summary of 2 node(s):"), std::string::npos) << text;
+    const auto j = read_report(json);
+    ASSERT_EQ(j["nodes"].size(), 2u);
+    const auto& t = j["nodes"][1];
+    EXPECT_EQ(t["id"], "05.01.01.01.22.40");
+    EXPECT_TRUE(t["scope"].get<std::string>().starts_with("protocol only")) << t["scope"];
+    for (const auto& c : t["checks"]) {
+        const std::string cat = c["category"];
+        EXPECT_TRUE(cat == "frame" || cat == "message" || cat == "snip" || cat == "pip" ||
+                    cat == "events")
+            << c["id"];
+        EXPECT_NE(c["status"], "FAIL") << c["id"] << ": " << c["message"];
+    }
+}
+
 TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTheLock) {
     Simnode sim(source_path("scenarios/default.ini"));
     ASSERT_NE(sim.port, 0);
@@ -128,6 +196,52 @@ TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTh
     }
     EXPECT_NE(all.find("locked by 05.01.01.01.3F."), std::string::npos) << all;
     EXPECT_EQ(settled_images(sim.images.path(), before), before);
+}
+
+// A whole --thorough --reboot run on a bus paced at CAN speed: the windows wait for the frames
+// queued ahead (2,047 standard frames take seconds at 125 kbit/s), so every check runs and none
+// is skipped for a node that only seemed silent (29-30 were, and the run still exited 0).
+void expect_every_check_runs_at_can_speed(const std::string& scenario, const std::string& node) {
+    Simnode sim(source_path(scenario), {"--bitrate", "125000"});
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    const std::string json = (out.path() / "r.json").string();
+    const auto [code, text] =
+        conform({"--connect", sim.connect(), "--node", node, "--thorough", "--reboot", "--json",
+                 json, "--backup", (out.path() / "b.txt").string()},
+                milliseconds(180000));
+    EXPECT_EQ(code, 0) << failures(text) << text;
+    EXPECT_EQ(text.find("stopped answering"), std::string::npos) << text;
+    const auto j = read_report(json);
+    ASSERT_EQ(j["nodes"].size(), 1u) << text;
+    EXPECT_FALSE(j["nodes"][0]["incomplete"].get<bool>()) << text;
+    EXPECT_EQ(j["nodes"][0]["summary"]["fail"], 0) << text;
+}
+
+TEST(LccConformDiscovery, AtCanSpeedEveryCheckOfTheDefaultNodeRuns) {
+    expect_every_check_runs_at_can_speed("scenarios/default.ini", kNode);
+}
+
+TEST(LccConformDiscovery, AtCanSpeedEveryCheckOfTheIoBoardRuns) {
+    expect_every_check_runs_at_can_speed("scenarios/io-board.ini", "05.01.01.01.22.10");
+}
+
+// A node that really goes silent (it dies on a user name it accepted, abort-on-value): the checks
+// it missed make the run incomplete, exit >= 1, never a green run.
+TEST(LccConformDiscovery, ANodeThatReallyGoesSilentMakesTheRunIncomplete) {
+    Simnode sim(source_path("scenarios/dies-on-user-name.ini"), {"--bitrate", "125000"});
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    const std::string json = (out.path() / "r.json").string();
+    const auto [code, text] =
+        conform({"--connect", sim.connect(), "--node", kNode, "--write-protected", "--node-wait",
+                 "2", "--json", json, "--backup", (out.path() / "b.txt").string()},
+                milliseconds(180000));
+    EXPECT_GE(code, 1) << text;
+    const auto j = read_report(json);
+    ASSERT_EQ(j["nodes"].size(), 1u) << text;
+    EXPECT_TRUE(j["nodes"][0]["incomplete"].get<bool>()) << text;
+    EXPECT_FALSE(j["nodes"][0]["incomplete_reasons"].empty()) << text;
 }
 
 // Valid JSON with an "error", and JUnit whose <error> names it.

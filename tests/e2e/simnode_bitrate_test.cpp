@@ -158,9 +158,7 @@ TEST(SimnodeBitrate, AnAnswerCostsBothFrameTimesOnTopOfTheLatency) {
 }
 
 std::pair<int, std::string> run_with_stderr(const std::vector<std::string>& args) {
-    std::string command = "exec '" + std::string(SIMNODE_PATH) + "'";
-    for (const auto& a : args) command += " '" + a + "'";
-    return run_program("/bin/sh", {"-c", command + " 2>&1"});
+    return run_program_with_stderr(SIMNODE_PATH, args);
 }
 
 TEST(SimnodeBitrate, ABadValueIsAUsageError) {

@@ -85,9 +85,10 @@ TEST(FrameBusChecksTest, AmeBit28FailsOnANodeThatStopped) {
     EXPECT_EQ(r[0].status, Status::kFail) << r[0].message;
 }
 
-TEST(FrameBusChecksTest, CapacityFailsWhenBurstsDropAddressedMessages) {
+// No clause sets a throughput a node must take: a dropped Verify after a burst is a WARN.
+TEST(FrameBusChecksTest, CapacityWarnsWhenBurstsDropAddressedMessages) {
     const CheckResult r = one({"burst-drops"}, "frame.capacity");
-    EXPECT_EQ(r.status, Status::kFail);
+    EXPECT_EQ(r.status, Status::kWarn);
     for (const char* variant :
          {"global Verify Node ID", "2-frame messages to another node", "Identify Consumer"})
         EXPECT_NE(r.message.find(variant), std::string::npos) << r.message;

@@ -85,7 +85,8 @@ TEST(MessageAddressingChecksTest, DefaultNodePassesQuickly) {
     EXPECT_LE(took, 800ms);
 }
 
-TEST(MessageAddressingChecksTest, MessagesToAnotherNodeAnsweredFail) {
+// No clause forbids answering messages addressed to another node: noted as a WARN.
+TEST(MessageAddressingChecksTest, MessagesToAnotherNodeAnsweredWarn) {
     SimBench b;
     auto node = b.start();
     ASSERT_TRUE(node);
@@ -97,8 +98,9 @@ TEST(MessageAddressingChecksTest, MessagesToAnotherNodeAnsweredFail) {
          {"message.verify-other-silent", "message.pip-other-silent", "message.oir-other-silent"}) {
         const CheckResult* r = testing::find_check(results, id);
         ASSERT_NE(r, nullptr) << id;
-        EXPECT_EQ(r->status, Status::kFail) << id << ": " << r->message;
+        EXPECT_EQ(r->status, Status::kWarn) << id << ": " << r->message;
         EXPECT_NE(r->seen.find("from the node"), std::string::npos) << r->seen;
+        EXPECT_NE(r->message.find("not a FAIL"), std::string::npos) << r->message;
     }
     EXPECT_EQ(testing::find_check(results, "message.verify-other-silent")->seen,
               "Verified Node ID from the node");
@@ -116,7 +118,8 @@ TEST(MessageAddressingChecksTest, ReservedPipByteSetFails) {
     EXPECT_EQ(r.seen, "byte 4 is 0x01");
 }
 
-TEST(MessageAddressingChecksTest, SimpleBitDisagreeingWithVerifiedFails) {
+// MessageNetworkS §4 is informative: a simple bit that disagrees is a WARN.
+TEST(MessageAddressingChecksTest, SimpleBitDisagreeingWithVerifiedWarns) {
     NodeStackConfig c = fake_config();
     c.builtins.protocol_support = false;  // the test answers the inquiry
     FakeBench f(c);
@@ -133,7 +136,7 @@ TEST(MessageAddressingChecksTest, SimpleBitDisagreeingWithVerifiedFails) {
     ASSERT_TRUE(node);
     const CheckResult r =
         one(*f.session, *node, checks::message_addressing_checks(), "message.pip-simple-bit");
-    EXPECT_EQ(r.status, Status::kFail) << r.message;
+    EXPECT_EQ(r.status, Status::kWarn) << r.message;
     EXPECT_EQ(r.seen, "Verified Node ID (0x0170)");
 }
 
@@ -188,14 +191,16 @@ TEST(DuplicateNodeIdCheckTest, PcerThenSilenceWarns) {
     EXPECT_NE(r.message.find("then no answer"), std::string::npos) << r.message;
 }
 
-TEST(DuplicateNodeIdCheckTest, SilenceWithoutReportFails) {
+// MessageNetworkS §3.5.4 asks for an indication by whatever means the node has: going silent
+// is allowed, so a WARN.
+TEST(DuplicateNodeIdCheckTest, SilenceWithoutReportWarns) {
     SimBench b;
     auto node = b.start();
     ASSERT_TRUE(node);
     b.dut->stack().go_silent(b.net.now());
     const CheckResult r =
         one(*b.session, *node, checks::final_checks(), "message.duplicate-node-id");
-    EXPECT_EQ(r.status, Status::kFail) << r.message;
+    EXPECT_EQ(r.status, Status::kWarn) << r.message;
 }
 
 }  // namespace

@@ -65,22 +65,25 @@ TEST(StreamChecksTest, NodeWithoutStreamsAndNoStreamOptionSkip) {
 struct FaultCheck {
     const char* fault;
     const char* check;
+    /// StreamTransportS is a preliminary draft: its rules WARN; MemoryConfigurationS §4.6/§4.7
+    /// (the read itself) FAILs.
+    Status flagged = Status::kWarn;
 };
 
 class StreamFaultTest : public ::testing::TestWithParam<FaultCheck> {};
 
-TEST_P(StreamFaultTest, NamedCheckFails) {
+TEST_P(StreamFaultTest, NamedCheckFlagsIt) {
     SimBench b({GetParam().fault});
     const auto r = run_streams(b);
     ASSERT_TRUE(r.count(GetParam().check)) << dump(r);
-    EXPECT_EQ(r.at(GetParam().check).status, Status::kFail) << dump(r);
+    EXPECT_EQ(r.at(GetParam().check).status, GetParam().flagged) << dump(r);
     EXPECT_EQ(r.at("stream.advertised").status, Status::kPass) << dump(r);
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Faults, StreamFaultTest,
     ::testing::Values(FaultCheck{"stream-wrong-count", "stream.complete"},
-                      FaultCheck{"stream-no-complete", "stream.cdi-read"},
+                      FaultCheck{"stream-no-complete", "stream.cdi-read", Status::kFail},
                       FaultCheck{"stream-no-complete", "stream.complete"},
                       FaultCheck{"stream-ignore-proceed", "stream.proceed"},
                       FaultCheck{"stream-ignore-proceed", "stream.buffer-negotiation"},
