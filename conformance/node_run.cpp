@@ -66,7 +66,8 @@ std::string restore_line(const RestoreOutcome& outcome, const std::vector<PastEn
     }
     return "node memory identical to before except " + std::to_string(total) +
            " unrestorable byte" + (total == 1 ? "" : "s") + " past the end: " + where +
-           ", stored by the node where no tool can read them back or restore them (" + counts + ")";
+           ", which the node may keep where no tool can read them back or restore them (" + counts +
+           ")";
 }
 
 bool inside(const RangeRequest& outer, std::uint8_t space, std::uint32_t address,
