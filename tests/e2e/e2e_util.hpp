@@ -2,6 +2,7 @@
 // "simnode: listening on HOST:PORT" line), and a tool-side node joining its TCP hub.
 #pragma once
 
+#include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -167,12 +168,26 @@ inline std::pair<int, std::string> run_program(const std::string& program,
     return {child->wait(), child->output()};
 }
 
-/// run_program() with the program's stderr in the output too (through /bin/sh).
-inline std::pair<int, std::string> run_program_with_stderr(const std::string& program,
-                                                           const std::vector<std::string>& args) {
-    std::string command = "exec '" + program + "'";
-    for (const auto& a : args) command += " '" + a + "'";
-    return run_program("/bin/sh", {"-c", command + " 2>&1"});
+/// Runs program with its stderr merged into stdout (what a user sees in a terminal or a log).
+inline std::pair<int, std::string> run_merged(const std::string& program,
+                                              const std::vector<std::string>& args,
+                                              milliseconds timeout = milliseconds(60000)) {
+    std::vector<std::string> sh = {"-c", "exec \"$0\" \"$@\" 2>&1", program};
+    sh.insert(sh.end(), args.begin(), args.end());
+    return run_program("/bin/sh", sh, timeout);
+}
+
+/// A loopback TCP port nothing listens on (bound, then closed again).
+inline std::uint16_t closed_port() {
+    const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof addr;
+    const bool bound = ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0 &&
+                       ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0;
+    ::close(fd);
+    return bound ? ntohs(addr.sin_port) : 1;  // port 1: nothing listens there either
 }
 
 /// A fresh empty directory under the system temp directory, removed when destroyed.

@@ -158,7 +158,7 @@ TEST(SimnodeBitrate, AnAnswerCostsBothFrameTimesOnTopOfTheLatency) {
 }
 
 std::pair<int, std::string> run_with_stderr(const std::vector<std::string>& args) {
-    return run_program_with_stderr(SIMNODE_PATH, args);
+    return run_merged(SIMNODE_PATH, args);
 }
 
 TEST(SimnodeBitrate, ABadValueIsAUsageError) {

@@ -2,11 +2,6 @@
 // scenarios (every fault has one) and a clean stop on SIGTERM.
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -38,18 +33,9 @@ TEST(SimnodeCli, BadInputIsAUsageError) {
 // A --connect hub that is not there at the start is a mistake said at once, not a silent wait.
 TEST(SimnodeCli, ConnectingToNoHubIsOneLineAndExitTwo) {
     TempDir images("simnode-no-hub");
-    // A port nothing listens on: bind one, note it, close it.
-    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-    socklen_t len = sizeof a;
-    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
-    ::close(fd);
-    const std::string where = "127.0.0.1:" + std::to_string(ntohs(a.sin_port));
+    const std::string where = "127.0.0.1:" + std::to_string(closed_port());
     const auto started = std::chrono::steady_clock::now();
-    const auto [code, out] = run_program_with_stderr(
+    const auto [code, out] = run_merged(
         SIMNODE_PATH,
         {"--node-id", "05.01.01.01.22.78", "--cdi", source_path("scenarios/default.xml").string(),
          "--image-dir", images.str(), "--connect", where, "--run-for", "30"});
