@@ -55,12 +55,12 @@ struct FaultSet {
     /// Every restart factory-resets the writable spaces while the watched int differs from its
     /// value at creation.
     bool factory_reset_on_version_change = false;
-    bool new_alias_on_reboot = false;       ///< every restart reserves a different alias
-    bool field_reads_only = false;          ///< 251/252 reads return one ACDI field (or 1 byte)
-    bool unknown_space_0x1041 = false;      ///< read/write of an unknown space rejected 0x1041
-    bool readonly_0x1041 = false;           ///< write to a read-only space rejected 0x1041
-    bool read_past_end_garbage = false;     ///< 0xFD read at/after the end returns 0xA5 bytes
-    bool write_past_end_spills = false;     ///< crossing writes accepted; 251's tail lands in 253
+    bool new_alias_on_reboot = false;    ///< every restart reserves a different alias
+    bool field_reads_only = false;       ///< 251/252 reads return one ACDI field (or 1 byte)
+    bool unknown_space_0x1041 = false;   ///< read/write of an unknown space rejected 0x1041
+    bool readonly_0x1041 = false;        ///< write to a read-only space rejected 0x1041
+    bool read_past_end_garbage = false;  ///< 0xFD read at/after the end returns 0xA5 bytes
+    bool write_past_end_spills = false;  ///< crossing writes accepted; 251's tail lands in 253
     /// Crossing writes accepted; the bytes past the end are kept (on disk) where no read reaches.
     bool write_past_end_grows = false;
     bool highest_unreadable = false;        ///< 251/253 Space Info highest = size (one too high)

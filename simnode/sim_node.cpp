@@ -420,10 +420,9 @@ void SimNode::abort_node(std::chrono::milliseconds silence) {
     answer_delay_.reset();
     const std::uint32_t generation = boot_generation_;
     stack_.go_silent(stack_.now());
-    stack_.schedule(stack_.now() + silence,
-                    [this, generation](TimePoint now) {
-                        if (generation == boot_generation_) power_up(now);
-                    });
+    stack_.schedule(stack_.now() + silence, [this, generation](TimePoint now) {
+        if (generation == boot_generation_) power_up(now);
+    });
 }
 
 void SimNode::factory_reset() {

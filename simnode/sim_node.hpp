@@ -178,8 +178,8 @@ private:
     std::uint64_t replies_ = 0;          // numbers replies for slow-reply
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;
-    std::uint32_t stored_writes_ = 0;  // counts writes for reboot-on-write
-    bool rebooted_on_write_ = false;   // reboot-on-write fires once per process
+    std::uint32_t stored_writes_ = 0;    // counts writes for reboot-on-write
+    bool rebooted_on_write_ = false;     // reboot-on-write fires once per process
     bool silence_after_answer_ = false;  // mask-ignored: go silent once this answer is out
     std::uint8_t watched_space_ = 253;
     std::optional<std::uint32_t> watched_address_;  // see watched_address()

@@ -471,6 +471,19 @@ std::optional<std::uint64_t> unknown_event(const EventAnswers& a) {
     return std::nullopt;
 }
 
+// §6.3/§6.4 owe an answer for the node's own events (a missing one FAILs); none forbids
+// answering another's (WARN).
+void judge_identify_answers(Verdict& out, const std::vector<std::string>& wrong,
+                            std::vector<std::string> parts) {
+    const bool missing = std::any_of(wrong.begin(), wrong.end(), [](const std::string& w) {
+        return w.find("(not the node's)") == std::string::npos;
+    });
+    const std::string first = wrong.front() + (wrong.size() > 1 ? " (and more: see details)" : "");
+    if (!missing) return out.warn(first, std::move(parts));
+    out.add(Status::kFail, first, "Identified for the node's events", wrong.front(),
+            std::move(parts));
+}
+
 void identify_producer_consumer(CheckRun& run) {
     Verdict out = run.out();
     const EventAnswers a = reference_answers(run);
@@ -507,13 +520,7 @@ void identify_producer_consumer(CheckRun& run) {
     std::string all;
     for (const std::string& p : parts) all += (all.empty() ? "" : "; ") + p;
     if (wrong.empty()) return out.pass(all);
-    // §6.3/§6.4 owe an answer for the node's own events; none forbids answering another.
-    const bool missing = std::find_if(wrong.begin(), wrong.end(), [](const std::string& w) {
-                             return w.find("(not the node's)") == std::string::npos;
-                         }) != wrong.end();
-    out.add(missing ? Status::kFail : Status::kWarn,
-            wrong.front() + (wrong.size() > 1 ? " (and more: see details)" : ""),
-            missing ? "Identified for the node's events" : "", missing ? wrong.front() : "", parts);
+    judge_identify_answers(out, wrong, std::move(parts));
 }
 
 // ---- events.follow-write (write phase) ----

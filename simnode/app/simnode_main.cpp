@@ -404,9 +404,9 @@ private:
         if (client_->connected()) return true;
         const std::string why = client_->last_error();
         std::cerr << "simnode: cannot connect to hub " << where << ": "
-                  << (why.empty() ? "no answer within " +
-                                        std::to_string(kFirstConnectWait.count()) + " s"
-                                  : why)
+                  << (why.empty()
+                          ? "no answer within " + std::to_string(kFirstConnectWait.count()) + " s"
+                          : why)
                   << "\n";
         return false;
     }

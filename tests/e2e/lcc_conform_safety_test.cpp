@@ -5,6 +5,7 @@
 // command works afterwards; the image files are byte-identical whenever the run says so.
 #include <gtest/gtest.h>
 
+#include <regex>
 #include <sstream>
 
 #include "e2e/conform_util.hpp"
@@ -183,22 +184,22 @@ TEST(LccConformSafety, AMaskIgnoringNodeSilentFor40sKeepsTheBackupAndTheCommandW
 // Every "write SP @0xADDR xN" of simnode's trace that runs past the end of its space, whose size
 // is its image file's.
 std::vector<std::string> crossing_writes(const fs::path& trace, const fs::path& images) {
-    std::map<unsigned, std::uintmax_t> size;
+    std::map<unsigned long, std::uintmax_t> size;
+    const std::regex image(R"(space-([0-9]+)\.img)");
     for (const auto& e : fs::recursive_directory_iterator(images)) {
-        unsigned sp = 0;
-        if (std::sscanf(e.path().filename().c_str(), "space-%u.img", &sp) == 1 &&
-            e.path().extension() == ".img")
-            size[sp] = fs::file_size(e.path());
+        std::smatch m;
+        const std::string name = e.path().filename().string();
+        if (std::regex_match(name, m, image)) size[std::stoul(m[1])] = fs::file_size(e.path());
     }
+    const std::regex write(R"(\| write ([0-9A-F]{2}) @0x([0-9A-F]+) x([0-9]+))");
     std::vector<std::string> out;
     std::istringstream in(read_text(trace));
     for (std::string line; std::getline(in, line);) {
-        const auto at = line.find("| write ");
-        unsigned sp = 0, address = 0, count = 0;
-        if (at == std::string::npos ||
-            std::sscanf(line.c_str() + at, "| write %x @0x%x x%u", &sp, &address, &count) != 3)
-            continue;
-        if (size.count(sp) && address + count > size[sp]) out.push_back(line);
+        std::smatch m;
+        if (!std::regex_search(line, m, write)) continue;
+        const unsigned long sp = std::stoul(m[1], nullptr, 16);
+        const unsigned long end = std::stoul(m[2], nullptr, 16) + std::stoul(m[3]);
+        if (size.count(sp) && end > size[sp]) out.push_back(line);
     }
     return out;
 }

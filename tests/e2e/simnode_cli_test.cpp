@@ -35,10 +35,10 @@ TEST(SimnodeCli, ConnectingToNoHubIsOneLineAndExitTwo) {
     TempDir images("simnode-no-hub");
     const std::string where = "127.0.0.1:" + std::to_string(closed_port());
     const auto started = std::chrono::steady_clock::now();
-    const auto [code, out] = run_merged(
-        SIMNODE_PATH,
-        {"--node-id", "05.01.01.01.22.78", "--cdi", source_path("scenarios/default.xml").string(),
-         "--image-dir", images.str(), "--connect", where, "--run-for", "30"});
+    const auto [code, out] =
+        run_merged(SIMNODE_PATH, {"--node-id", "05.01.01.01.22.78", "--cdi",
+                                  source_path("scenarios/default.xml").string(), "--image-dir",
+                                  images.str(), "--connect", where, "--run-for", "30"});
     EXPECT_EQ(code, 2) << out;
     EXPECT_NE(out.find("simnode: cannot connect to hub " + where + ": connection refused"),
               std::string::npos)
