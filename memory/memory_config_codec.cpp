@@ -1,9 +1,9 @@
 #include "memory/memory_config_codec.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <type_traits>
 
+#include "base/hex.hpp"
 #include "memory/snip.hpp"
 
 namespace olcb::memory {
@@ -464,16 +464,13 @@ private:
 
 // Description ----------------------------------------------------------------------------------
 
-std::string hex(std::uint64_t value, int digits) {
-    char buf[24];
-    std::snprintf(buf, sizeof buf, "%0*llX", digits, static_cast<unsigned long long>(value));
-    return buf;
-}
+using base::hex;
+using base::hex_digits;
 
 std::string node_id_text(std::uint64_t id) {
     std::string out;
     for (int i = 5; i >= 0; --i) {
-        out += hex((id >> (8 * i)) & 0xFF, 2);
+        out += hex_digits((id >> (8 * i)) & 0xFF, 2);
         if (i != 0) out += '.';
     }
     return out;
@@ -485,7 +482,7 @@ std::string quoted(std::string_view text) {
     for (const char c : text) {
         const auto byte = static_cast<unsigned char>(c);
         if (byte < 0x20 || byte == 0x7F || c == '"' || c == '\\') {
-            out += "\\x" + hex(byte, 2);
+            out += "\\x" + hex_digits(byte, 2);
         } else {
             out += c;
         }
@@ -494,14 +491,14 @@ std::string quoted(std::string_view text) {
 }
 
 std::string error_text(ErrorCode error) {
-    std::string out = " 0x" + hex(to_u16(error), 4);
+    std::string out = " " + hex(to_u16(error), 4);
     const std::string_view name = error_name(error);
     if (!name.empty()) out += " " + std::string(name);
     return out;
 }
 
 std::string where(Space space, std::uint32_t address) {
-    return " " + hex(to_u8(space), 2) + " @0x" + hex(address, 8);
+    return " " + hex_digits(to_u8(space), 2) + " @" + hex(address, 8);
 }
 
 std::string form_note(Space space, SpaceForm form) {
@@ -532,13 +529,13 @@ public:
     }
     std::string operator()(const WriteReplyFail& m) const { return failed("write-reply-fail", m); }
     std::string operator()(const ReadStream& m) const {
-        return "read-stream" + where(m.space, m.address) + streams(m.source_stream_id) + " dst 0x" +
+        return "read-stream" + where(m.space, m.address) + streams(m.source_stream_id) + " dst " +
                hex(m.destination_stream_id, 2) + " x" + std::to_string(m.count) +
                form_note(m.space, m.form);
     }
     std::string operator()(const ReadStreamReply& m) const {
         return "read-stream-reply" + where(m.space, m.address) + streams(m.source_stream_id) +
-               " dst 0x" + hex(m.destination_stream_id, 2) + " x" + std::to_string(m.count) +
+               " dst " + hex(m.destination_stream_id, 2) + " x" + std::to_string(m.count) +
                form_note(m.space, m.form);
     }
     std::string operator()(const ReadStreamReplyFail& m) const {
@@ -550,31 +547,32 @@ public:
     }
     std::string operator()(const WriteStreamReply& m) const {
         return "write-stream-reply" + where(m.space, m.address) + streams(m.source_stream_id) +
-               " dst 0x" + hex(m.destination_stream_id, 2) + form_note(m.space, m.form);
+               " dst " + hex(m.destination_stream_id, 2) + form_note(m.space, m.form);
     }
     std::string operator()(const WriteStreamReplyFail& m) const {
         return failed("write-stream-reply-fail", m);
     }
     std::string operator()(const GetConfigOptions&) const { return "get-config-options"; }
     std::string operator()(const ConfigOptionsReply& m) const {
-        std::string out = "config-options cmds 0x" + hex(m.available_commands, 4) + " lengths 0x" +
-                          hex(m.write_lengths, 2) + " spaces " + hex(to_u8(m.highest_space), 2) +
-                          ".." + hex(to_u8(m.lowest_space), 2);
+        std::string out = "config-options cmds " + hex(m.available_commands, 4) + " lengths " +
+                          hex(m.write_lengths, 2) + " spaces " +
+                          hex_digits(to_u8(m.highest_space), 2) + ".." +
+                          hex_digits(to_u8(m.lowest_space), 2);
         if (!m.name.empty()) out += quoted(m.name);
         return out;
     }
     std::string operator()(const GetSpaceInfo& m) const {
-        return "get-space-info " + hex(to_u8(m.space), 2);
+        return "get-space-info " + hex_digits(to_u8(m.space), 2);
     }
     std::string operator()(const SpaceInfoReply& m) const {
-        std::string out = "space-info " + hex(to_u8(m.space), 2) + " present hi 0x" +
+        std::string out = "space-info " + hex_digits(to_u8(m.space), 2) + " present hi " +
                           hex(m.highest_address, 8) + (m.read_only ? " ro" : " rw");
-        if (m.lowest_address) out += " lo 0x" + hex(*m.lowest_address, 8);
+        if (m.lowest_address) out += " lo " + hex(*m.lowest_address, 8);
         if (!m.description.empty()) out += quoted(m.description);
         return out;
     }
     std::string operator()(const SpaceInfoNotPresent& m) const {
-        return "space-info " + hex(to_u8(m.space), 2) + " not present";
+        return "space-info " + hex_digits(to_u8(m.space), 2) + " not present";
     }
     std::string operator()(const Lock& m) const {
         return "lock " + node_id_text(m.node_id) + (m.node_id == 0 ? " (release)" : "");
@@ -588,8 +586,12 @@ public:
     std::string operator()(const UniqueIdReply& m) const {
         return "unique-id-reply x" + std::to_string(m.event_ids.size());
     }
-    std::string operator()(const Freeze& m) const { return "freeze " + hex(to_u8(m.space), 2); }
-    std::string operator()(const Unfreeze& m) const { return "unfreeze " + hex(to_u8(m.space), 2); }
+    std::string operator()(const Freeze& m) const {
+        return "freeze " + hex_digits(to_u8(m.space), 2);
+    }
+    std::string operator()(const Unfreeze& m) const {
+        return "unfreeze " + hex_digits(to_u8(m.space), 2);
+    }
     std::string operator()(const UpdateComplete&) const { return "update-complete"; }
     std::string operator()(const ResetReboot&) const { return "reset-reboot"; }
     std::string operator()(const FactoryReset& m) const {
@@ -598,7 +600,7 @@ public:
     std::string operator()(const EnterBootloader&) const { return "enter-bootloader"; }
 
 private:
-    static std::string streams(std::uint8_t source) { return " src 0x" + hex(source, 2); }
+    static std::string streams(std::uint8_t source) { return " src " + hex(source, 2); }
 
     template <typename M>
     static std::string failed(std::string_view name, const M& m) {
@@ -684,7 +686,7 @@ std::string describe(std::span<const std::uint8_t> payload) {
     std::string out = "invalid memory-config payload: " + std::string(to_string(result.error));
     out += " [";
     const std::size_t shown = std::min<std::size_t>(payload.size(), 8);
-    for (std::size_t i = 0; i < shown; ++i) out += (i ? " " : "") + hex(payload[i], 2);
+    out += base::hex_bytes(payload.first(shown));
     if (payload.size() > shown) out += " ...";
     return out + "]";
 }

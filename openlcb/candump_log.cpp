@@ -2,18 +2,14 @@
 
 #include <cstdio>
 
+#include "base/hex.hpp"
+
 namespace olcb::candump {
 
 namespace {
 
-constexpr char kHex[] = "0123456789ABCDEF";
-
-int hex_value(char c) {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return -1;
-}
+using base::hex_digit;
+using base::hex_value;
 
 // Parses an unsigned decimal of at most `max_digits` digits; the whole view must be digits.
 std::optional<std::uint64_t> parse_decimal(std::string_view s, std::size_t max_digits) {
@@ -96,7 +92,7 @@ std::string format(const CanFrame& frame, std::chrono::microseconds timestamp,
     out.push_back(' ');
     const int digits = frame.extended ? 8 : 3;
     const std::uint32_t id = frame.id & (frame.extended ? 0x1FFFFFFFu : 0x7FFu);
-    for (int i = digits - 1; i >= 0; --i) out.push_back(kHex[(id >> (4 * i)) & 0xF]);
+    out.append(base::hex_digits(id, digits));
     out.push_back('#');
     const std::uint8_t len = frame.len > 8 ? 8 : frame.len;
     if (frame.remote) {
@@ -105,8 +101,8 @@ std::string format(const CanFrame& frame, std::chrono::microseconds timestamp,
         return out;
     }
     for (std::uint8_t i = 0; i < len; ++i) {
-        out.push_back(kHex[frame.data[i] >> 4]);
-        out.push_back(kHex[frame.data[i] & 0xF]);
+        out.push_back(hex_digit(frame.data[i] >> 4));
+        out.push_back(hex_digit(frame.data[i]));
     }
     return out;
 }

@@ -1,28 +1,11 @@
 #include "openlcb/gridconnect.hpp"
 
-#include <array>
+#include "base/hex.hpp"
 
 namespace olcb::gridconnect {
 namespace {
 
-constexpr char kHexDigits[] = "0123456789ABCDEF";
-
-// -1 for non-hex characters; a table keeps parsing branch-light on the hot path.
-constexpr std::array<std::int8_t, 256> make_hex_table() {
-    std::array<std::int8_t, 256> t{};
-    for (auto& v : t) v = -1;
-    for (int i = 0; i < 10; ++i) t['0' + i] = static_cast<std::int8_t>(i);
-    for (int i = 0; i < 6; ++i) {
-        t['A' + i] = static_cast<std::int8_t>(10 + i);
-        t['a' + i] = static_cast<std::int8_t>(10 + i);
-    }
-    return t;
-}
-constexpr auto kHexTable = make_hex_table();
-
-inline int hex_value(char c) {
-    return kHexTable[static_cast<unsigned char>(c)];
-}
+using base::hex_value;
 
 inline bool is_space(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\n';
@@ -41,12 +24,13 @@ std::size_t format_into(const CanFrame& frame, char* buf) {
         buf[n++] = 'S';
         digits = 3;
     }
-    for (int i = digits - 1; i >= 0; --i) buf[n++] = kHexDigits[(frame.id >> (4 * i)) & 0xF];
+    base::put_hex(buf + n, frame.id, digits);
+    n += static_cast<std::size_t>(digits);
     buf[n++] = frame.remote ? 'R' : 'N';
     const std::size_t len = frame.len > 8 ? 8 : frame.len;
     for (std::size_t i = 0; i < len; ++i) {
-        buf[n++] = kHexDigits[frame.data[i] >> 4];
-        buf[n++] = kHexDigits[frame.data[i] & 0xF];
+        buf[n++] = base::hex_digit(frame.data[i] >> 4);
+        buf[n++] = base::hex_digit(frame.data[i]);
     }
     buf[n++] = ';';
     return n;

@@ -4,6 +4,7 @@
 #include <string_view>
 #include <utility>
 
+#include "base/hex.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/gridconnect.hpp"
@@ -14,24 +15,11 @@ namespace olcb {
 
 namespace {
 
-constexpr char kHex[] = "0123456789ABCDEF";
 constexpr std::uint16_t kDatagramKey = to_u16(Mti::kDatagram);
 
-std::string hex_bytes(std::span<const std::uint8_t> bytes) {
-    std::string out;
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-        if (i != 0) out.push_back(' ');
-        out.push_back(kHex[bytes[i] >> 4]);
-        out.push_back(kHex[bytes[i] & 0xF]);
-    }
-    return out;
-}
-
-std::string hex_value(std::uint32_t value, int digits) {
-    std::string out;
-    for (int i = digits - 1; i >= 0; --i) out.push_back(kHex[(value >> (4 * i)) & 0xF]);
-    return out;
-}
+using base::hex;
+using base::hex_bytes;
+using base::hex_digits;
 
 // Concatenates by appending: g++ 12 at -O3 warns falsely (-Wrestrict) on "lit" + std::string&&.
 std::string concat(std::string_view a, std::string_view b, std::string_view c = {}) {
@@ -48,7 +36,7 @@ std::uint16_t be16(std::span<const std::uint8_t> b) {
 std::string mti_text(std::uint16_t mti) {
     const auto name = mti_name(mti);
     if (!name.empty()) return std::string(name);
-    return "MTI 0x" + hex_value(mti, 4);
+    return "MTI " + hex(mti, 4);
 }
 
 // Payload details of a message whose layout the MTI fixes.
@@ -71,8 +59,8 @@ std::string payload_text(std::uint16_t mti, std::span<const std::uint8_t> payloa
         case Mti::kOptionalInteractionRejected:
         case Mti::kTerminateDueToError: {
             if (payload.size() < 2) break;
-            std::string out = " error 0x" + hex_value(be16(payload), 4);
-            if (payload.size() >= 4) out += " MTI 0x" + hex_value(be16(payload.subspan(2)), 4);
+            std::string out = " error " + hex(be16(payload), 4);
+            if (payload.size() >= 4) out += " MTI " + hex(be16(payload.subspan(2)), 4);
             if (payload.size() > 4) out += " [" + hex_bytes(payload.subspan(4)) + "]";
             return out;
         }
@@ -110,7 +98,7 @@ void Monitor::register_datagram_decoder(std::uint8_t content_type, DatagramDecod
 }
 
 std::string Monitor::alias_text(std::uint16_t alias) const {
-    std::string out = hex_value(alias, 3);
+    std::string out = hex_digits(alias, 3);
     if (options_.show_node_ids) {
         if (auto it = node_ids_.find(alias); it != node_ids_.end()) {
             out += concat("(", NodeId(it->second).to_string(), ")");
@@ -175,9 +163,10 @@ std::string Monitor::decode_control(const CanFrame& f) const {
         case can::ControlFrame::kCid6:
         case can::ControlFrame::kCid5:
         case can::ControlFrame::kCid4:
-            return line + can::control_name(kind) + " " + hex_value(can::cid_node_id_bits(f.id), 3);
+            return line + can::control_name(kind) + " " +
+                   hex_digits(can::cid_node_id_bits(f.id), 3);
         case can::ControlFrame::kOther:
-            return line + "control frame 0x" + hex_value(can::content(f.id), 4);
+            return line + "control frame " + hex(can::content(f.id), 4);
         default:
             line += can::control_name(kind);
             if (data.size() == NodeId::kSize) {
