@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "base/hex.hpp"
+#include "base/node_id.hpp"
 #include "memory/snip.hpp"
 
 namespace olcb::memory {
@@ -468,12 +469,7 @@ using base::hex;
 using base::hex_digits;
 
 std::string node_id_text(std::uint64_t id) {
-    std::string out;
-    for (int i = 5; i >= 0; --i) {
-        out += hex_digits((id >> (8 * i)) & 0xFF, 2);
-        if (i != 0) out += '.';
-    }
-    return out;
+    return base::NodeId(id).to_string();
 }
 
 // Control bytes are escaped so a description always stays on one line.

@@ -7,11 +7,11 @@
 #include <deque>
 #include <optional>
 
+#include "base/node_id.hpp"
 #include "openlcb/alias_cache.hpp"
 #include "openlcb/alias_generator.hpp"
 #include "openlcb/can_frame.hpp"
 #include "openlcb/clock.hpp"
-#include "openlcb/node_id.hpp"
 
 namespace olcb {
 

@@ -7,7 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "openlcb/node_id.hpp"
+#include "base/node_id.hpp"
 
 namespace olcb {
 

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "openlcb/node_id.hpp"
+#include "base/node_id.hpp"
 
 namespace olcb {
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <span>
 
+#include "base/node_id.hpp"
 #include "openlcb/can_frame.hpp"
-#include "openlcb/node_id.hpp"
 
 namespace olcb::can {
 

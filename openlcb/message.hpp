@@ -5,8 +5,8 @@
 #include <optional>
 #include <vector>
 
+#include "base/node_id.hpp"
 #include "openlcb/mti.hpp"
-#include "openlcb/node_id.hpp"
 
 namespace olcb {
 

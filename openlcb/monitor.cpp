@@ -5,11 +5,11 @@
 #include <utility>
 
 #include "base/hex.hpp"
+#include "base/node_id.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/mti.hpp"
-#include "openlcb/node_id.hpp"
 
 namespace olcb {
 

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "base/node_id.hpp"
 #include "openlcb/addressed_framing.hpp"
 #include "openlcb/alias_allocator.hpp"
 #include "openlcb/alias_cache.hpp"
@@ -19,7 +20,6 @@
 #include "openlcb/clock.hpp"
 #include "openlcb/datagram_transport.hpp"
 #include "openlcb/message.hpp"
-#include "openlcb/node_id.hpp"
 #include "openlcb/pip.hpp"
 #include "openlcb/stream_transport.hpp"
 

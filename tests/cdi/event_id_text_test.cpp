@@ -43,12 +43,13 @@ TEST(EventIdText, ErrorsSayWhatIsWrong) {
     EXPECT_EQ(error_of(""), "empty event ID");
     EXPECT_TRUE(contains(error_of("05.01.01.01.22.00.00"), "has 7 groups; expected 8"));
     EXPECT_TRUE(contains(error_of("05.01.01.01.22.00.00.01.02"), "has 9 groups; expected 8"));
-    EXPECT_TRUE(contains(error_of("05.01..01.22.00.00.01"), "empty group 3"));
-    EXPECT_TRUE(contains(error_of("05.01.01.01.22.00.00."), "empty group 8"));
-    EXPECT_TRUE(contains(error_of(".01.01.01.22.00.00.01"), "empty group 1"));
-    EXPECT_TRUE(contains(error_of("5.01.01.01.22.00.00.01"), "group 1"));
-    EXPECT_TRUE(contains(error_of("5.01.01.01.22.00.00.01"), "expected exactly 2"));
-    EXPECT_TRUE(contains(error_of("05.01.01.01.22.00.00.001"), "group 8"));
+    EXPECT_EQ(error_of("05.01..01.22.00.00.01"),
+              "byte 3 of event ID '05.01..01.22.00.00.01' is empty");
+    EXPECT_TRUE(contains(error_of("05.01.01.01.22.00.00."), "byte 8 of event ID"));
+    EXPECT_TRUE(contains(error_of(".01.01.01.22.00.00.01"), "byte 1 of event ID"));
+    EXPECT_EQ(error_of("5.01.01.01.22.00.00.01"),
+              "byte 1 of event ID '5.01.01.01.22.00.00.01' has 1 hex digit; expected exactly 2");
+    EXPECT_TRUE(contains(error_of("05.01.01.01.22.00.00.001"), "byte 8 of event ID"));
     EXPECT_TRUE(contains(error_of("05.0G.01.01.22.00.00.01"), "'G' is not a hex digit"));
     EXPECT_TRUE(contains(error_of(" 05.01.01.01.22.00.00.01"), "'\\x20' is not a hex digit"));
     EXPECT_TRUE(contains(error_of("0x0501010122000001"), "'x' is not a hex digit"));
