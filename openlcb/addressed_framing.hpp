@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "openlcb/can_frame.hpp"
 #include "openlcb/clock.hpp"
 #include "openlcb/message.hpp"
@@ -40,8 +41,8 @@ struct MessageAssemblerConfig {
     std::size_t max_in_progress = 32;
     /// Largest reassembled payload (addressed messages, PCER with payload); longer are dropped.
     std::size_t max_payload = kMaxPcerPayload;
-    /// A partial message idle this long is dropped.
-    Duration timeout = std::chrono::seconds(3);
+    /// A partial message idle this long is dropped: by then its requester may have given up.
+    Duration timeout = base::kRequesterTimeout;
     /// Also reassemble datagram frames (formats 2-5) without answering them (for monitors).
     bool datagrams = false;
 };

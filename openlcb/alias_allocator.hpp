@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "base/node_id.hpp"
+#include "base/timings.hpp"
 #include "openlcb/alias_cache.hpp"
 #include "openlcb/alias_generator.hpp"
 #include "openlcb/can_frame.hpp"
@@ -34,7 +35,7 @@ struct AliasEvent {
 /// Tunables of the allocator.
 struct AliasAllocatorConfig {
     /// Wait between CID4 and RID (the standard's minimum; OpenMRN uses exactly this).
-    Duration reservation_wait = std::chrono::milliseconds(200);
+    Duration reservation_wait = base::kAliasReservationWait;
     /// Send AMD right after RID; when false the owner calls permit().
     bool auto_permit = true;
     /// On a duplicate node ID (an AMD carrying our ID, or a Verified Node ID carrying it from

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "openlcb/can_frame.hpp"
 #include "openlcb/clock.hpp"
 #include "openlcb/datagram_defs.hpp"
@@ -21,7 +22,7 @@ namespace olcb {
 /// Tunables of DatagramSender.
 struct DatagramSenderConfig {
     /// Wait for OK/Rejected after the last frame before reporting a timeout.
-    Duration ack_timeout = datagram::kAckTimeout;
+    Duration ack_timeout = base::kDatagramAckTimeout;
     /// Resends after temporary rejections before giving up (so at most 1 + this many sends).
     unsigned max_resends = 3;
     /// Pause before a resend, so a busy receiver gets time to free its buffer.
@@ -110,7 +111,7 @@ struct DatagramReceiverConfig {
     /// datagram beyond this is rejected with 0x2020 (buffer unavailable).
     std::size_t max_buffers = 4;
     /// A partial datagram idle this long is abandoned silently (the sender times out).
-    Duration reassembly_timeout = datagram::kAckTimeout;
+    Duration reassembly_timeout = base::kDatagramAckTimeout;
 };
 
 /// A complete datagram waiting for its owner's accept() or reject().

@@ -4,14 +4,11 @@
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
-
-#include "openlcb/clock.hpp"
 
 namespace olcb::stream {
 
@@ -44,13 +41,6 @@ inline constexpr std::uint16_t kRejectNotAccepted = 0x1043;
 constexpr bool is_accept(std::uint16_t code) {
     return (code & kAccept) != 0;
 }
-
-/// Requester timeouts are at least 3 s (fact sheet 3.3); OpenMRN's source waits 20 s.
-inline constexpr Duration kInitiateTimeout = std::chrono::seconds(3);
-/// How long a source waits for Data Proceed after a full buffer (OpenMRN: 20 s).
-inline constexpr Duration kProceedTimeout = std::chrono::seconds(20);
-/// How long a sink waits for the next data, Complete or Proceed-ack before dropping the stream.
-inline constexpr Duration kIdleTimeout = std::chrono::seconds(20);
 
 /// Stream Initiate Request (MTI 0x0CC8).
 struct InitiateRequest {

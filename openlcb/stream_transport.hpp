@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "openlcb/clock.hpp"
 #include "openlcb/message.hpp"
 #include "openlcb/stream_defs.hpp"
@@ -37,10 +38,10 @@ struct StreamTransportConfig {
     std::size_t max_streams = 8;
     /// Window a source proposes when open() is given 0.
     std::uint16_t source_buffer = stream::kMaxBufferSize;
-    Duration initiate_timeout = stream::kInitiateTimeout;  ///< source: wait for the reply
-    Duration proceed_timeout = stream::kProceedTimeout;    ///< source: wait for Data Proceed
-    Duration idle_timeout = stream::kIdleTimeout;          ///< sink: wait for the next data
-    StreamSourceFaults faults;                             ///< source misbehaviours
+    Duration initiate_timeout = base::kStreamInitiateTimeout;  ///< source: wait for the reply
+    Duration proceed_timeout = base::kStreamProceedTimeout;    ///< source: wait for Data Proceed
+    Duration idle_timeout = base::kStreamIdleTimeout;          ///< sink: wait for the next data
+    StreamSourceFaults faults;                                 ///< source misbehaviours
 };
 
 /// Something the owner must know about one stream.

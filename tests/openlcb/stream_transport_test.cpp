@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "openlcb/node/node_test_util.hpp"
 #include "openlcb/stream_defs.hpp"
 #include "openlcb/stream_transport.hpp"
@@ -142,7 +143,7 @@ TEST_F(StreamSinkTest, ZeroPayloadFlushDoesNotCountAndTerminateEndsTheStream) {
 TEST_F(StreamSinkTest, IdleStreamTimesOut) {
     inject(":X19CC812CN0343004000000AFF;");
     take();
-    net_.run_for(stream::kIdleTimeout + 1ms);
+    net_.run_for(base::kStreamIdleTimeout + 1ms);
     EXPECT_EQ(of_kind(StreamEvent::Kind::kTimedOut).size(), 1u);
     EXPECT_EQ(stack_.streams().open_streams(), 0u);
 }
@@ -219,13 +220,13 @@ TEST_F(StreamSourceTest, OirAndMissingReplyAndMissingProceedEndTheStream) {
     EXPECT_EQ(of_kind(StreamEvent::Kind::kRejected)[0].code, 0x1043);
     auto b = stack_.open_stream(NodeHandle{NodeId{}, 0x12C}, 16, 0xFF);
     ASSERT_TRUE(a && b);
-    net_.run_for(stream::kInitiateTimeout + 1ms);
+    net_.run_for(base::kStreamInitiateTimeout + 1ms);
     EXPECT_EQ(of_kind(StreamEvent::Kind::kTimedOut).size(), 1u);
     take();
     const std::uint32_t id = open_accepted();
     std::vector<std::uint8_t> data(40, 0xAA);
     stack_.write_stream(id, data);
-    net_.run_for(stream::kProceedTimeout + 1ms);
+    net_.run_for(base::kStreamProceedTimeout + 1ms);
     EXPECT_EQ(of_kind(StreamEvent::Kind::kTimedOut).size(), 2u);
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/node/node_test_util.hpp"
 
@@ -69,7 +70,7 @@ TEST_F(ReinitPairTest, InitializationCompleteDropsTheUnackedDatagram) {
 }
 
 TEST_F(ReinitPairTest, WithoutReinitializationTheNextDatagramWaitsForTheTimeout) {
-    EXPECT_EQ(delay_of_second_datagram(false), datagram::kAckTimeout - 100ms);
+    EXPECT_EQ(delay_of_second_datagram(false), base::kDatagramAckTimeout - 100ms);
     ASSERT_EQ(outcomes_.size(), 1u);
     EXPECT_EQ(outcomes_[0].status, Status::kTimedOut);
 }

@@ -6,6 +6,7 @@
 #include <deque>
 #include <set>
 
+#include "base/timings.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/node/node_test_util.hpp"
 
@@ -111,7 +112,7 @@ TEST_F(PairTest, UnansweredDatagramTimesOutAfterThreeSeconds) {
     ASSERT_TRUE(runner_.send_datagram(0x343, payload, sent));
     ASSERT_TRUE(net_.run_until([&] { return !outcomes.empty(); }, 10s));
     EXPECT_EQ(outcomes[0].status, Status::kTimedOut);
-    EXPECT_EQ(net_.now(), sent + datagram::kAckTimeout);
+    EXPECT_EQ(net_.now(), sent + base::kDatagramAckTimeout);
 }
 
 TEST_F(PairTest, RestartOfOneNodeWhileTheOtherStaysConnected) {
