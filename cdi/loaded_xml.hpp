@@ -1,5 +1,5 @@
-// One pugixml parse of a CDI text, shared by the schema check and the model parser so that
-// validate() reads the text once.
+// One pugixml parse of a CDI text kept with the text it was made from, so the model parser can
+// find in the source what the tree drops (lines, the content index).
 #pragma once
 
 #include <pugixml.hpp>
@@ -27,11 +27,6 @@ public:
     const pugi::xml_parse_result& result() const { return result_; }
     /// The parsed document; meaningful only when result() is a success.
     const pugi::xml_document& document() const { return document_; }
-    /// The source offset of a text pugixml decoded in place (a value of a node of document()):
-    /// decoding shortens a text from its end, so it still starts where it did in the source.
-    std::size_t offset_of(const char* decoded) const {
-        return static_cast<std::size_t>(decoded - buffer_.data());
-    }
 
     /// Records that no element lies deeper than `depth` (1: the root alone), as a walk over the
     /// whole tree found; a later walk that only checks depth can then be skipped.

@@ -15,8 +15,7 @@
 #include <string>
 #include <utility>
 
-#include "cdi/schema_tree.hpp"
-#include "cdi/xml_screen.hpp"
+#include "cdi/loaded_xml.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -168,8 +167,6 @@ struct PassResult {
     Collector schema_collector{&schema_errors, ""};
     ValidatorPtr validator;
     xmlSchemaSAXPlugPtr plug = nullptr;
-    std::optional<TreePosition> position;  ///< where the tree walk is (tree path only)
-    bool misfit = false;  ///< a finding the tree cannot place as libxml2's parse would
     bool well_formed = false;
     bool valid = false;
 };
@@ -235,28 +232,9 @@ int parser_position(void* context, const char** file, unsigned long* line) {
     return 0;
 }
 
-// Without a parser, the tree walk knows which event it fed last.
-int tree_position(void* context, const char** file, unsigned long* line) {
-    auto* state = static_cast<PassResult*>(context);
-    *file = nullptr;
-    if (state->position && !state->position->finding_fits()) state->misfit = true;
-    // Past kMaxDiagnostics the finding is dropped: no need to find its line.
-    const bool wanted = state->schema_errors.size() < kMaxDiagnostics;
-    *line = wanted && state->position ? state->position->line() : 0;
-    return 0;
-}
-
-/// Where the validator reports from and the handlers it is put in front of.
-struct PlugTarget {
-    xmlSAXHandlerPtr* sax;
-    void** user;
-    xmlSchemaValidityLocatorFunc locator;
-    void* locator_context;
-};
-
-// Puts the validator of the chosen schema in front of the given handlers; false when the
+// Puts the validator of the chosen schema in front of the parser's handlers; false when the
 // schema cannot be used (the reason is in setup_errors).
-bool plug_validator(PassResult& state, const PlugTarget& target) {
+bool plug_validator(PassResult& state, xmlParserCtxtPtr parser) {
     const xmlSchemaPtr schema = schema_for(state.choice.version, state.setup_errors);
     if (schema == nullptr) return false;
     state.schema_collector.prefix = schema_prefix(state.choice.version);
@@ -266,8 +244,8 @@ bool plug_validator(PassResult& state, const PlugTarget& target) {
         return false;
     }
     xmlSchemaSetValidStructuredErrors(state.validator.get(), collect, &state.schema_collector);
-    xmlSchemaValidateSetLocator(state.validator.get(), target.locator, target.locator_context);
-    state.plug = xmlSchemaSAXPlug(state.validator.get(), target.sax, target.user);
+    xmlSchemaValidateSetLocator(state.validator.get(), parser_position, parser);
+    state.plug = xmlSchemaSAXPlug(state.validator.get(), &parser->sax, &parser->userData);
     if (state.plug == nullptr) {
         state.setup_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
         return false;
@@ -287,7 +265,7 @@ void start_root(void* context, const xmlChar* local_name, const xmlChar* prefix,
     choose(state, root_location(attribute_count, attributes), root_line);
     parser->sax->startElementNs = nullptr;  // every later start tag goes to the validator only
     // Still parsed when the schema cannot be used: well-formedness is reported.
-    if (!plug_validator(state, {&parser->sax, &parser->userData, parser_position, parser})) return;
+    if (!plug_validator(state, parser)) return;
     parser->sax->startElementNs(parser->userData, local_name, prefix, uri, namespace_count,
                                 namespaces, attribute_count, defaulted_count, attributes);
 }
@@ -333,42 +311,16 @@ void validate_stream(std::string_view bytes, PassResult& result) {
     finish(result.schema_collector);
 }
 
-/// Validates the tree pugixml built, fed to the validator event by event; false when the walk
-/// met what it leaves to libxml2 (result then holds nothing worth keeping).
-bool validate_tree(const LoadedXml& xml, bool ascii, PassResult& result) {
-    const pugi::xml_node root = xml.document().document_element();
-    TreePosition& position = result.position.emplace(xml.text());
-    position.at_start(root);
-    choose(result, root_schema_location(root), position.line());
-    xmlSAXHandlerPtr sax = nullptr;
-    void* user = nullptr;
-    result.well_formed = true;
-    if (!plug_validator(result, {&sax, &user, tree_position, &result})) return true;
-    const bool fed = feed_tree(xml, ascii, *sax, user, position);
-    xmlSchemaSAXUnplug(result.plug);
-    result.plug = nullptr;
-    result.valid = xmlSchemaIsValid(result.validator.get()) == 1;
-    finish(result.schema_collector);
-    return fed && !result.misfit;
-}
-
-/// Validates the loaded text against the declared schema (or `fixed`): from pugixml's tree when
-/// the screen says pugixml's reading settles well-formedness, else by libxml2's own parse.
-/// Appends to `out` what a reader needs (the choice's warning, if any, only for well-formed
-/// text). Returns whether the text is XML; `choice` receives the schema used.
-bool check_against(const LoadedXml& xml, std::optional<SchemaVersion> fixed, Diagnostics& out,
-                   SchemaChoice& choice, bool tree_allowed = true) {
-    std::optional<PassResult> tried;
-    tried.emplace().fixed = fixed;
-    const XmlScreen screened = tree_allowed ? screen(xml) : XmlScreen{};
-    const bool from_tree = screened.passes && validate_tree(xml, screened.ascii, *tried);
-    if (!from_tree) {
-        tried.emplace().fixed = fixed;
-        validate_stream(xml.text(), *tried);
-    }
-    PassResult& pass = *tried;
+/// Validates `bytes` against the declared schema (or `fixed`) while libxml2 parses them: libxml2
+/// is the conforming parser, so its verdict on well-formedness is the one reported. Appends to
+/// `out` what a reader needs (the choice's warning, if any, only for well-formed text). Returns
+/// whether the text is XML; `choice` receives the schema used.
+bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, Diagnostics& out,
+                   SchemaChoice& choice) {
+    PassResult pass;
+    pass.fixed = fixed;
+    validate_stream(bytes, pass);
     choice = pass.choice;
-    choice.from_tree = from_tree;
     const bool unusable = !pass.setup_errors.empty();
     const bool parse_failed = !pass.parse_errors.empty();
     append(out, std::move(pass.setup_errors));
@@ -430,34 +382,12 @@ std::optional<SchemaVersion> schema_version_from_location(std::string_view locat
     return static_cast<SchemaVersion>(minor);
 }
 
-Diagnostics validate_schema(const LoadedXml& xml, SchemaChoice* chosen) {
-    Diagnostics out;
-    SchemaChoice choice;
-    if (!too_large(xml.text(), out)) {
-        choice.well_formed = check_against(xml, std::nullopt, out, choice);
-    }
-    if (chosen != nullptr) *chosen = choice;
-    return out;
-}
-
 Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
-    bytes = without_trailing_nuls(bytes);
-    Diagnostics out;
-    if (too_large(bytes, out)) {  // refused before pugixml reads it
-        if (chosen != nullptr) *chosen = SchemaChoice{};
-        return out;
-    }
-    const LoadedXml xml(bytes);
-    return validate_schema(xml, chosen);
-}
-
-Diagnostics validate_schema_parsed(std::string_view bytes, SchemaChoice* chosen) {
-    bytes = without_trailing_nuls(bytes);
     Diagnostics out;
     SchemaChoice choice;
+    bytes = without_trailing_nuls(bytes);
     if (!too_large(bytes, out)) {
-        const LoadedXml xml(bytes);
-        choice.well_formed = check_against(xml, std::nullopt, out, choice, false);
+        choice.well_formed = check_against(bytes, std::nullopt, out, choice);
     }
     if (chosen != nullptr) *chosen = choice;
     return out;
@@ -467,9 +397,7 @@ Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version) {
     Diagnostics out;
     SchemaChoice choice;
     bytes = without_trailing_nuls(bytes);
-    if (too_large(bytes, out)) return out;
-    const LoadedXml xml(bytes);
-    check_against(xml, version, out, choice);
+    if (!too_large(bytes, out)) check_against(bytes, version, out, choice);
     return out;
 }
 

@@ -8,7 +8,6 @@
 #include <string_view>
 
 #include "cdi/diagnostic.hpp"
-#include "cdi/loaded_xml.hpp"
 
 namespace olcb::cdi {
 
@@ -35,22 +34,13 @@ std::optional<SchemaVersion> schema_version_from_location(std::string_view locat
 struct SchemaChoice {
     SchemaVersion version = kNewestSchema;
     bool declared = false;     ///< the CDI named this version itself
-    bool well_formed = false;  ///< the text is XML (no schema check happens otherwise)
-    bool from_tree = false;    ///< checked on pugixml's tree: libxml2 parsed nothing
+    bool well_formed = false;  ///< libxml2 parsed the text (no schema check happens otherwise)
 };
 
 /// Validates CDI text (trailing NUL bytes ignored) against the schema it declares, falling back
 /// to the newest with a warning. Parse and validity errors carry their source line. A DOCTYPE is
 /// refused unexpanded. `chosen`, when given, receives the choice.
 Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen = nullptr);
-
-/// The same for a text already loaded: when the screen (xml_screen.hpp) finds nothing pugixml
-/// may have let through, the schema is checked on pugixml's tree and libxml2 parses nothing.
-Diagnostics validate_schema(const LoadedXml& xml, SchemaChoice* chosen = nullptr);
-
-/// validate_schema() with libxml2 parsing the text whatever the screen says: the reference the
-/// tree path is tested and fuzzed against.
-Diagnostics validate_schema_parsed(std::string_view bytes, SchemaChoice* chosen = nullptr);
 
 /// Validates CDI text against one given schema version, whatever the CDI declares.
 Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version);
