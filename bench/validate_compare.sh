@@ -7,12 +7,56 @@
 #
 # ROUNDS defaults to 5; FILTER to the validate and parse+layout benchmarks. Each build dir must
 # hold bench/bench_cdi (cmake --build DIR --target bench_cdi).
+#
+#   bench/validate_compare.sh --e2e BEFORE_BUILD_DIR AFTER_BUILD_DIR [PAIRS]
+#
+# End to end instead: whole `lcc-cdi validate` processes over every corpus and scenario CDI, one
+# process for all files and one per file, before and after alternating; prints the median wall
+# time of each and the median of the per-pair ratios. PAIRS defaults to 100 (a tenth of that
+# for the per-file loop). Each build dir must hold cdi/lcc-cdi.
 set -euo pipefail
 
-if [ $# -lt 2 ]; then
-    sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+usage() {
+    sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
     exit 2
+}
+
+if [ "${1:-}" = --e2e ]; then
+    [ $# -ge 3 ] || usage
+    root=$(cd "$(dirname "$0")/.." && pwd)
+    for program in "$2/cdi/lcc-cdi" "$3/cdi/lcc-cdi"; do
+        [ -x "$program" ] || { echo "not found: $program" >&2; exit 2; }
+    done
+    exec python3 - "$2/cdi/lcc-cdi" "$3/cdi/lcc-cdi" "${4:-100}" "$root" <<'PY'
+import glob, statistics, subprocess, sys, time
+before, after, pairs, root = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+files = sorted(glob.glob(f"{root}/../shared/corpus/cdi/*.xml"))
+files += sorted(glob.glob(f"{root}/scenarios/*.xml"))
+
+def run(program, per_file):
+    # Output goes to /dev/null: what is timed is the program, not a terminal or a pipe.
+    start = time.perf_counter()
+    for args in ([[f] for f in files] if per_file else [files]):
+        subprocess.run([program, "validate", *args], stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+print(f"{len(files)} CDIs; before {before}, after {after}")
+med = statistics.median
+for per_file, n in ((False, pairs), (True, max(pairs // 10, 3))):
+    for program in (before, after):  # warm-up: page cache, dynamic loader
+        run(program, per_file)
+    b, a = [], []
+    for _ in range(n):  # alternating, so a drift in machine speed hits both alike
+        b.append(run(before, per_file))
+        a.append(run(after, per_file))
+    what = "one process per file" if per_file else "one process, all files"
+    print(f"{what:23} before {med(b) * 1e3:8.2f} ms  after {med(a) * 1e3:8.2f} ms"
+          f"  after/before {med([y / x for x, y in zip(b, a)]):.3f} (median of {n} pairs)")
+PY
 fi
+
+[ $# -ge 2 ] || usage
 before="$1/bench/bench_cdi"
 after="$2/bench/bench_cdi"
 rounds="${3:-5}"
