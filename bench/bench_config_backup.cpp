@@ -15,10 +15,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "conformance/config_backup.hpp"
-#include "conformance/link.hpp"
-#include "conformance/session.hpp"
-#include "conformance/session_memory.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/link/session_memory.hpp"
+#include "conformance/run/config_backup.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 

@@ -12,14 +12,14 @@
 #include <vector>
 
 #include "base/host_port.hpp"
-#include "conformance/check_registry.hpp"
-#include "conformance/config_backup.hpp"
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/report.hpp"
-#include "conformance/report_html.hpp"
-#include "conformance/runner.hpp"
-#include "conformance/session.hpp"
+#include "conformance/checks/check_registry.hpp"
+#include "conformance/checks/protocol_checks.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/report/report.hpp"
+#include "conformance/report/report_html.hpp"
+#include "conformance/run/config_backup.hpp"
+#include "conformance/run/runner.hpp"
 #include "memory/snip.hpp"
 #include "olcb_version.hpp"
 

@@ -34,8 +34,6 @@ std::string_view slot(const std::vector<std::uint8_t>& block, std::size_t offset
     return field.substr(0, field.find('\0'));
 }
 
-}  // namespace
-
 void acdi_manufacturer_version(CheckRun& run) {
     if (!has_acdi(run)) return;
     version_byte(run, run.acdi_manufacturer_result(), run.ctx().document->acdi->fixed,
@@ -100,6 +98,34 @@ void acdi_utf8(CheckRun& run) {
          {"space 251 @1 user name", slot(u, kUserNameOffset, kUserNameSize)},
          {"space 251 @64 user description", slot(u, kUserDescriptionOffset, kUserDescriptionSize)}},
         "the six ACDI strings of spaces 252/251 are valid UTF-8", Status::kFail);
+}
+
+}  // namespace
+
+std::vector<CheckSpec> acdi_checks() {
+    return {
+        {"acdi.manufacturer-version", 240, Category::kAcdi,
+         "ConfigurationDescriptionInformationS §5.1.2", Strength::kShall,
+         "with <acdi/>, byte 0 of space 252 equals the fixed attribute", "cd30",
+         "read 252 field by field (with <acdi/>): byte 0 == fixed", acdi_manufacturer_version},
+        {"acdi.user-version", 250, Category::kAcdi, "ConfigurationDescriptionInformationS §5.1.2",
+         Strength::kShall, "with <acdi/>, byte 0 of space 251 equals the var attribute", "cd30",
+         "read 251 field by field (with <acdi/>): byte 0 == var", acdi_user_version},
+        {"acdi.utf8", 260, Category::kAcdi, "ConfigurationDescriptionInformationS §5.1.2, §5.1.4.3",
+         Strength::kShall, "the ACDI name fields are CDI strings, which are UTF-8", "",
+         "(the same reads) each of the six strings of 252/251, up to its NUL, is valid UTF-8; FAIL "
+         "names each invalid one with its bytes in hex",
+         acdi_utf8},
+        {"acdi.space-info", 280, Category::kAcdi,
+         "ConfigurationDescriptionInformationS §5.1.2; MemoryConfigurationS §4.16",
+         Strength::kShall,
+         "252 bytes 0-124 readable, 251 bytes 0-127 readable and writable; an exact size or "
+         "read-only "
+         "flag is not required (WARN)",
+         "cd30",
+         "`20 84 FC`, `20 84 FB`: 252 present, read-only, highest 124; 251 present, highest 127",
+         acdi_space_info},
+    };
 }
 
 }  // namespace olcb::conform::checks

@@ -41,8 +41,6 @@ void text_rule(CheckRun& run, std::string_view id) {
     run.out().fail("cdi::check_rules() has no rule for this check", std::string(id), "none");
 }
 
-}  // namespace
-
 void cdi_space_info(CheckRun& run) {
     const SpaceInfo& ff = run.space_info(0xFF);
     // Get Address Space Information is not mandatory: unanswered says nothing about 0xFF.
@@ -117,8 +115,78 @@ void cdi_acdi_spaces(CheckRun& run) {
     text_rule(run, "cdi.acdi-spaces");
 }
 
+}  // namespace
+
 std::string acdi_conflict(const CheckContext& ctx) {
     return ctx.layout ? cdi::acdi_block_conflict(*ctx.layout) : std::string();
+}
+
+std::vector<CheckSpec> cdi_checks() {
+    return {
+        {"cdi.space-info", 110, Category::kCdi, "MemoryConfigurationS §4.2, §4.16",
+         Strength::kShall,
+         "space 0xFF is the read-only space holding the CDI; a rejected Get Address Space "
+         "Information "
+         "is a SKIP",
+         "mc20", "`20 84 FF`: present (0x87) and read-only", cdi_space_info},
+        {"cdi.read", 120, Category::kCdi, "MemoryConfigurationS §4.2, §4.4, §4.5", Strength::kShall,
+         "a node that has a CDI makes it readable through space 0xFF", "cd20",
+         "reads of up to 64 bytes of 0xFF, each going on where the previous reply's data ended, up "
+         "to Space Info's highest address, a NUL or 0x1082 (at the highest address without a NUL "
+         "it "
+         "reads on: a CDI cut short by a too-small highest address is judged whole, the address by "
+         "cdi.nul-at-highest): data returned",
+         cdi_read},
+        {"cdi.nul-terminated", 160, Category::kCdi, "ConfigurationDescriptionInformationS §5",
+         Strength::kShall, "the CDI is provided as a NUL-terminated string", "cd20",
+         "(CDI download) a NUL ends the text", cdi_nul_terminated},
+        {"cdi.nul-at-highest", 170, Category::kCdi, "MemoryConfigurationS §4.16", Strength::kNone,
+         "no clause ties the highest address to the NUL: padding after it is legal; a highest "
+         "address "
+         "before the NUL WARNs",
+         "", "(CDI download) offset of the NUL == Space Info highest address", cdi_nul_at_highest},
+        {"cdi.no-bom", 180, Category::kCdi, "ConfigurationDescriptionInformationS §5",
+         Strength::kShall, "the CDI string carries no byte-order mark", "",
+         "no UTF-8 byte-order mark", cdi_no_bom},
+        {"cdi.utf8", 190, Category::kCdi, "ConfigurationDescriptionInformationS §5",
+         Strength::kShall, "the CDI string is UTF-8", "",
+         "the CDI is valid UTF-8 (FAIL: offset, line and bytes of the first invalid sequence)",
+         cdi_utf8},
+        {"cdi.xml-declaration", 200, Category::kCdi, "ConfigurationDescriptionInformationS §5",
+         Strength::kShall, "the first line is the XML 1.0 declaration", "cd10",
+         "the first line (after a BOM, which is cdi.no-bom's) starts with exactly <?xml "
+         "version=\"1.0\"?> (another declaration of XML 1.0 in UTF-8, e.g. encoding=\"utf-8\": "
+         "WARN quoting it; another version or encoding, or none: FAIL quoting at most 80 bytes)",
+         cdi_xml_declaration},
+        {"cdi.well-formed", 210, Category::kCdi, "ConfigurationDescriptionInformationS §5",
+         Strength::kShall, "the CDI is XML 1.0", "cd10",
+         "pugixml's parse where the screen settles it, else libxml2's (FAIL quotes libxml2's first "
+         "parse error and lists all; stopped at the "
+         "invalid UTF-8: SKIP depends on cdi.utf8)",
+         cdi_well_formed},
+        {"cdi.valid", 220, Category::kCdi, "ConfigurationDescriptionInformationS §5, §5.1.4",
+         Strength::kShall,
+         "the CDI validates against the schema it names and follows the element rules of §5.1.4",
+         "cd10",
+         "cdi::validate: FAIL with every error (details), WARN with every warning, PASS when "
+         "none (not well-formed: SKIP depends on cdi.well-formed)",
+         cdi_valid},
+        {"cdi.schema-location", 230, Category::kCdi, "ConfigurationDescriptionInformationS §5",
+         Strength::kNone,
+         "the standard shows the root naming the schema URL but sets no rule for other spellings",
+         "",
+         "xsi:noNamespaceSchemaLocation names http(s)://openlcb.org/schema/cdi/...xsd (absent: "
+         "WARN)",
+         cdi_schema_location},
+        {"cdi.acdi-spaces", 270, Category::kCdi,
+         "ConfigurationDescriptionInformationS §5.1.2; ConfigurationDescriptionInformationTN "
+         "§2.5.1.2",
+         Strength::kMay,
+         "a node may also describe spaces 252/251 as segments; variables that contradict the ACDI "
+         "layout WARN",
+         "", "with <acdi/>: no CDI variable in 252, space-251 variables within bytes 1..127",
+         cdi_acdi_spaces},
+    };
 }
 
 }  // namespace olcb::conform::checks

@@ -1,89 +1,28 @@
-// The check functions of the registry (conformance/check_registry.cpp), one file per topic.
-// Each function judges one check; lists of entries come from the topic files whose checks are
-// wholly theirs.
+// The check families: each file of conformance/checks/ owns its registry entries (ID, order,
+// clause, strength, summary, function) and returns them from one list function here;
+// check_registry.cpp joins the lists and sorts them by order. Helpers shared between families
+// are declared below the lists.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "conformance/check_registry.hpp"
-#include "conformance/check_run.hpp"
+#include "conformance/checks/check_registry.hpp"
+#include "conformance/checks/check_run.hpp"
 
 namespace olcb::conform::checks {
 
-// frame.cpp
-void ame_answered(CheckRun& run);
-void cid_defended(CheckRun& run);
-
-// message.cpp
-void oir_unknown_mti(CheckRun& run);
-void verify_addressed(CheckRun& run);
-void verify_global(CheckRun& run);
-void unknown_global_ignored(CheckRun& run);
-void pip_answered(CheckRun& run);
-void no_unsolicited(CheckRun& run);
-
-// snip.cpp
-void snip_version_bytes(CheckRun& run);
-void snip_utf8(CheckRun& run);
-void snip_matches_acdi(CheckRun& run);
-void snip_matches_cdi(CheckRun& run);
-
-// cdi.cpp
-void cdi_space_info(CheckRun& run);
-void cdi_read(CheckRun& run);
-void cdi_nul_terminated(CheckRun& run);
-void cdi_nul_at_highest(CheckRun& run);
-void cdi_no_bom(CheckRun& run);
-void cdi_utf8(CheckRun& run);
-void cdi_xml_declaration(CheckRun& run);
-void cdi_well_formed(CheckRun& run);
-void cdi_valid(CheckRun& run);
-void cdi_schema_location(CheckRun& run);
-void cdi_acdi_spaces(CheckRun& run);
-/// The CDI variables that overlap the ACDI blocks ("space 252 bytes 0..3, ..."); "" when none.
+/// The CDI variables that overlap the ACDI blocks ("space 252 bytes 0..3, ..."); "" when none
+/// (cdi.cpp).
 std::string acdi_conflict(const CheckContext& ctx);
-
-// acdi.cpp
-void acdi_manufacturer_version(CheckRun& run);
-void acdi_user_version(CheckRun& run);
-void acdi_utf8(CheckRun& run);
-void acdi_space_info(CheckRun& run);
-
-// pip.cpp
-void pip_snip_bit(CheckRun& run);
-void pip_datagram_bit(CheckRun& run);
-void pip_memory_config_bit(CheckRun& run);
-void pip_cdi_bit(CheckRun& run);
-void pip_acdi_bit(CheckRun& run);
-
-// datagram.cpp
-void datagram_ok_before_reply(CheckRun& run);
-void datagram_reply_pending(CheckRun& run);
-void datagram_temporary_rejects(CheckRun& run);
-
-// memory.cpp
-void memory_config_options(CheckRun& run);
-void memory_reply_latency(CheckRun& run);
-void memory_options_acdi_flags(CheckRun& run);
-void memory_space_info_layout(CheckRun& run);
-void memory_read_byte6_form(CheckRun& run);
-void memory_read_short_form(CheckRun& run);
-void memory_reply_form(CheckRun& run);
-void memory_read_short_at_end(CheckRun& run);
-void memory_unknown_space(CheckRun& run);
-void memory_lock(CheckRun& run);
-void memory_readonly_refused(CheckRun& run);
 
 /// One string from the node a check judges, named for its messages ("user name").
 struct NamedText {
     std::string name;
     std::string_view text;
 };
-/// PASS (what) when every text is valid UTF-8; else FAIL naming each invalid one with its bytes
-/// in hex (snip.cpp).
 /// PASS when every text is UTF-8, else `bad` (FAIL where the standard asks for UTF-8, WARN where
-/// only a technical note does) naming each invalid one with its bytes.
+/// only a technical note does) naming each invalid one with its bytes in hex (snip.cpp).
 void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what,
                 Status bad);
 
@@ -106,8 +45,26 @@ const SilenceAnswers& silence_probe(CheckRun& run);
 /// made-up traffic and destinations "another node" has.
 std::vector<std::uint16_t> unused_aliases(CheckRun& run, std::size_t count);
 
-// Lists whose entries (ID, category, section, OlcbChecker, summary, function) live with their
-// checks, spliced into the registry at their place in the run's order:
+/// frame.cpp: AME answered, CID defended.
+std::vector<CheckSpec> frame_checks();
+/// message.cpp: Verify Node ID, unknown MTIs, Protocol Support Inquiry, unsolicited traffic.
+std::vector<CheckSpec> message_checks();
+/// snip.cpp: SNIP versions, UTF-8, agreement with ACDI and CDI.
+std::vector<CheckSpec> snip_checks();
+/// memory.cpp: Get Configuration Options, reply latency and forms, lock, read-only spaces.
+std::vector<CheckSpec> memory_checks();
+/// cdi.cpp: the CDI download and its text, schema and ACDI rules.
+std::vector<CheckSpec> cdi_checks();
+/// datagram.cpp: datagram OK before the reply, Reply Pending, temporary rejects.
+std::vector<CheckSpec> datagram_checks();
+/// acdi.cpp: the ACDI spaces' version bytes, UTF-8 and space information.
+std::vector<CheckSpec> acdi_checks();
+/// pip.cpp: each protocol bit against what the node does.
+std::vector<CheckSpec> pip_checks();
+/// encoding.cpp: the write/read-back phase (run = nullptr; run/encoding_run.cpp reports them).
+std::vector<CheckSpec> encoding_checks();
+/// node.cpp: the node's restarts, its silence and the link (reported by the node run's phases).
+std::vector<CheckSpec> node_checks();
 /// frame_bus.cpp: collision, AME with bit 28 clear, capacity bursts, standard frames, start-up.
 std::vector<CheckSpec> frame_bus_checks();
 /// message_addressing.cpp: messages addressed to another node, PIP bytes and simple bit.
@@ -123,10 +80,10 @@ std::vector<CheckSpec> event_checks();
 std::vector<CheckSpec> event_robustness_checks();
 /// stream_checks.cpp: memory-config stream reads (CDI by stream, buffer, Proceed, Complete).
 std::vector<CheckSpec> stream_checks();
-/// Checks the encoding phase produces for events (run = nullptr; events.cpp documents them).
+/// events.cpp: checks the encoding phase produces for events (run = nullptr).
 std::vector<CheckSpec> event_phase_checks();
-/// Disruptive checks that run last of all the protocol checks (frame_bus.cpp,
-/// message_addressing.cpp): e.g. the duplicate node ID, behind --thorough.
+/// message_addressing.cpp: disruptive checks that run last of all the protocol checks (e.g.
+/// the duplicate node ID, behind --thorough).
 std::vector<CheckSpec> final_checks();
 
 }  // namespace olcb::conform::checks

@@ -2,6 +2,7 @@
 #include "conformance/checks/checks.hpp"
 
 namespace olcb::conform::checks {
+namespace {
 
 void datagram_ok_before_reply(CheckRun& run) {
     const CdiDownload& d = run.cdi();
@@ -32,6 +33,30 @@ void datagram_temporary_rejects(CheckRun& run) {
     const unsigned n = run.ctx().temporary_rejects;
     if (n == 0) return run.out().pass("no datagram was rejected temporarily");
     run.out().warn(std::to_string(n) + " datagrams rejected temporarily (0x2xxx) and retried");
+}
+
+}  // namespace
+
+std::vector<CheckSpec> datagram_checks() {
+    return {
+        {"datagram.ok-before-reply", 130, Category::kDatagram,
+         "DatagramTransportS §6; MemoryConfigurationS §4.4; MemoryConfigurationTN §2.4.5",
+         Strength::kShall,
+         "every datagram is answered with Datagram Received OK or Rejected; only the technical "
+         "note "
+         "orders the OK before the reply (a late OK WARNs)",
+         "", "(every CDI read) Datagram Received OK arrives before each read reply",
+         datagram_ok_before_reply},
+        {"datagram.reply-pending", 140, Category::kDatagram, "MemoryConfigurationS §4.4",
+         Strength::kShall, "the Datagram Received OK to a Read carries Reply Pending", "",
+         "(every CDI read) the Datagram Received OK has Reply Pending", datagram_reply_pending},
+        {"datagram.temporary-rejects", 750, Category::kDatagram, "DatagramTransportS §6.2",
+         Strength::kMay, "a receiver may reject a datagram temporarily; the sender resends", "",
+         "(whole run) PASS when no datagram was rejected temporarily; WARN with the count when "
+         "some "
+         "were and the retries succeeded",
+         datagram_temporary_rejects},
+    };
 }
 
 }  // namespace olcb::conform::checks

@@ -245,16 +245,16 @@ void out_of_order(CheckRun& run) {
 
 std::vector<CheckSpec> datagram_protocol_checks() {
     return {
-        {"datagram.unknown-protocol", C::kDatagram, "DatagramTransportS §6; MessageNetworkS §3.5.5",
-         Strength::kShall,
+        {"datagram.unknown-protocol", 530, C::kDatagram,
+         "DatagramTransportS §6; MessageNetworkS §3.5.5", Strength::kShall,
          "every datagram is answered with OK or Rejected; 0x1042 is recommended, a 0x0000 code or "
          "repeated temporary rejects WARN",
          "da30, da40",
          "raw datagrams of 1, 10 and 72 bytes with content type 0x5A: Datagram Rejected 0x1042 "
          "(another permanent 0x1xxx passes, noted; Datagram Received OK: WARN; no answer: FAIL)",
          unknown_protocol},
-        {"datagram.out-of-order", C::kDatagram, "DatagramTransportS §7.3.2; MessageNetworkS §3.5.5",
-         Strength::kShall,
+        {"datagram.out-of-order", 540, C::kDatagram,
+         "DatagramTransportS §7.3.2; MessageNetworkS §3.5.5", Strength::kShall,
          "a frame sequence that is not a datagram is rejected with a temporary error", "",
          "a lone last frame, a lone middle frame, then a first frame followed by a whole 2-frame "
          "datagram: one temporary reject 0x2040-0x204F for each (0x2041, 0x2041, 0x2042), since "

@@ -70,7 +70,7 @@ void learn_tolerated(CheckRun& run) {
 
 std::vector<CheckSpec> event_robustness_checks() {
     return {
-        {"events.pcer-payload-tolerated", Category::kEvents,
+        {"events.pcer-payload-tolerated", 650, Category::kEvents,
          "MessageNetworkS §3.4.2; EventTransportS §4.1", Strength::kShall,
          "the node keeps answering Verify Node ID after PCERs with payload; a restart or a payload "
          "past 256 bytes WARNs",
@@ -78,7 +78,7 @@ std::vector<CheckSpec> event_robustness_checks() {
          "PCERs with payload (first/middle/last frames, 4 to 2,044 payload bytes) of an event in "
          "lcc-conform's own range: no restart, the node still answers Verify Node ID",
          pcer_payload_tolerated},
-        {"events.learn-tolerated", Category::kEvents,
+        {"events.learn-tolerated", 660, Category::kEvents,
          "MessageNetworkS §3.4.2; EventTransportS §6.5", Strength::kShall,
          "the node keeps answering Verify Node ID after Learn Event; a restart WARNs", "ev70",
          "Learn Event with an event of lcc-conform's own range: no restart, the node still "

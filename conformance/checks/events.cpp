@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "conformance/backup_keys.hpp"
+#include "conformance/backup/backup_keys.hpp"
 #include "conformance/checks/checks.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/can_defs.hpp"
@@ -672,7 +672,7 @@ std::vector<CheckResult> events_follow_write(Session& session, const NodeInfo& n
 
 std::vector<CheckSpec> event_checks() {
     return {
-        {"events.identify-global", Category::kEvents,
+        {"events.identify-global", 610, Category::kEvents,
          "EventTransportS §6.2; MessageNetworkS §3.3.7", Strength::kShall,
          "Identify Events is answered for every event the node produces or consumes; a node with "
          "the Event Exchange bit and no events WARNs",
@@ -680,17 +680,17 @@ std::vector<CheckSpec> event_checks() {
          "Identify Events global: Producer/Consumer (Range) Identified from the node until quiet; "
          "at least one with the PIP Event Exchange bit, none without",
          identify_global},
-        {"events.identify-addressed", Category::kEvents, kInquiry, Strength::kShall,
+        {"events.identify-addressed", 620, Category::kEvents, kInquiry, Strength::kShall,
          "the addressed Identify Events is answered like the global one", "ev10",
          "Identify Events addressed: the same produced/consumed events and ranges as global",
          identify_addressed},
-        {"events.cdi-events-identified", Category::kEvents,
+        {"events.cdi-events-identified", 630, Category::kEvents,
          "ConfigurationDescriptionInformationS §5.1.4.4; EventTransportS §6.2", Strength::kNone,
          "an eventid variable is storage; nothing says the node produces or consumes it (WARN)", "",
          "every non-zero event ID the CDI's eventid variables hold (read from the node, at most "
          "512) is identified by Identify Events or Identify Producer/Consumer; WARN lists others",
          cdi_events_identified},
-        {"events.identify-producer-consumer", Category::kEvents, "EventTransportS §6.3, §6.4",
+        {"events.identify-producer-consumer", 640, Category::kEvents, "EventTransportS §6.3, §6.4",
          Strength::kShall,
          "Identify Producer/Consumer of the node's own event is answered; answering a foreign "
          "event is not forbidden (WARN)",
@@ -703,7 +703,7 @@ std::vector<CheckSpec> event_checks() {
 
 std::vector<CheckSpec> event_phase_checks() {
     return {
-        {"events.follow-write", Category::kEvents,
+        {"events.follow-write", 970, Category::kEvents,
          "EventTransportS §6.2; MemoryConfigurationTN §2.4.23", Strength::kNone,
          "when written configuration takes effect is the node's choice (WARN)", "",
          "write phase: 05.01.01.01.3F.FE.xx.yy into one identified, unprotected eventid "

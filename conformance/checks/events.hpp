@@ -5,10 +5,10 @@
 
 #include <vector>
 
-#include "conformance/check_context.hpp"
-#include "conformance/check_result.hpp"
-#include "conformance/protection.hpp"
-#include "conformance/session.hpp"
+#include "conformance/checks/check_context.hpp"
+#include "conformance/checks/protection.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/report/check_result.hpp"
 
 namespace olcb::conform::checks {
 

@@ -436,28 +436,28 @@ void startup_sequence(CheckRun& run) {
 
 std::vector<CheckSpec> frame_bus_checks() {
     return {
-        {"frame.collision", C::kFrame, "CanFrameTransferS §6.2.4, §6.2.5", Strength::kShall,
+        {"frame.collision", 430, C::kFrame, "CanFrameTransferS §6.2.4, §6.2.5", Strength::kShall,
          "a frame from the node's alias makes it send AMR and stop using the alias; taking a new "
          "alias is not required (WARN)",
          "fr30",
          "AMD from the node's alias carrying another node ID: AMR with the node ID from that "
          "alias, then Verified Node ID to a Verify global from a new alias",
          collision, false, true},
-        {"frame.ame-bit28", C::kFrame, "CanFrameTransferS §4, §6.2.3", Strength::kShall,
+        {"frame.ame-bit28", 440, C::kFrame, "CanFrameTransferS §4, §6.2.3", Strength::kShall,
          "bit 28 is ignored on receipt, so an AME with it clear is answered", "fr40",
          "AME with the node ID and header bit 28 clear: AMD from the node", ame_bit28},
-        {"frame.capacity", C::kFrame, "MessageNetworkS §3.4.2, §3.7", Strength::kNone,
+        {"frame.capacity", 450, C::kFrame, "MessageNetworkS §3.4.2, §3.7", Strength::kNone,
          "no clause on frame throughput; an unanswered Verify after a burst WARNs", "fr50",
          "3 bursts of 300 frames from made-up aliases (global Verify for another node ID, 2-frame "
          "SNIP replies to another alias, Identify Consumer), an addressed Verify in the middle: "
          "Verified Node ID within 0.8 s after each",
          capacity, false, true},
-        {"frame.standard-frames-ignored", C::kFrame, "CanFrameTransferS §4", Strength::kShall,
+        {"frame.standard-frames-ignored", 460, C::kFrame, "CanFrameTransferS §4", Strength::kShall,
          "nodes operate properly while error-free 11-bit frames are on the bus", "fr60",
          "64 standard (11-bit) frames over 0x000-0x7FF (--thorough: all 2,047 of OlcbChecker): "
          "nothing from the node within the silence window (retried while other sources speak)",
          standard_frames_ignored, false, true},
-        {"frame.startup-sequence", C::kFrame,
+        {"frame.startup-sequence", 470, C::kFrame,
          "CanFrameTransferS §6.2.1, §6.2.2; MessageNetworkS §3.4.1", Strength::kShall,
          "after a reset: CID7-CID4, a wait, RID, AMD, then Initialization Complete before any "
          "other message",

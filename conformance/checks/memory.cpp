@@ -35,8 +35,6 @@ std::string form_seen(std::uint8_t sp, bool asked_short, const MemResult& r) {
            (got_short ? "short form" : "byte-6 form") + ")";
 }
 
-}  // namespace
-
 void memory_config_options(CheckRun& run) {
     const MemResult& r = run.config_options();
     if (run.ctx().options) return run.out().pass("Get Configuration Options answered");
@@ -227,6 +225,84 @@ void memory_readonly_refused(CheckRun& run) {
         }
         run.out(sp).refusal(refused, "a failure with an error code (0x1083)");
     }
+}
+
+}  // namespace
+
+std::vector<CheckSpec> memory_checks() {
+    return {
+        {"memory.config-options", 100, Category::kMemory,
+         "DatagramTransportS §6; MemoryConfigurationS §4.3, §4.13, §4.14", Strength::kShall,
+         "every datagram is answered; the command is optional, so a rejection is a SKIP", "mc10",
+         "`20 80`: reply `20 82`", memory_config_options},
+        {"memory.reply-latency", 150, Category::kMemory,
+         "MessageNetworkS §3.7; DatagramTransportS §4.2", Strength::kShall,
+         "a reply goes out within 750 ms unless the Datagram Received OK announced a longer "
+         "timeout "
+         "(2^N s)",
+         "", "(every CDI read) worst request-to-reply time <= 750 ms", memory_reply_latency},
+        {"memory.options-acdi-flags", 360, Category::kMemory, "MemoryConfigurationS §4.14",
+         Strength::kShall, "0x0800/0x0400/0x0200 announce reads of 252, reads and writes of 251",
+         "mc10",
+         "Options 0x0800 iff 252 readable, 0x0400 iff 251 readable, 0x0200 iff 251 writable",
+         memory_options_acdi_flags},
+        {"memory.space-info-layout.<sp>", 370, Category::kMemory,
+         "MemoryConfigurationS §4.16; ConfigurationDescriptionInformationS §5.1.3", Strength::kNone,
+         "no clause requires Space Info to cover the CDI layout (consistency only: WARN)", "mc20",
+         "`20 84 SP` per space a CDI segment uses: present, highest address + 1 >= end of the "
+         "layout in that space",
+         memory_space_info_layout},
+        {"memory.read-byte6-form", 380, Category::kMemory, "MemoryConfigurationS §4.2, §4.4",
+         Strength::kShall, "any space may be named in byte 6", "mc30",
+         "8-byte read of the data space (0xFD preferred) in the byte-6 form: Read Reply OK",
+         memory_read_byte6_form},
+        {"memory.read-short-form", 390, Category::kMemory, "MemoryConfigurationS §4.2, §4.4",
+         Strength::kShall, "spaces 0xFD-0xFF may be named by the command byte", "mc30",
+         "the same read in the short form (0xFD-0xFF): Read Reply OK", memory_read_short_form},
+        {"memory.reply-form", 400, Category::kMemory, "MemoryConfigurationS §4.5", Strength::kNone,
+         "both reply forms are defined; nothing ties the reply to the request's form", "mc30",
+         "(those reads and the CDI reads) every reply uses the request's form", memory_reply_form},
+        {"memory.read-short-at-end", 410, Category::kMemory, "MemoryConfigurationS §4.5",
+         Strength::kShall,
+         "a read reply may carry fewer bytes (at least one); reaching the end of the space is no "
+         "error",
+         "",
+         "read 8 at highest-3 of 0xFF: OK with 4 bytes (SKIP \"depends on\" the check that found "
+         "the highest address too small)",
+         memory_read_short_at_end},
+        {"memory.unknown-space", 420, Category::kMemory,
+         "MemoryConfigurationS §4.3, §4.5; MemoryConfigurationTN §2.4.3", Strength::kShall,
+         "a read that yields no bytes fails with an error code; 0x1081 is the recommended one "
+         "(another "
+         "code WARNs)",
+         "", "read of an unused space (0x50 up): rejected or failed with exactly 0x1081",
+         memory_unknown_space},
+        {"memory.lock", 730, Category::kMemory,
+         "MemoryConfigurationS §4.17, §4.18; MemoryConfigurationTN §2.4.17", Strength::kShall,
+         "when implemented, Lock/Reserve is a test-and-set of a node ID and zeros release it; not "
+         "implemented (0x1041) SKIPs",
+         "mc40",
+         "`20 88` our ID, another ID, zeros: replies ours, ours, 0 (not implemented, 0x1041: SKIP; "
+         "another rejection: WARN quoting the code; held or taken meanwhile by another tool: SKIP; "
+         "while another lcc-conform run is on the segment: SKIP)",
+         memory_lock, false, true},
+        {"memory.readonly-refused.<sp>", 740, Category::kMemory,
+         "MemoryConfigurationS §4.2, §4.3, §4.9; MemoryConfigurationTN §2.4.3", Strength::kShall,
+         "a write to a read-only space fails with an error code; 0x1083 is recommended (another "
+         "code "
+         "WARNs)",
+         "cd40",
+         "write of byte 0 of 0xFF and 252 with the value read from it: refused with exactly 0x1083 "
+         "(skipped with --read-only)",
+         memory_readonly_refused},
+        {"memory.short-read.<sp>", 960, Category::kMemory,
+         "MemoryConfigurationS §4.5; MemoryConfigurationTN §2.4.5", Strength::kNone,
+         "a reply may carry fewer bytes than asked; short replies away from the end are noted "
+         "(WARN)",
+         "",
+         "(every read of the run) no Read Reply OK shorter than asked except at the end of the "
+         "space"},
+    };
 }
 
 }  // namespace olcb::conform::checks

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "conformance/backup_keys.hpp"
+#include "conformance/backup/backup_keys.hpp"
 #include "conformance/checks/checks.hpp"
-#include "conformance/protection.hpp"
+#include "conformance/checks/protection.hpp"
 #include "memory/memory_config_codec.hpp"
 
 namespace olcb::conform::checks {
@@ -494,14 +494,14 @@ void options_write_lengths(CheckRun& run) {
 
 std::vector<CheckSpec> memory_bounds_checks() {
     return {
-        {"memory.read-at-highest.<sp>", Category::kMemory, "MemoryConfigurationS §4.5, §4.16",
+        {"memory.read-at-highest.<sp>", 550, Category::kMemory, "MemoryConfigurationS §4.5, §4.16",
          Strength::kShall,
          "the highest address is the highest valid address, so a read there returns data",
          "mc20, mc30",
          "1-byte read at Space Info's highest address of 0xFF, 0xFD, 0xFC, 0xFB and every CDI "
          "space (each present per Space Info): data; 0x1082 there means Space Info gives the size",
          read_at_highest},
-        {"memory.read-past-end.<sp>", Category::kMemory,
+        {"memory.read-past-end.<sp>", 560, Category::kMemory,
          "MemoryConfigurationS §4.3, §4.5; MemoryConfigurationTN §2.4.3", Strength::kShall,
          "a read that yields no bytes fails with an error code; 0x1082 is the recommended one "
          "(another code WARNs)",
@@ -510,7 +510,7 @@ std::vector<CheckSpec> memory_bounds_checks() {
          "with exactly 0x1082 (Datagram Rejected or Read Reply Fail); data or OK fails; SKIP "
          "\"depends on\" the check that found the highest address too small",
          read_past_end},
-        {"memory.write-past-end.<sp>", Category::kMemory, "MemoryConfigurationS §4.3, §4.8",
+        {"memory.write-past-end.<sp>", 570, Category::kMemory, "MemoryConfigurationS §4.3, §4.8",
          Strength::kNone,
          "no clause makes a node refuse a write crossing the end of a space (0x1082 is defined for "
          "it): accepted WARNs, unanswered FAILs by DatagramTransportS §6",
@@ -523,14 +523,14 @@ std::vector<CheckSpec> memory_bounds_checks() {
          "253's internal data, put back at once); no answer FAILs; SKIP on a protected last byte "
          "and with --read-only",
          write_past_end, false, false, true},
-        {"memory.write-under-mask", Category::kMemory, "MemoryConfigurationS §4.10, §4.14",
+        {"memory.write-under-mask", 580, Category::kMemory, "MemoryConfigurationS §4.10, §4.14",
          Strength::kShall,
          "when advertised, mask bits 1 take the data and mask bits 0 keep the memory", "mc70",
          "when Options advertise 0x8000: write under mask mask 0x00 data ~v, then mask 0xFF data "
          "v, on the first byte of the first unprotected writable CDI variable: reads v after each "
          "(a changed byte is written back at once)",
          write_under_mask},
-        {"memory.update-complete", Category::kMemory, "MemoryConfigurationS §4.23",
+        {"memory.update-complete", 590, Category::kMemory, "MemoryConfigurationS §4.23",
          Strength::kShall,
          "receiving Update Complete must be permitted; the node may answer with a "
          "re-initialization",
@@ -538,7 +538,7 @@ std::vector<CheckSpec> memory_bounds_checks() {
          "Update Complete (20 A8): Datagram Received OK (or a re-initialization), then the node "
          "still answers Verify Node ID",
          update_complete},
-        {"memory.options-write-lengths", Category::kMemory, "MemoryConfigurationS §4.14",
+        {"memory.options-write-lengths", 600, Category::kMemory, "MemoryConfigurationS §4.14",
          Strength::kShall,
          "write-lengths bits 0x80, 0x40, 0x20, 0x02 are sent as 1 and 0x08, 0x04 as 0", "mc10",
          "Get Configuration Options write-lengths byte: (byte & 0xEE) == 0xE2 (0x10 reserved, 0x01 "

@@ -3,6 +3,7 @@
 #include "openlcb/can_defs.hpp"
 
 namespace olcb::conform::checks {
+namespace {
 void oir_unknown_mti(CheckRun& run) {
     const std::optional<std::uint16_t> code = run.frame_probe().oir;
     if (!code)
@@ -69,6 +70,46 @@ void no_unsolicited(CheckRun& run) {
     run.out().warn("the node sent " + seen +
                    " unasked during the run (allowed; noted because a "
                    "busy node slows every tool on the segment)");
+}
+
+}  // namespace
+
+std::vector<CheckSpec> message_checks() {
+    return {
+        {"message.oir-unknown-mti", 30, Category::kMessage, "MessageNetworkS §3.5.1, §3.5.5",
+         Strength::kShall,
+         "an addressed message of an interaction the node does not take part in is answered with "
+         "OIR "
+         "carrying an error code and the rejected MTI; the code may be 0x0000",
+         "me40",
+         "addressed frame with unassigned MTI 0x04F9: OIR with a permanent code echoing 0x04F9",
+         oir_unknown_mti},
+        {"message.verify-addressed", 40, Category::kMessage, "MessageNetworkS §3.4.2",
+         Strength::kShall,
+         "a Verify Node ID addressed to the node is answered with Verified Node ID", "me20",
+         "Verify Node ID addressed: Verified Node ID with the node's ID", verify_addressed},
+        {"message.verify-global", 50, Category::kMessage, "MessageNetworkS §3.4.2",
+         Strength::kShall,
+         "a global Verify Node ID carrying the node's ID is answered with Verified Node ID", "me20",
+         "Verify Node ID global with the node's ID: Verified Node ID", verify_global},
+        {"message.unknown-global-ignored", 60, Category::kMessage, "MessageNetworkS §3.5.2",
+         Strength::kMay,
+         "a node may drop an unaddressed message of an interaction it does not take part in "
+         "without a "
+         "reply (answering is not forbidden)",
+         "me40",
+         "global frame with unassigned MTI 0x0930: nothing addressed to lcc-conform within the "
+         "silence window",
+         unknown_global_ignored},
+        {"message.pip-answered", 70, Category::kMessage, "MessageNetworkS §3.4.3", Strength::kShall,
+         "a Protocol Support Inquiry is answered with a Protocol Support Reply", "me30",
+         "Protocol Support Inquiry: Protocol Support Reply", pip_answered},
+        {"message.no-unsolicited", 760, Category::kMessage, "", Strength::kNone,
+         "an initialized node may send any message; unprompted traffic is only noted (WARN)", "",
+         "(observes the whole run, >= 1.2 s) no Verify/Identify/PCER/PSI/SNIP request/Learn frame "
+         "originated by the node",
+         no_unsolicited},
+    };
 }
 
 }  // namespace olcb::conform::checks

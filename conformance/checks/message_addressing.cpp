@@ -232,28 +232,28 @@ void duplicate_node_id(CheckRun& run) {
 
 std::vector<CheckSpec> message_addressing_checks() {
     return {
-        {"message.verify-other-silent", C::kMessage, "MessageNetworkS §3.4.2", Strength::kNone,
+        {"message.verify-other-silent", 480, C::kMessage, "MessageNetworkS §3.4.2", Strength::kNone,
          "replies are defined for Verify messages addressed to the node; none forbids answering "
          "others (WARN)",
          "me20",
          "Verify Node ID with the node's ID addressed to an alias no node uses: no Verified Node "
          "ID from the node within the silence window",
          verify_other_silent},
-        {"message.pip-other-silent", C::kMessage, "MessageNetworkS §3.4.3", Strength::kNone,
+        {"message.pip-other-silent", 490, C::kMessage, "MessageNetworkS §3.4.3", Strength::kNone,
          "the reply is defined for an inquiry addressed to the node (WARN)", "me30",
          "Protocol Support Inquiry addressed to an alias no node uses: no Protocol Support Reply "
          "from the node within the silence window",
          pip_other_silent},
-        {"message.oir-other-silent", C::kMessage, "MessageNetworkS §3.5.1", Strength::kNone,
+        {"message.oir-other-silent", 500, C::kMessage, "MessageNetworkS §3.5.1", Strength::kNone,
          "OIR answers messages addressed to the node itself (WARN)", "me40",
          "unassigned MTI 0x04F9 addressed to an alias no node uses: no OIR from the node within "
          "the silence window",
          oir_other_silent},
-        {"message.pip-fourth-byte", C::kMessage, "MessageNetworkS §3.3.7", Strength::kShall,
+        {"message.pip-fourth-byte", 510, C::kMessage, "MessageNetworkS §3.3.7", Strength::kShall,
          "unallocated PIP bits are sent as 0", "me30",
          "Protocol Support Inquiry: the reply's 4th and later (reserved) bytes are 0",
          pip_fourth_byte},
-        {"message.pip-simple-bit", C::kMessage, "MessageNetworkS §4.1.4", Strength::kNone,
+        {"message.pip-simple-bit", 520, C::kMessage, "MessageNetworkS §4.1.4", Strength::kNone,
          "simple nodes use the simple Verified MTI; §4 is not normative (WARN)", "me60",
          "PIP Simple Protocol bit (0x80 of the first byte) set iff the node answers Verify with "
          "Verified "
@@ -264,7 +264,7 @@ std::vector<CheckSpec> message_addressing_checks() {
 
 std::vector<CheckSpec> final_checks() {
     return {
-        {"message.duplicate-node-id", C::kMessage, "MessageNetworkS §3.5.4", Strength::kNone,
+        {"message.duplicate-node-id", 770, C::kMessage, "MessageNetworkS §3.5.4", Strength::kNone,
          "a node seeing its node ID elsewhere indicates it by whatever means it has, so the PCER "
          "and going silent are both allowed (WARN)",
          "me50",

@@ -12,8 +12,6 @@ void bit_agrees(CheckRun& run, Protocol bit, bool works, const std::string& what
                     set ? "bit set" : "bit clear");
 }
 
-}  // namespace
-
 void pip_snip_bit(CheckRun& run) {
     bit_agrees(run, Protocol::kSnip, run.snip_raw().has_value(),
                "PIP SNIP bit agrees with the SNIP answer");
@@ -38,6 +36,32 @@ void pip_acdi_bit(CheckRun& run) {
     if (!run.ctx().document) return run.out().skip("depends on cdi.well-formed: no CDI document");
     bit_agrees(run, Protocol::kAcdi, run.ctx().document->acdi.has_value(),
                "PIP ACDI bit iff the CDI has <acdi/>");
+}
+
+}  // namespace
+
+std::vector<CheckSpec> pip_checks() {
+    return {
+        {"pip.snip-bit", 290, Category::kPip, "SimpleNodeInformationS §6.1; MessageNetworkS §3.3.7",
+         Strength::kShall, "a node supporting SNIP sets the SNIP bit", "me30",
+         "PIP SNIP bit set iff the node answered SNIP", pip_snip_bit},
+        {"pip.datagram-bit", 300, Category::kPip, "MessageNetworkS §3.3.7, §3.4.3",
+         Strength::kShall,
+         "the Datagram bit is set exactly when the node implements datagrams (any OK or Datagram "
+         "Rejected shows it does)",
+         "me30", "PIP Datagram bit set iff the node answered datagrams", pip_datagram_bit},
+        {"pip.memory-config-bit", 310, Category::kPip, "MessageNetworkS §3.3.7, §3.4.3",
+         Strength::kShall,
+         "the Memory Configuration bit is set exactly when the node implements it", "me30",
+         "PIP Memory Configuration bit set iff memory configuration answered",
+         pip_memory_config_bit},
+        {"pip.cdi-bit", 320, Category::kPip, "MessageNetworkS §3.3.7; MemoryConfigurationS §4.2",
+         Strength::kShall, "the CDI bit is set exactly when the node provides a CDI", "me30",
+         "PIP CDI bit set iff space 0xFF returned data", pip_cdi_bit},
+        {"pip.acdi-bit", 330, Category::kPip, "ConfigurationDescriptionInformationS §5.1.2",
+         Strength::kShall, "<acdi/> is present exactly when the PIP ACDI bit is set", "",
+         "PIP ACDI bit set iff the CDI has <acdi/>", pip_acdi_bit},
+    };
 }
 
 }  // namespace olcb::conform::checks

@@ -4,7 +4,7 @@
 
 #include "base/utf8.hpp"
 #include "conformance/checks/checks.hpp"
-#include "conformance/report.hpp"
+#include "conformance/report/report.hpp"
 #include "memory/acdi.hpp"
 
 namespace olcb::conform::checks {
@@ -32,8 +32,6 @@ std::string first_difference(std::span<const Field> fields, const std::string& s
     return {};
 }
 
-}  // namespace
-
 void snip_version_bytes(CheckRun& run) {
     const auto& raw = run.snip_raw();
     if (!raw || raw->empty() || !run.ctx().snip) return run.out().skip("no SNIP reply");
@@ -50,6 +48,8 @@ void snip_version_bytes(CheckRun& run) {
                               "strings)");
     run.out().fail("SNIP version bytes " + seen + ": not a valid version", "1 or 4, 1 or 2", seen);
 }
+
+}  // namespace
 
 void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what,
                 Status bad_status) {
@@ -70,6 +70,8 @@ void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::s
     run.out().add(bad_status, std::move(message), "valid UTF-8", shown(*bad.front()),
                   std::move(details));
 }
+
+namespace {
 
 void snip_utf8(CheckRun& run) {
     run.snip_raw();
@@ -130,6 +132,42 @@ void snip_matches_cdi(CheckRun& run) {
     const std::string diff = first_difference(present, "CDI <identification>", want, got);
     run.out().judge(diff.empty(),
                     diff.empty() ? "SNIP strings equal the CDI <identification>" : diff, want, got);
+}
+
+}  // namespace
+
+std::vector<CheckSpec> snip_checks() {
+    return {
+        {"snip.version-bytes", 80, Category::kSnip, "SimpleNodeInformationS §5.1, §5.2",
+         Strength::kShall,
+         "the section version bytes are 0x01 or 0x04 (manufacturer) and 0x01 or 0x02 (user); "
+         "higher "
+         "values are future versions",
+         "sn10", "SNIP request: version bytes 4 and 2", snip_version_bytes},
+        {"snip.utf8", 90, Category::kSnip, "SimpleNodeInformationS §5.1; CommonInformationTN §2.5",
+         Strength::kNone,
+         "OpenLCB text is UTF-8 (a technical note; SNIP itself only says NUL-terminated strings)",
+         "",
+         "(the same reply) each of the six strings is valid UTF-8; FAIL names each invalid one "
+         "with "
+         "its bytes in hex",
+         snip_utf8},
+        {"snip.matches-acdi", 340, Category::kSnip, "ConfigurationDescriptionInformationS §5.1.2",
+         Strength::kShall, "with <acdi/> and SNIP, the SNIP strings equal the ACDI spaces", "",
+         "all six SNIP strings equal the ACDI strings; FAIL names the first differing field",
+         snip_matches_acdi},
+        {"snip.matches-cdi", 350, Category::kSnip, "ConfigurationDescriptionInformationS §5.1.1",
+         Strength::kShall,
+         "with <identification> and SNIP, the SNIP strings equal the tags present", "",
+         "the four manufacturer strings equal <identification>; FAIL names the first differing "
+         "field",
+         snip_matches_cdi},
+        {"snip.follows-acdi-user-write", 890, Category::kSnip,
+         "ConfigurationDescriptionInformationS §5.1.2; SimpleNodeInformationS §6.3",
+         Strength::kShall, "the SNIP user strings equal space 251, which is writable", "",
+         "write of a UTF-8 user name to 251 @1, a SNIP request, the original back: the reply "
+         "carries the name"},
+    };
 }
 
 }  // namespace olcb::conform::checks

@@ -218,33 +218,33 @@ void stream_read_past_end(CheckRun& run) {
 
 std::vector<CheckSpec> stream_checks() {
     return {
-        {"stream.advertised", Category::kStream,
+        {"stream.advertised", 670, Category::kStream,
          "MessageNetworkS §3.3.7; MemoryConfigurationS §4.14", Strength::kShall,
          "the PIP Stream bit is set when the node offers stream reads (write-lengths 0x01)", "cd20",
          "PIP Stream bit and Get Configuration Options stream reads (0x1000, or write-lengths "
          "0x01) agree: Options offering stream reads without the PIP bit fails; neither: SKIP",
          stream_advertised},
-        {"stream.cdi-read", Category::kStream, "MemoryConfigurationS §4.6, §4.7", Strength::kShall,
-         "a Read Stream returns the space's bytes through a stream", "cd20",
+        {"stream.cdi-read", 680, Category::kStream, "MemoryConfigurationS §4.6, §4.7",
+         Strength::kShall, "a Read Stream returns the space's bytes through a stream", "cd20",
          "Read Stream of 0xFF from 0 to the end (count 0xFFFFFFFF), lcc-conform granting the "
          "largest buffer: the stream's bytes start with the datagram download, byte for byte",
          stream_cdi_read},
-        {"stream.complete", Category::kStream, "StreamTransportS §6.4", Strength::kNone,
+        {"stream.complete", 690, Category::kStream, "StreamTransportS §6.4", Strength::kNone,
          "StreamTransportS is not adopted: its rules WARN", "",
          "(the same read) Read Stream Reply OK, Data Complete, its count (if any) equals the bytes "
          "the stream carried",
          stream_complete},
-        {"stream.buffer-negotiation", Category::kStream, "StreamTransportS §4.2, §6.3",
+        {"stream.buffer-negotiation", 700, Category::kStream, "StreamTransportS §4.2, §6.3",
          Strength::kNone, "StreamTransportS is not adopted: its rules WARN", "",
          "Read Stream of 0xFF granting a 64-byte buffer: the node proposed > 0 and never sends "
          "more than 64 bytes before lcc-conform's Data Proceed",
          stream_buffer_negotiation},
-        {"stream.proceed", Category::kStream, "StreamTransportS §6.3", Strength::kNone,
+        {"stream.proceed", 710, Category::kStream, "StreamTransportS §6.3", Strength::kNone,
          "StreamTransportS is not adopted: its rules WARN", "",
          "(the same read) each full buffer held 200 ms before the Proceed: no data meanwhile; "
          "the bytes match the datagram download",
          stream_proceed},
-        {"stream.read-past-end", Category::kStream,
+        {"stream.read-past-end", 720, Category::kStream,
          "MemoryConfigurationS §4.3, §4.7; MemoryConfigurationTN §2.4.3", Strength::kShall,
          "an error before the stream is set up is a Read Stream Reply failure with an error code; "
          "0x1082 is recommended (another code WARNs)",

@@ -1,13 +1,13 @@
 // The CSV form of a backup: RFC 4180 quoting both ways, columns by header name, and a restore
 // that refuses rows whose place is not the node's (a key of another CDI).
-#include "conformance/backup_csv.hpp"
+#include "conformance/backup/backup_csv.hpp"
 #include "conformance/conform_test_util.hpp"
 
 #include <gtest/gtest.h>
 
 #include "cdi/parser.hpp"
-#include "conformance/config_backup.hpp"
 #include "conformance/fake_memory.hpp"
+#include "conformance/run/config_backup.hpp"
 
 namespace olcb::conform {
 namespace {

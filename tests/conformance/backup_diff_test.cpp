@@ -1,6 +1,6 @@
 // The review before a restore: two backup files compared without a CDI (an int written signed
 // by one tool and unsigned by the other is the same value), and a plan printed.
-#include "conformance/backup_diff.hpp"
+#include "conformance/backup/backup_diff.hpp"
 
 #include <gtest/gtest.h>
 

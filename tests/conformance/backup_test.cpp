@@ -1,4 +1,4 @@
-#include "conformance/backup.hpp"
+#include "conformance/run/safety_backup.hpp"
 
 #include <gtest/gtest.h>
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "cdi/rule_finding.hpp"
-#include "conformance/check_registry.hpp"
+#include "conformance/checks/check_registry.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {

@@ -1,6 +1,6 @@
 // The check registry: unique IDs in their categories, docs/checks.md generated from it, every
 // OlcbChecker node check covered or said why not, and --only / --skip / --thorough selection.
-#include "conformance/check_registry.hpp"
+#include "conformance/checks/check_registry.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "conformance/conform_test_util.hpp"
-#include "conformance/runner.hpp"
+#include "conformance/run/runner.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {
@@ -31,6 +31,18 @@ TEST(CheckRegistryTest, IdsAreUniqueAndStartWithTheirCategory) {
         EXPECT_TRUE(is_check_pattern(s.id)) << s.id;
     }
     EXPECT_GT(seen.size(), 60u);
+}
+
+// Families place their entries by order alone: two entries of one order would run in whichever
+// order the families happen to be joined.
+TEST(CheckRegistryTest, OrdersAreUniqueAndTheRegistryIsSortedByThem) {
+    std::set<int> orders;
+    int last = 0;
+    for (const CheckSpec& s : check_registry()) {
+        EXPECT_TRUE(orders.insert(s.order).second) << s.id << " shares order " << s.order;
+        EXPECT_GT(s.order, last) << s.id;
+        last = s.order;
+    }
 }
 
 TEST(CheckRegistryTest, PerSpaceResultsFindTheirEntry) {

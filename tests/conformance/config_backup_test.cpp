@@ -1,6 +1,6 @@
 // The JMRI-format configuration backup: OpenLCB_Java's keys and value forms, escaping, and
 // restore (only what differs is written, every problem listed) on an in-memory node.
-#include "conformance/config_backup.hpp"
+#include "conformance/run/config_backup.hpp"
 
 #include <gtest/gtest.h>
 

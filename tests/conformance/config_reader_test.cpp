@@ -1,6 +1,6 @@
 // The reads of a configuration backup: used ranges merged into as few 64-byte reads as one
 // request per range would need, and a failed range read again variable by variable.
-#include "conformance/config_reader.hpp"
+#include "conformance/backup/config_reader.hpp"
 #include "conformance/conform_test_util.hpp"
 
 #include <gtest/gtest.h>

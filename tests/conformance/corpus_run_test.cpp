@@ -7,12 +7,12 @@
 #include <map>
 #include <sstream>
 
+#include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/report.hpp"
-#include "conformance/runner.hpp"
-#include "conformance/session.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/report/report.hpp"
+#include "conformance/run/runner.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 #include "support/report_schema.hpp"

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
-#include "conformance/report.hpp"
-#include "conformance/run_timing.hpp"
+#include "conformance/report/report.hpp"
+#include "conformance/report/run_timing.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/can_defs.hpp"
 #include "support/report_schema.hpp"

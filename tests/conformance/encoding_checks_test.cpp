@@ -1,4 +1,4 @@
-#include "conformance/encoding_checks.hpp"
+#include "conformance/run/encoding_checks.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "conformance/backup.hpp"
+#include "conformance/link/memory_access.hpp"
 
 namespace olcb::conform::testing {
 

@@ -9,11 +9,11 @@
 #include <set>
 #include <sstream>
 
-#include "conformance/config_backup.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/link.hpp"
-#include "conformance/session.hpp"
-#include "conformance/session_memory.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/link/session_memory.hpp"
+#include "conformance/run/config_backup.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 

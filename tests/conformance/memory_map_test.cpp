@@ -1,7 +1,7 @@
 // A node's memory map: the verdict of every listed variable from the run's evidence, every
 // tested replica listed, and whole runs against the simulated node (a clean one and one that
 // stores ints little-endian, where writing stops at the first int).
-#include "conformance/memory_map.hpp"
+#include "conformance/run/memory_map.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,12 +11,12 @@
 #include <set>
 #include <sstream>
 
+#include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/encoding_checks.hpp"
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/runner.hpp"
-#include "conformance/session.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/run/encoding_checks.hpp"
+#include "conformance/run/runner.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 

@@ -1,4 +1,4 @@
-#include "conformance/protection.hpp"
+#include "conformance/checks/protection.hpp"
 
 #include <gtest/gtest.h>
 

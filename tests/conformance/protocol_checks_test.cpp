@@ -9,10 +9,10 @@
 #include <sstream>
 #include <variant>
 
+#include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/session.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/faults.hpp"
@@ -253,7 +253,9 @@ TEST(RejectCodeTest, OtherCodesWarnQuotingTheCodeGot) {
               "(MemoryConfigurationTN §2.4.3)");
     for (const auto& r : results) {
         EXPECT_NE(r.status, Status::kFail) << dump(results);
-        if (r.id.starts_with("memory.readonly-refused.")) EXPECT_EQ(r.status, Status::kWarn);
+        if (r.id.starts_with("memory.readonly-refused.")) {
+            EXPECT_EQ(r.status, Status::kWarn);
+        }
     }
 }
 

@@ -9,13 +9,13 @@
 #include <regex>
 #include <sstream>
 
-#include "conformance/check_registry.hpp"
+#include "conformance/checks/check_registry.hpp"
+#include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/report.hpp"
-#include "conformance/runner.hpp"
-#include "conformance/session.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/report/report.hpp"
+#include "conformance/run/runner.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/scenario.hpp"
 #include "simnode/sim_node.hpp"

@@ -1,4 +1,4 @@
-#include "conformance/report.hpp"
+#include "conformance/report/report.hpp"
 
 #include <gtest/gtest.h>
 

@@ -8,9 +8,9 @@
 #include <map>
 #include <sstream>
 
+#include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/runner.hpp"
+#include "conformance/run/runner.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 

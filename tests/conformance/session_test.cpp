@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "conformance/session.hpp"
-#include "conformance/session_memory.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/link/session_memory.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/can_defs.hpp"
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/session.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/node_stack.hpp"

@@ -8,9 +8,9 @@
 #include <sstream>
 #include <thread>
 
-#include "conformance/link.hpp"
-#include "conformance/protocol_checks.hpp"
-#include "conformance/session.hpp"
+#include "conformance/checks/protocol_checks.hpp"
+#include "conformance/link/link.hpp"
+#include "conformance/link/session.hpp"
 #include "openlcb/stack_driver.hpp"
 #include "openlcb/tcp_hub_server.hpp"
 #include "simnode/sim_node.hpp"

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "conformance/conform_test_util.hpp"
-#include "conformance/report.hpp"
+#include "conformance/report/report.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {

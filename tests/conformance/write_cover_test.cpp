@@ -1,6 +1,6 @@
-// The node run's gate on the write ledger (conformance/write_cover.hpp): a write goes out only once
-// the bytes it may change are in the backup file; the restore writes back only what differs.
-#include "conformance/write_cover.hpp"
+// The node run's gate on the write ledger (conformance/run/write_cover.hpp): a write goes out only
+// once the bytes it may change are in the backup file; the restore writes back only what differs.
+#include "conformance/run/write_cover.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
-// The write ledger (conformance/write_ledger.hpp): every write recorded before it goes out, its
-// gate's refusal kept, and the bytes past the end counted once each.
-#include "conformance/write_ledger.hpp"
+// The write ledger (conformance/link/write_ledger.hpp): every write recorded before it goes out,
+// its gate's refusal kept, and the bytes past the end counted once each.
+#include "conformance/link/write_ledger.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,9 +10,9 @@
 #include <string_view>
 
 #include "base/utf8.hpp"
-#include "conformance/backup_csv.hpp"
-#include "conformance/backup_file.hpp"
-#include "conformance/backup_values.hpp"
+#include "conformance/backup/backup_csv.hpp"
+#include "conformance/backup/backup_file.hpp"
+#include "conformance/backup/backup_values.hpp"
 
 namespace {
 

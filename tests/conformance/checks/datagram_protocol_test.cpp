@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "conformance/check_run.hpp"
+#include "conformance/checks/check_run.hpp"
 #include "conformance/checks/checks.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/can_defs.hpp"

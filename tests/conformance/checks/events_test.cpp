@@ -5,7 +5,7 @@
 
 #include <map>
 
-#include "conformance/check_run.hpp"
+#include "conformance/checks/check_run.hpp"
 #include "conformance/checks/checks.hpp"
 #include "conformance/checks/events.hpp"
 #include "conformance/sim_bench.hpp"

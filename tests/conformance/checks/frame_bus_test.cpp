@@ -7,9 +7,9 @@
 #include <variant>
 #include <vector>
 
-#include "conformance/check_run.hpp"
+#include "conformance/checks/check_run.hpp"
 #include "conformance/checks/checks.hpp"
-#include "conformance/node_watch.hpp"
+#include "conformance/run/node_watch.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/can_defs.hpp"
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "conformance/check_registry.hpp"
-#include "conformance/check_run.hpp"
+#include "conformance/checks/check_registry.hpp"
+#include "conformance/checks/check_run.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {

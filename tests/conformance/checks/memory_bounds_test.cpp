@@ -6,7 +6,7 @@
 #include <span>
 #include <variant>
 
-#include "conformance/check_run.hpp"
+#include "conformance/checks/check_run.hpp"
 #include "conformance/checks/checks.hpp"
 #include "conformance/sim_bench.hpp"
 

@@ -1,0 +1,152 @@
+#include "conformance/checks/protocol_checks.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <set>
+#include <span>
+#include <string>
+
+#include "conformance/checks/check_run.hpp"
+
+namespace olcb::conform {
+namespace {
+
+using memory::Space;
+
+// Short replies a FAIL message lists before giving the total.
+constexpr std::size_t kShortReadsListed = 3;
+// 1-byte reads short_read_checks() makes per space to learn whether a short reply was the end.
+constexpr std::size_t kMaxEndProbes = 8;
+
+// The short replies of one space that were not the end of it. One that nothing was read after is
+// settled by a 1-byte read where it ended (data: not the end; 0x1082: the end), then by Space Info.
+std::vector<const ShortRead*> short_reads_inside(Session& s, const NodeInfo& node,
+                                                 std::uint8_t space, CheckContext& ctx) {
+    auto open = [&](const ShortRead& r) {
+        return r.node == node.id && r.space == space && !r.continued && !r.at_end;
+    };
+    std::optional<SpaceInfo> info;
+    auto inside = [&](const ShortRead& r) {
+        if (!info) {
+            auto known = ctx.spaces.find(space);
+            info = known != ctx.spaces.end() && known->second.answered
+                       ? known->second
+                       : CheckRun(s, node, ProtocolOptions{}, ctx).space_info(space);
+        }
+        return info->present && r.address + std::uint64_t{r.got} <= info->highest_address;
+    };
+    std::set<std::uint64_t> probed;
+    const std::size_t count = s.short_reads().size();  // the probes below may add more
+    for (std::size_t i = 0; i < count && probed.size() < kMaxEndProbes; ++i) {
+        const ShortRead r = s.short_reads()[i];
+        const std::uint64_t end = r.address + std::uint64_t{r.got};
+        if (!open(r) || !inside(r) || !probed.insert(end).second) continue;
+        s.read(node, static_cast<Space>(space), static_cast<std::uint32_t>(end), 1);
+    }
+    std::vector<const ShortRead*> out;
+    for (std::size_t i = 0; i < count; ++i) {
+        const ShortRead& r = s.short_reads()[i];
+        if (r.node != node.id || r.space != space) continue;
+        if (r.continued || (open(r) && inside(r))) out.push_back(&r);
+    }
+    return out;
+}
+
+CheckResult short_read_check(Session& s, const NodeInfo& node, std::uint8_t space,
+                             CheckContext& ctx) {
+    char id[8];
+    std::snprintf(id, sizeof id, "%02x", space);
+    CheckResult c{
+        std::string("memory.short-read.") + id, Category::kMemory, Status::kPass, "", "", "", ""};
+    if (const CheckSpec* spec = find_check(c.id)) c.section = std::string(spec->section);
+    const std::string name = hex(space, 2);
+    const std::uint64_t reads = s.reads(node.id, space);
+    const std::vector<const ShortRead*> bad = short_reads_inside(s, node, space, ctx);
+    if (bad.empty()) {
+        c.message = std::to_string(reads) + " reads of space " + name +
+                    " returned the count asked or ended at the end of the space";
+        return c;
+    }
+    std::string list;
+    for (std::size_t i = 0; i < bad.size() && i < kShortReadsListed; ++i) {
+        list += (i ? "; " : "") + std::string("at ") + hex(bad[i]->address, 8) + " asked " +
+                std::to_string(bad[i]->asked) + " got " + std::to_string(bad[i]->got);
+    }
+    // §4.5 lets a reply be shorter in general and wants a failure only for other reasons: an
+    // ambiguity, so a note (a tool reading on copes; one stopping at a short reply loses data).
+    c.status = Status::kWarn;
+    c.message = "space " + name + ": " + std::to_string(bad.size()) + " of " +
+                std::to_string(reads) + " reads returned fewer bytes than asked away from the " +
+                "end of the space (" + list + (bad.size() > kShortReadsListed ? "; ..." : "") + ")";
+    c.expected = "the count asked: only the end of the space may shorten a Read Reply";
+    c.seen = std::to_string(bad.size()) + " short replies, first " + list.substr(0, list.find(';'));
+    return c;
+}
+
+// True when the node sent any frame since the mark (so it is alive without asking).
+bool heard_from(CheckRun& run, std::size_t mark) {
+    for (const CanFrame& f : run.session().frames_since(mark))
+        if (run.from_node(f)) return true;
+    return false;
+}
+
+}  // namespace
+
+std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& node,
+                                           CheckContext& ctx) {
+    std::vector<CheckResult> out;
+    for (unsigned sp = 0; sp <= 0xFF; ++sp) {
+        const auto space = static_cast<std::uint8_t>(sp);
+        if (session.reads(node.id, space) > 0)
+            out.push_back(short_read_check(session, node, space, ctx));
+    }
+    return out;
+}
+
+std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
+                                             const ProtocolOptions& options, CheckContext& ctx) {
+    // The node's measured latency widens every window; none gets shorter than asked.
+    ProtocolOptions o = options;
+    if (ctx.timing) {
+        o.window = std::max(o.window, ctx.timing->silence);
+        o.answer_window = std::max(o.answer_window, ctx.timing->answer);
+        o.quiet_window = std::max(o.quiet_window, ctx.timing->quiet);
+    }
+    CheckRun run(session, node, o, ctx);
+    std::string gone;  // the check after which the node stopped answering
+    for (const CheckSpec& spec : check_registry()) {
+        if (!spec.run || !o.selection.wants(spec)) continue;
+        if (!gone.empty()) {
+            // A dead node would cost every later check its full timeout, for nothing.
+            ++ctx.not_run;
+            if (!spec.id.ends_with(kPerSpace))
+                run.add({std::string(spec.id), spec.category, Status::kSkip,
+                         "not run: the node stopped answering after " + gone, "", "", ""});
+            continue;
+        }
+        if (spec.exclusive) {
+            if (auto other = run.other_tool()) {
+                if (!spec.id.ends_with(kPerSpace))
+                    run.add({std::string(spec.id), spec.category, Status::kSkip,
+                             "not run: another lcc-conform run (" + other->to_string() +
+                                 ") is on the segment, and this check needs the bus to itself",
+                             "", "", ""});
+                continue;
+            }
+        }
+        if (ctx.check_started) ctx.check_started(spec.id);
+        const std::size_t mark = session.frame_mark();
+        const std::size_t first = run.result_count();
+        const auto since = std::chrono::steady_clock::now();
+        run.run(spec);
+        run.share_duration(first, std::chrono::steady_clock::now() - since);
+        if (!heard_from(run, mark) && !session.ping(node, o.answer_window)) gone = spec.id;
+    }
+    ctx.lost_after = gone;
+    std::vector<CheckResult> out = run.take();
+    std::erase_if(out, [&](const CheckResult& c) { return !o.selection.wants_id(c.id); });
+    return out;
+}
+
+}  // namespace olcb::conform

@@ -1,0 +1,46 @@
+// The frame, message, PIP, SNIP, ACDI, datagram, memory and CDI checks of docs/checks.md.
+#pragma once
+
+#include <chrono>
+#include <vector>
+
+#include "conformance/checks/check_context.hpp"
+#include "conformance/checks/check_registry.hpp"
+#include "conformance/link/session.hpp"
+#include "conformance/report/check_result.hpp"
+
+namespace olcb::conform {
+
+/// Knobs of run_protocol_checks().
+struct ProtocolOptions {
+    /// Window in which silence is awaited (a node that stays silent this long is silent).
+    Duration window = std::chrono::milliseconds(250);
+    /// Longest wait for an answer the node owes (checks end as soon as the answers are in).
+    Duration answer_window = std::chrono::seconds(1);
+    /// Shortest span over which the node must send nothing unsolicited (the run counts).
+    Duration quiet_window = std::chrono::milliseconds(1200);
+    /// Largest reply latency that passes.
+    Duration max_reply_latency = std::chrono::milliseconds(750);
+    /// Skip the writes to read-only spaces (they rewrite the byte already there).
+    bool read_only = false;
+    /// Upper bound of the CDI download when Space Info gives none.
+    std::uint32_t max_cdi_bytes = 1024 * 1024;
+    /// --no-stream: stream checks SKIP and the CDI is read by datagrams only.
+    bool no_stream = false;
+    /// --reboot: checks that need a Reset/Reboot (the start-up sequence) may send one.
+    bool reboot = false;
+    /// --only / --skip / --thorough: which registry entries run.
+    CheckSelection selection;
+};
+
+/// Runs every protocol check against node, filling ctx for later checks.
+std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
+                                             const ProtocolOptions& options, CheckContext& ctx);
+
+/// One memory.short-read.<space> check per space this node was read from (two lower-case hex
+/// digits, e.g. memory.short-read.fb): FAIL when a Read Reply OK was shorter than asked away from
+/// the end of the space.
+std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& node,
+                                           CheckContext& ctx);
+
+}  // namespace olcb::conform
