@@ -1,5 +1,7 @@
 // Named, composable misbehaviours of a simulated node (docs/faults.md): each breaks one rule of
-// a standard on purpose so a client's handling of it can be tested.
+// a standard on purpose so a client's handling of it can be tested. Each fault is declared once,
+// in its family's file under simnode/faults/ (fault_catalog.hpp); this header is what the hooks
+// and callers need.
 #pragma once
 
 #include <chrono>

@@ -128,7 +128,9 @@ po::options_description general_options() {
     po::options_description general("General");
     general.add_options()("help,h", "print this help and exit")(
         "version", "print the program's version and exit")(
-        "list-faults", "print the names of every fault and exit")(
+        "list-faults", po::value<std::string>()->implicit_value("")->value_name("FORMAT"),
+        "print every fault and exit; --list-faults=markdown prints docs/faults.md's table, "
+        "=json the declarations")(
         "scenario", po::value<std::string>()->value_name("FILE"),
         "scenario .ini file (also accepted as the only positional argument)")(
         "run-for", po::value<std::string>()->value_name("SECONDS"),
@@ -247,6 +249,7 @@ struct CommandLine {
     std::optional<std::string> scenario;
     bool help = false;
     bool list_faults = false;
+    std::string list_faults_format;
     bool version = false;
 };
 
@@ -272,6 +275,7 @@ std::optional<CommandLine> parse_command_line(std::span<const std::string> args,
             cl.help = true;
         } else if (opt.string_key == "list-faults") {
             cl.list_faults = true;
+            cl.list_faults_format = opt.value.empty() ? std::string() : opt.value.front();
         } else if (opt.string_key == "version") {
             cl.version = true;
         } else if (opt.string_key == "scenario") {
@@ -797,6 +801,7 @@ std::optional<Arguments> parse_arguments(std::span<const std::string> args,
     Arguments result;
     result.help = cl->help;
     result.list_faults = cl->list_faults;
+    result.list_faults_format = cl->list_faults_format;
     result.version = cl->version;
     if (result.help || result.list_faults || result.version) return result;
 

@@ -56,8 +56,10 @@ struct Scenario {
 struct Arguments {
     bool help = false;         ///< --help: print help_text() and exit
     bool list_faults = false;  ///< --list-faults: print fault_names() and exit
-    bool version = false;      ///< --version: print the program's version and exit
-    Scenario scenario;         ///< filled unless help or list_faults
+    /// --list-faults=FORMAT: "" (one line per fault), "markdown" or "json".
+    std::string list_faults_format;
+    bool version = false;  ///< --version: print the program's version and exit
+    Scenario scenario;     ///< filled unless help or list_faults
 };
 
 /// The --help text (usage line and every option).

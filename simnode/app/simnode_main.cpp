@@ -28,6 +28,7 @@
 #include "simnode/control_client.hpp"
 #include "simnode/control_commands.hpp"
 #include "simnode/control_server.hpp"
+#include "simnode/faults/fault_catalog.hpp"
 #include "simnode/node_registry.hpp"
 #include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
@@ -454,6 +455,31 @@ private:
     boost::asio::steady_timer startup_timer_;
 };
 
+// --list-faults[=FORMAT]: docs/faults.md's table and the e2e oracle come from here.
+int list_faults(const std::string& format) {
+    if (format == "markdown") {
+        std::cout << format_fault_markdown();
+        return 0;
+    }
+    if (format == "json") {
+        std::cout << format_fault_json();
+        return 0;
+    }
+    if (!format.empty()) {
+        std::cerr << "simnode: --list-faults=" << format << ": not markdown or json\n";
+        return 2;
+    }
+    // The name first: scripts take the first word of each line.
+    for (const auto& f : fault_catalog()) {
+        std::string name(f.name);
+        name.resize(std::max<std::size_t>(name.size() + 1, 32), ' ');
+        std::cout << name << f.summary;
+        if (!f.parameter.empty()) std::cout << " (parameter " << f.parameter << ")";
+        std::cout << "\n";
+    }
+    return 0;
+}
+
 }  // namespace
 
 static int main_checked(int argc, char** argv) {
@@ -476,17 +502,7 @@ static int main_checked(int argc, char** argv) {
         std::cout << "simnode " << olcb::kVersion << "\n";
         return 0;
     }
-    if (parsed->list_faults) {
-        // The name first: scripts take the first word of each line.
-        for (const auto& f : fault_catalog()) {
-            std::string name(f.name);
-            name.resize(std::max<std::size_t>(name.size() + 1, 32), ' ');
-            std::cout << name << f.summary;
-            if (!f.parameter.empty()) std::cout << " (parameter " << f.parameter << ")";
-            std::cout << "\n";
-        }
-        return 0;
-    }
+    if (parsed->list_faults) return list_faults(parsed->list_faults_format);
     // A peer closing its socket must not kill the process.
     ::signal(SIGPIPE, SIG_IGN);
     return Runner(parsed->scenario).run();

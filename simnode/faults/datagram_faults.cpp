@@ -1,0 +1,37 @@
+// Datagram faults: how datagrams are acknowledged.
+#include "simnode/faults/fault_families.hpp"
+
+namespace olcb::simnode {
+
+std::vector<FaultDecl> datagram_faults() {
+    return {
+        {
+            .name = "no-datagram-ack",
+            .access = flag_field<&FaultSet::no_datagram_ack>(),
+            .summary = "reply datagram sent before the Datagram Received OK",
+            .rule_broken = "Datagram: every datagram gets Datagram Received OK/Rejected; MemCfg: "
+                           "the OK (Reply Pending) precedes the reply datagram (fact sheet 4, "
+                           "5.2)",
+            .client_sees = "the reply datagram arrives *before* the Datagram Received OK",
+            .verdict = Verdict::kWarn,
+            .category = "datagram",
+            .checks = {"datagram.ok-before-reply"},
+        },
+        {
+            .name = "reject-temporary",
+            .param = {ParamKind::kNumber, "N", 3, 1, kMaxCount},
+            .access = count_field<&FaultSet::reject_temporary>(),
+            .summary = "the first N datagrams are rejected with 0x2020, then it works",
+            .doc_parameter = "`N`, default 3",
+            .rule_broken = "none broken by itself: a busy node may reject with a temporary error "
+                           "(fact sheet 4.2, 4.4)",
+            .client_sees = "the first N datagrams are rejected `0x2020`; then it works. A good "
+                           "client resends and copes; one that gives up fails",
+            .verdict = Verdict::kNone,
+            .category = "datagram",
+            .checks = {"datagram.temporary-rejects"},
+        },
+    };
+}
+
+}  // namespace olcb::simnode

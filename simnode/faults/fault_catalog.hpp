@@ -1,0 +1,111 @@
+// The declarations every fault is made of (issue 29): one entry per fault, kept in its family's
+// file (simnode/faults/*_faults.cpp). Parsing, --list-faults, docs/faults.md's table and the
+// end-to-end matrix's oracle are all generated from these, so a fault is described once.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "simnode/faults.hpp"
+
+namespace olcb::simnode {
+
+/// A fault's parameter as parse_faults() reads it; {0, 0} means the fault is off.
+struct FaultValue {
+    std::uint32_t value = 0;   ///< flag: 1; number: the number; choice: index + 1; latency: MS
+    std::uint32_t jitter = 0;  ///< latency's JITTER, else 0
+    friend bool operator==(const FaultValue&, const FaultValue&) = default;
+};
+
+/// The syntax of a fault's parameter.
+enum class ParamKind : std::uint8_t {
+    kNone,      ///< "name" only
+    kNumber,    ///< "name[=N]", a whole number in min..max
+    kChoice,    ///< "name[=WORD]", one of choices
+    kMsJitter,  ///< "name[=MS[:JITTER]]", both 0..max, not both 0
+};
+
+struct FaultParam {
+    ParamKind kind = ParamKind::kNone;
+    std::string_view value_name;  ///< "MS", "N", "MS[:JITTER]" (kChoice: unused)
+    std::uint32_t fallback = 0;   ///< when no "=": the number, or the choice's index + 1
+    std::uint32_t min = 0;
+    std::uint32_t max = 0;
+    std::vector<std::string_view> choices;  ///< kChoice: the words, in parse order
+};
+
+/// What a careful checker (lcc-conform) must conclude about a node with only this fault.
+enum class Verdict : std::uint8_t {
+    kFail,        ///< a FAIL in the category; exit 1
+    kWarn,        ///< a WARN in the category, no FAIL anywhere; exit 0
+    kIncomplete,  ///< the node restarts or stops mid-run: flagged in the category, exit 2
+    kNone,        ///< nothing wrong: every check passes, exit 0
+};
+
+/// How a fault sets FaultSet and reads it back (for to_names()).
+struct FaultAccess {
+    void (*apply)(FaultSet&, FaultValue) = nullptr;
+    FaultValue (*read)(const FaultSet&) = nullptr;
+};
+
+/// One fault, declared once.
+struct FaultDecl {
+    std::string_view name;     ///< e.g. "reject-temporary"
+    FaultParam param;          ///< its "=..." syntax, default and bounds
+    FaultAccess access;        ///< the FaultSet field(s) it sets
+    std::string_view summary;  ///< one line for --help / --list-faults
+    // docs/faults.md's columns, as written there (markdown).
+    std::string_view doc_parameter;  ///< "Parameter" ("" prints as "–")
+    std::string_view rule_broken;    ///< "Rule broken"
+    std::string_view client_sees;    ///< "What a client sees"
+    Verdict verdict = Verdict::kFail;
+    /// The lcc-conform category that flags it; for kNone "" or the category whose checks a
+    /// careless client would trip on.
+    std::string_view category;
+    std::string_view category_note;  ///< appended in parentheses, e.g. "above 750 ms: message"
+    /// Check IDs (as reports name them) seen to flag it with the verdict's status.
+    std::vector<std::string_view> checks;
+};
+
+// Accessors for the common field types, so a declaration names its field once.
+template <bool FaultSet::*Field>
+constexpr FaultAccess flag_field() {
+    return {[](FaultSet& f, FaultValue v) { f.*Field = v.value != 0; },
+            [](const FaultSet& f) { return FaultValue{f.*Field ? 1U : 0U}; }};
+}
+
+template <std::uint32_t FaultSet::*Field>
+constexpr FaultAccess count_field() {
+    return {[](FaultSet& f, FaultValue v) { f.*Field = v.value; },
+            [](const FaultSet& f) { return FaultValue{f.*Field}; }};
+}
+
+template <std::chrono::milliseconds FaultSet::*Field>
+constexpr FaultAccess ms_field() {
+    return {[](FaultSet& f, FaultValue v) { f.*Field = std::chrono::milliseconds(v.value); },
+            [](const FaultSet& f) {
+                return FaultValue{static_cast<std::uint32_t>((f.*Field).count())};
+            }};
+}
+
+/// Every fault with its whole declaration, in catalogue order (docs/faults.md's rows).
+const std::vector<FaultDecl>& fault_decls();
+
+/// The declaration of `name`; nullptr when there is none.
+const FaultDecl* find_fault(std::string_view name);
+
+/// "cdi", "memory (warn)", "none": docs/faults.md's Category column of d.
+std::string category_column(const FaultDecl& d);
+
+/// The parameter as --help shows it: "" or e.g. "N (default 3)".
+std::string help_parameter(const FaultDecl& d);
+
+/// docs/faults.md's table (header, separator, one row per fault), each line ending in '\n'.
+std::string format_fault_markdown();
+
+/// Every declaration as a JSON array (name, parameter, summary, verdict, category, checks).
+std::string format_fault_json();
+
+}  // namespace olcb::simnode

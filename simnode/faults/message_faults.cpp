@@ -1,0 +1,37 @@
+// Message faults: messages sent unasked, or optional ones left out.
+#include "simnode/faults/fault_families.hpp"
+
+namespace olcb::simnode {
+
+std::vector<FaultDecl> message_faults() {
+    return {
+        {
+            .name = "unsolicited-traffic",
+            .param = {ParamKind::kNumber, "MS", 1000, 10, kMaxDelayMs},
+            .access = ms_field<&FaultSet::unsolicited_period>(),
+            .summary = "a Verify Node ID Global every MS milliseconds",
+            .doc_parameter = "`MS`, default 1000",
+            .rule_broken = "architecture \"interop facts\": no traffic after start-up other than "
+                           "what standards require",
+            .client_sees = "a Verify Node ID Global every MS (which makes every node answer)",
+            .verdict = Verdict::kWarn,
+            .category = "message",
+            .checks = {"message.no-unsolicited"},
+        },
+        {
+            .name = "duplicate-id-silent",
+            .access = flag_field<&FaultSet::duplicate_id_silent>(),
+            .summary = "no duplicate-node-ID PCER on a duplicate node ID",
+            .rule_broken = "none required: CAN 6 lets a node indicate a duplicate node ID with "
+                           "the PCER `01.01.00.00.00.00.02.01`, optionally (fact sheet 1.6); "
+                           "OlcbChecker me50 asks for it",
+            .client_sees = "no PCER when another alias sends a Verified Node ID or AMD with the "
+                           "node's ID; the node goes on as usual",
+            .verdict = Verdict::kWarn,
+            .category = "message",
+            .checks = {"message.duplicate-node-id"},
+        },
+    };
+}
+
+}  // namespace olcb::simnode

@@ -1,0 +1,87 @@
+// Restart faults: nodes that crash, restart or refuse Reset/Lock, as real firmware does.
+#include "simnode/faults/fault_families.hpp"
+
+namespace olcb::simnode {
+
+std::vector<FaultDecl> restart_faults() {
+    return {
+        {
+            .name = "abort-on-value",
+            .param = {ParamKind::kNumber, "MS", 3000, 1, kMaxDelayMs},
+            .access = ms_field<&FaultSet::abort_on_value>(),
+            .summary = "a SNIP request while the first 253 int was changed: silent MS ms, then a "
+                       "restart",
+            .doc_parameter = "`MS`, default 3000 (1..600000)",
+            .rule_broken = "SNIP + MsgNet timing: a SNIP request is answered within 750 ms (fact "
+                           "sheet 3.3, 6); a node does not crash on a value it accepted in a "
+                           "write. Model of OpenMRN's assertion in its SNIP code "
+                           "(`real-world.md` §1)",
+            .client_sees = "a SNIP request while the watched variable (below) differs from its "
+                           "value when the node was created: nothing at all for MS (no SNIP "
+                           "reply, no Verified Node ID, no alias defence, no datagram acks), "
+                           "then CID..RID, AMD, Initialization Complete as after power-up, "
+                           "memory kept; again at every SNIP request until the value is put "
+                           "back. A node bug that a careful client (one that restores each test "
+                           "value at once, before anything else) never triggers: it sees nothing "
+                           "wrong",
+            .verdict = Verdict::kNone,
+        },
+        {
+            .name = "reset-rejected",
+            .access = flag_field<&FaultSet::reset_rejected>(),
+            .summary = "Reset/Reboot rejected with 0x1041; the node does not restart",
+            .rule_broken = "none broken by itself: Reset/Reboot is an optional command, and an "
+                           "unknown command is rejected `0x1041` (fact sheet 5.2, 5.4); OpenMRN "
+                           "on Linux does this (`real-world.md` §1)",
+            .client_sees = "`20 A9` gets Datagram Rejected `0x1041` and the node does not "
+                           "restart (lock, images and alias untouched). A careful client quotes "
+                           "the code, skips what needs a reboot and sees nothing wrong",
+            .verdict = Verdict::kNone,
+        },
+        {
+            .name = "lock-rejected",
+            .access = flag_field<&FaultSet::lock_rejected>(),
+            .summary = "Lock/Reserve rejected with 0x1041",
+            .rule_broken = "none broken by itself: Lock/Reserve is advisory, and an unknown "
+                           "command is rejected `0x1041` (fact sheet 5.4); OpenMRN on Linux does "
+                           "this (`real-world.md` §1)",
+            .client_sees = "`20 88 …` gets Datagram Rejected `0x1041`; the lock stays free. A "
+                           "careful client reports the code and works without the lock: nothing "
+                           "wrong",
+            .verdict = Verdict::kNone,
+        },
+        {
+            .name = "factory-reset-on-version-change",
+            .access = flag_field<&FaultSet::factory_reset_on_version_change>(),
+            .summary = "a restart while the first 253 int was changed factory-resets the "
+                       "configuration",
+            .rule_broken = "none broken by itself: what a node does at start-up is its own "
+                           "business. Model of OpenMRN, which compares its stored config version "
+                           "with its own at start-up and factory-resets on a difference "
+                           "(`real-world.md` §1)",
+            .client_sees = "at every restart (Reset/Reboot, Factory Reset, the restarts of "
+                           "`abort-on-value` and `reboot-on-write`) while the watched variable "
+                           "(below) differs from its value when the node was created, every "
+                           "writable space (253, 251 with the user name, …) is reset to its "
+                           "factory content first. A careful client never restarts the node with "
+                           "a test value in place and sees nothing wrong",
+            .verdict = Verdict::kNone,
+        },
+        {
+            .name = "new-alias-on-reboot",
+            .access = flag_field<&FaultSet::new_alias_on_reboot>(),
+            .summary = "every restart reserves a different alias",
+            .rule_broken = "none broken: CAN: an alias is reserved afresh at every start-up and "
+                           "any free alias may be taken (fact sheet 1.4, 1.5); OpenLcbCLib comes "
+                           "back on another alias (`real-world.md` §5)",
+            .client_sees = "every restart reserves the next alias of the generator sequence, "
+                           "never the one it had (the first start-up is as usual, 0x343 for the "
+                           "default node). A client that keeps the old alias talks to nobody; a "
+                           "careful one follows the node ID (AMD, Initialization Complete, "
+                           "Verified Node ID) and sees nothing wrong",
+            .verdict = Verdict::kNone,
+        },
+    };
+}
+
+}  // namespace olcb::simnode

@@ -1,0 +1,64 @@
+// Timing faults: answers held back on purpose.
+#include "simnode/faults/fault_families.hpp"
+
+namespace olcb::simnode {
+
+namespace {
+
+void apply_latency(FaultSet& f, FaultValue v) {
+    f.latency = std::chrono::milliseconds(v.value);
+    f.latency_jitter = std::chrono::milliseconds(v.jitter);
+}
+
+FaultValue read_latency(const FaultSet& f) {
+    return {static_cast<std::uint32_t>(f.latency.count()),
+            static_cast<std::uint32_t>(f.latency_jitter.count())};
+}
+
+}  // namespace
+
+std::vector<FaultDecl> timing_faults() {
+    return {
+        {
+            .name = "slow-reply",
+            .param = {ParamKind::kNumber, "MS", 1200, 1, kMaxDelayMs},
+            .access = ms_field<&FaultSet::slow_reply>(),
+            .summary = "reply datagrams sent MS milliseconds late",
+            .doc_parameter = "`MS`, default 1200",
+            .rule_broken = "MsgNet timing: replies within 750 ms (fact sheet 3.3)",
+            .client_sees = "OK with Reply Pending (no timeout stated) at once, the reply "
+                           "datagram MS later, for the first reply and every 32nd after it (so a "
+                           "client's run stays bounded); a reply still held at Reset/Reboot is "
+                           "dropped",
+            .verdict = Verdict::kFail,
+            .category = "memory",
+            .checks = {"memory.reply-latency"},
+        },
+        {
+            .name = "latency",
+            .param = {ParamKind::kMsJitter, "MS[:JITTER]", 200, 0, kMaxDelayMs},
+            .access = {apply_latency, read_latency},
+            .summary = "every answer sent MS ms (plus 0..JITTER ms, random) after its request, "
+                       "in order",
+            .doc_parameter = "`MS[:JITTER]`, default 200 (each 0..600000, not both 0)",
+            .rule_broken = "none broken by itself: MsgNet timing allows answers up to 750 ms "
+                           "(fact sheet 3.3); real buses and busy nodes are slow. A test hook "
+                           "(issue 11): loopback answers in microseconds hide a client's races "
+                           "(python-openlcb loses one when a datagram is acknowledged in 20 µs, "
+                           "`real-world.md` §3)",
+            .client_sees = "every answer (Verified Node ID, Protocol Support Reply, SNIP reply, "
+                           "Producer/Consumer Identified on Identify, Datagram Received "
+                           "OK/Rejected and the reply datagram, OIR) leaves MS ms plus a "
+                           "uniformly random 0..JITTER ms after its request arrived, in request "
+                           "order; the jitter sequence is seeded by the node ID, so a run "
+                           "repeats exactly. The CAN login, alias defence (RID, AMD on AME) and "
+                           "the stack's own rejects of malformed datagrams are not delayed; a "
+                           "restart drops answers still held. `--latency MS[:JITTER]` (key "
+                           "`latency`) gives it to every node without its own",
+            .verdict = Verdict::kNone,
+            .category_note = "above 750 ms: message",
+        },
+    };
+}
+
+}  // namespace olcb::simnode
