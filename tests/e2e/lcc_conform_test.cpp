@@ -137,34 +137,28 @@ TEST(LccConformE2e, JmriBackupRestoreRoundTripOverTcp) {
 
 // ---- fault x check matrix ----
 
-/// One row of the table of docs/faults.md.
+/// What a fault's declaration (simnode/faults/) says lcc-conform must conclude.
 struct FaultRow {
     std::string category;     ///< the check category that should flag it ("none": no check)
     bool breaks_rule = true;  ///< false when a careful client sees nothing wrong (exit 0)
-    bool warn_only = false;   ///< "category (warn)": flagged by a WARN, the run exits 0
-    /// "category (incomplete)": the node stops or restarts mid-run, flagged in the category and
-    /// the run is incomplete (checks not run): exit 2.
+    bool warn_only = false;   ///< verdict warn: flagged by a WARN, the run exits 0
+    /// Verdict incomplete: the node stops or restarts mid-run, flagged in the category and the
+    /// run is incomplete (checks not run): exit 2.
     bool incomplete = false;
 };
 
-/// Fault name -> its row, from the table of docs/faults.md.
+/// Fault name -> its row, from the declarations as `simnode --list-faults=json` prints them.
 std::map<std::string, FaultRow> fault_categories() {
     std::map<std::string, FaultRow> out;
-    std::istringstream in(read_text(source_path("docs/faults.md")));
-    for (std::string line; std::getline(in, line);) {
-        if (!line.starts_with("| `")) continue;
-        const auto end = line.find('`', 3);
-        const auto last = line.find_last_not_of(" |");
-        const auto bar = line.rfind('|', last);
-        if (end == std::string::npos || bar == std::string::npos) continue;
-        std::string cat = line.substr(bar + 1, last - bar);
-        cat.erase(0, cat.find_first_not_of(' '));
-        const bool copes = cat == "none" || line.find("| none broken") != std::string::npos;
-        const bool warn = cat.ends_with(" (warn)");
-        if (warn) cat.resize(cat.size() - 7);
-        const bool incomplete = cat.ends_with(" (incomplete)");
-        if (incomplete) cat.resize(cat.size() - 13);
-        out[line.substr(3, end - 3)] = {cat, !copes && !warn && !incomplete, warn, incomplete};
+    const auto [code, text] =
+        run_program(SIMNODE_PATH, {"--list-faults=json"}, milliseconds(10000));
+    const auto decls = nlohmann::json::parse(text, nullptr, false);
+    if (code != 0 || !decls.is_array()) return out;
+    for (const auto& d : decls) {
+        const std::string verdict = d["verdict"];
+        std::string cat = d["category"];
+        if (cat.empty()) cat = "none";
+        out[d["name"]] = {cat, verdict == "fail", verdict == "warn", verdict == "incomplete"};
     }
     return out;
 }
@@ -213,7 +207,7 @@ TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
     ASSERT_FALSE(fault.empty()) << ini << " names no fault";
     const auto categories = fault_categories();
     const auto cat = categories.find(fault);
-    ASSERT_NE(cat, categories.end()) << "docs/faults.md has no row for " << fault;
+    ASSERT_NE(cat, categories.end()) << "simnode declares no fault " << fault;
 
     Simnode sim(ini);
     ASSERT_NE(sim.port, 0) << "simnode did not start";
