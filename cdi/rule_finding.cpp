@@ -47,9 +47,10 @@ std::uint32_t line_at(std::string_view text, std::size_t offset) {
 
 std::string hex_bytes(std::string_view bytes) {
     std::string out;
-    for (unsigned char c : bytes) {
+    for (const char c : bytes) {
         char buf[4];
-        std::snprintf(buf, sizeof buf, "%s%02X", out.empty() ? "" : " ", c);
+        std::snprintf(buf, sizeof buf, "%s%02X", out.empty() ? "" : " ",
+                      static_cast<unsigned char>(c));
         out += buf;
     }
     return out;
