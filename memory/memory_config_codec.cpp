@@ -1,6 +1,7 @@
 #include "memory/memory_config_codec.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <type_traits>
 
 #include "base/hex.hpp"
@@ -656,7 +657,18 @@ SpaceForm resolve_form(Space space, SpaceForm requested) {
     return SpaceForm::kShort;
 }
 
+namespace {
+// Relaxed: only counts, read by tests after the work they count.
+std::atomic<std::uint64_t> g_decoded{0};
+std::atomic<std::uint64_t> g_encoded{0};
+}  // namespace
+
+CodecCounts codec_counts() {
+    return {g_decoded.load(std::memory_order_relaxed), g_encoded.load(std::memory_order_relaxed)};
+}
+
 DecodeResult decode(std::span<const std::uint8_t> payload) {
+    g_decoded.fetch_add(1, std::memory_order_relaxed);
     if (payload.empty()) return fail(DecodeError::kEmpty);
     if (payload.size() > kMaxDatagram) return fail(DecodeError::kTooLong);
     Reader reader(payload);
@@ -670,6 +682,7 @@ DecodeResult decode(std::span<const std::uint8_t> payload) {
 }
 
 std::vector<std::uint8_t> encode(const Message& message) {
+    g_encoded.fetch_add(1, std::memory_order_relaxed);
     std::vector<std::uint8_t> out;
     out.reserve(kMaxDatagram);
     std::visit(Encoder(out), message);

@@ -296,6 +296,15 @@ DecodeResult decode(std::span<const std::uint8_t> payload);
 /// Encodes a message into a datagram payload of at most 72 bytes.
 std::vector<std::uint8_t> encode(const Message& message);
 
+/// How many payloads decode() and encode() handled in this process: a test holds an owner (a
+/// node with faults on) to decoding each datagram once and encoding each reply once.
+struct CodecCounts {
+    std::uint64_t decoded = 0;
+    std::uint64_t encoded = 0;
+};
+/// The counts so far.
+CodecCounts codec_counts();
+
 /// The form encode() will use for a space: kShort only for 0xFD..0xFF unless kByte6 is asked.
 SpaceForm resolve_form(Space space, SpaceForm requested);
 

@@ -27,12 +27,16 @@ Decision Decision::ok() {
     return Decision{};
 }
 
-Decision Decision::ok_with_reply(std::vector<std::uint8_t> reply, std::uint8_t exponent) {
+Decision Decision::ok_with_reply(std::optional<Message> reply, std::uint8_t exponent) {
     Decision d;
     d.reply_pending = true;
     d.reply_timeout_exponent = exponent;
     d.reply = std::move(reply);
     return d;
+}
+
+std::vector<std::uint8_t> Decision::reply_bytes() const {
+    return reply ? encode(*reply) : std::vector<std::uint8_t>{};
 }
 
 MemoryConfigServer::MemoryConfigServer(Config config)
@@ -85,11 +89,14 @@ ConfigOptionsReply MemoryConfigServer::config_options() const {
 }
 
 Decision MemoryConfigServer::with_reply(const Message& reply) const {
-    return Decision::ok_with_reply(encode(reply), config_.reply_timeout_exponent);
+    return Decision::ok_with_reply(reply, config_.reply_timeout_exponent);
 }
 
-Decision MemoryConfigServer::handle(const Source&, std::span<const std::uint8_t> payload) {
-    DecodeResult decoded = decode(payload);
+Decision MemoryConfigServer::handle(const Source& source, std::span<const std::uint8_t> payload) {
+    return handle(source, decode(payload));
+}
+
+Decision MemoryConfigServer::handle(const Source&, const DecodeResult& decoded) {
     if (!decoded.ok()) return Decision::reject(reject_code(decoded.error));
 
     return std::visit(
@@ -202,7 +209,7 @@ Decision MemoryConfigServer::on_read_stream(const ReadStream& read) {
             ReadStreamReplyFail{read.space, read.address, ErrorCode::kOutOfBounds, {}, read.form});
     }
     const std::uint32_t available = size - read.address;
-    Decision d = Decision::ok_with_reply({}, config_.reply_timeout_exponent);
+    Decision d = Decision::ok_with_reply(std::nullopt, config_.reply_timeout_exponent);
     d.effects.stream_read =
         StreamRead{read.space,
                    read.address,

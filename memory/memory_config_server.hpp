@@ -88,15 +88,19 @@ struct Decision {
     ErrorCode reject_error = ErrorCode::kNone;  ///< code of the Datagram Rejected
     bool reply_pending = false;                 ///< OK flag: a reply datagram follows
     std::uint8_t reply_timeout_exponent = 0;    ///< OK flag: reply within 2^N s (0 = unstated)
-    std::vector<std::uint8_t> reply;            ///< reply datagram payload; empty = none
-    SideEffects effects;                        ///< actions for the owner
+    /// The reply datagram, typed: encoded once, where the owner sends it, so an owner that
+    /// changes it (simnode's faults) changes fields, never bytes; none = no reply.
+    std::optional<Message> reply;
+    SideEffects effects;  ///< actions for the owner
 
     /// Datagram Rejected with code, nothing else.
     static Decision reject(ErrorCode code);
     /// Plain Datagram Received OK, no reply.
     static Decision ok();
     /// Datagram Received OK with Reply Pending, then reply.
-    static Decision ok_with_reply(std::vector<std::uint8_t> reply, std::uint8_t exponent = 0);
+    static Decision ok_with_reply(std::optional<Message> reply, std::uint8_t exponent = 0);
+    /// The reply's datagram payload; empty when there is none.
+    std::vector<std::uint8_t> reply_bytes() const;
     friend bool operator==(const Decision&, const Decision&) = default;
 };
 
@@ -130,6 +134,8 @@ public:
 
     /// Decides how to answer one datagram payload (content type 0x20 first).
     Decision handle(const Source& source, std::span<const std::uint8_t> payload);
+    /// Decides how to answer a datagram its owner decoded already (and may have changed).
+    Decision handle(const Source& source, const DecodeResult& request);
 
     /// Forgets volatile state as at power-up (the lock).
     void reset();

@@ -198,19 +198,9 @@ void NodeStack::flush_pending() {
 void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
     now_ = now;
     if (silent_) return;
-    if (!frame.extended && !frame.remote && config_.faults.answer_standard_frames) {
-        on_standard_frame();
-        return;
-    }
+    const FrameRoute route = inbound_filter_ ? inbound_filter_(frame, now) : FrameRoute{};
     if (!can::is_openlcb_frame(frame) || frame.len > 8) return;
-    // Every frame counts towards a burst, so the window is updated before anything is skipped.
-    const bool burst =
-        config_.faults.drop_addressed_in_bursts && in_burst(now, can::source_alias(frame.id));
-    // Without defence (fault injection) a frame using our active alias is taken as if the alias
-    // were not ours at all.
-    const bool undefended = !config_.builtins.defend_alias && alias_.permitted() &&
-                            can::source_alias(frame.id) == alias();
-    if (!undefended) alias_.on_frame(frame, now);
+    if (route.alias) alias_.on_frame(frame, now);
     // The allocator reports nothing without queueing a frame, except a duplicate node ID (an
     // AMD or Verified Node ID carrying our ID): skipping collect() otherwise keeps 1,000 stacks
     // per bus cheap.
@@ -226,20 +216,19 @@ void NodeStack::on_frame(const CanFrame& frame, TimePoint now) {
         sender_.abort_to(can::source_alias(frame.id));
         collect();
     }
-    if (control || !initialized()) return;
-    route_message_frame(frame, now, burst);
+    if (control || !initialized() || !route.messages) return;
+    route_message_frame(frame, now);
 }
 
-// A message frame of an initialized node, to the handler of its format if it is for us; an
-// addressed one in a burst is dropped (fault injection).
-void NodeStack::route_message_frame(const CanFrame& frame, TimePoint now, bool burst) {
+// A message frame of an initialized node, to the handler of its format if it is for us.
+void NodeStack::route_message_frame(const CanFrame& frame, TimePoint now) {
     const std::uint16_t me = alias();
     switch (can::frame_format(frame.id)) {
         case can::FrameFormat::kGlobalAddressed: {
             if (!is_addressed(static_cast<Mti>(can::can_mti(frame.id)))) {
                 on_global_frame(frame, now);
             } else if (frame.len >= 2 && can::addressed_dest(frame.data[0], frame.data[1]) == me) {
-                if (!burst) on_addressed_frame(frame, now);
+                on_addressed_frame(frame, now);
             }
             break;
         }
@@ -257,19 +246,6 @@ void NodeStack::route_message_frame(const CanFrame& frame, TimePoint now, bool b
         default:
             break;
     }
-}
-
-bool NodeStack::in_burst(TimePoint now, std::uint16_t source) {
-    arrivals_[arrivals_seen_++ % arrivals_.size()] = {now, source};
-    std::size_t others = 0;
-    for (const Arrival& a : arrivals_) {
-        if (a.source != source && a.at != TimePoint{} && now - a.at < kBurstWindow) ++others;
-    }
-    return others > kBurstFrames;
-}
-
-void NodeStack::on_standard_frame() {
-    if (initialized()) push_verified_node_id();
 }
 
 bool NodeStack::announces_reinitialization(const CanFrame& frame, bool control,
@@ -491,6 +467,8 @@ SendStatus NodeStack::send_message(Message msg) {
 
 SendStatus NodeStack::frame_message(Message& msg) {
     msg.source.alias = alias();
+    // A message the owner's filter drops counts as sent: for the sender it went on the wire.
+    if (outbound_filter_ && !outbound_filter_(msg)) return SendStatus::kSent;
     encode_buf_.clear();
     if (encode_message(msg, encode_buf_) != FramingError::kNone) return SendStatus::kFramingError;
     for (const auto& f : encode_buf_) push_frame(f);

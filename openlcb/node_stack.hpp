@@ -25,8 +25,8 @@
 
 namespace olcb {
 
-/// Mandatory answers the stack gives by itself; each can be switched off (fault injection, or an
-/// owner that wants to answer itself through on_message).
+/// Mandatory answers the stack gives by itself; each can be switched off for an owner that wants
+/// to answer itself through on_message.
 struct NodeBuiltins {
     /// Verify Node ID (global: empty or our ID; addressed: always) -> Verified Node ID.
     bool verify_node_id = true;
@@ -37,9 +37,6 @@ struct NodeBuiltins {
     bool reject_unknown_addressed = true;
     /// Datagram while no datagram handler is set -> OIR 0x1043 echoing MTI 0x1C48.
     bool reject_datagrams_without_handler = true;
-    /// Defend the active alias: RID on a CID for it, AMR and a new alias when another node uses
-    /// it. Off = such frames are ignored (fault injection); reservation is unaffected.
-    bool defend_alias = true;
     /// Another node claims our node ID (a Verified Node ID or AMD carrying it from another
     /// alias): send the duplicate-node-ID PCER (01.01.00.00.00.00.02.01), at most once per
     /// kDuplicatePcerInterval (a flood of duplicates gets one), and keep working. The PCER is
@@ -50,21 +47,14 @@ struct NodeBuiltins {
 /// Least time between two duplicate-node-ID PCERs (NodeBuiltins::duplicate_id_pcer).
 inline constexpr Duration kDuplicatePcerInterval = std::chrono::seconds(1);
 
-/// Frame-level misbehaviours for fault injection; all off in a well-behaved node.
-struct NodeStackFaults {
-    /// Addressed messages to us are dropped unanswered while more than kBurstFrames frames from
-    /// other sources than the message's arrived within the last kBurstWindow (a receive buffer
-    /// overrun by third-party traffic; the requester's own quick exchanges do not count).
-    bool drop_addressed_in_bursts = false;
-    /// Every standard (11-bit) data frame is answered with a Verified Node ID instead of being
-    /// ignored.
-    bool answer_standard_frames = false;
+/// Which layers of the stack take in one incoming frame (NodeStack::set_inbound_filter).
+struct FrameRoute {
+    /// The alias allocator: RID on a CID for our alias, AMR and a new alias when another node
+    /// uses it, AME answers, duplicate node IDs.
+    bool alias = true;
+    /// Message, datagram and stream assembly and their dispatch (an Initialized node only).
+    bool messages = true;
 };
-
-/// A burst for NodeStackFaults::drop_addressed_in_bursts: more than this many frames ...
-inline constexpr std::size_t kBurstFrames = 16;
-/// ... within this long.
-inline constexpr Duration kBurstWindow = std::chrono::milliseconds(10);
 
 /// Everything a NodeStack is built from.
 struct NodeStackConfig {
@@ -75,11 +65,10 @@ struct NodeStackConfig {
     DatagramReceiverConfig datagram_receiver;  ///< buffers, reassembly timeout
     MessageAssemblerConfig assembler;          ///< multi-frame limits (datagrams are ignored)
     NodeBuiltins builtins;                     ///< built-in answers switched on
-    NodeStackFaults faults;                    ///< frame-level misbehaviours (none by default)
     /// Stream transport on: stream messages go to NodeStack::streams() (off: Initiate Request
     /// gets OIR 0x1043 as from a node without streams).
     bool streams = false;
-    StreamTransportConfig stream;  ///< limits, timeouts and faults of the stream transport
+    StreamTransportConfig stream;  ///< limits and timeouts of the stream transport
     /// After an alias conflict took a new alias: send Initialization Complete again (and call
     /// on_initialized). Off by default, as OpenMRN: the node stays Initialized; AMD announces the
     /// new mapping.
@@ -137,6 +126,13 @@ public:
     using StreamHandler = std::function<void(const StreamEvent&)>;
     /// An owner timer, called with the time of the poll() that runs it.
     using TimerHandler = std::function<void(TimePoint)>;
+    /// Sees every incoming frame first (before the stack's own checks) and says which layers
+    /// take it in. The core keeps no misbehaviour of its own: an owner that must break a rule on
+    /// purpose (simnode's faults) hides frames from a layer here, or answers them itself.
+    using InboundFilter = std::function<FrameRoute(const CanFrame&, TimePoint)>;
+    /// Sees every message the stack frames (its own answers, the owner's, the stream
+    /// transport's; datagrams go around it), its source filled in; may change it; false drops it.
+    using OutboundFilter = std::function<bool(Message&)>;
 
     /// A stopped stack; call start().
     explicit NodeStack(NodeStackConfig config);
@@ -160,6 +156,10 @@ public:
     }
     /// Sets the stream event handler.
     void set_stream_handler(StreamHandler handler) { on_stream_ = std::move(handler); }
+    /// Sets the inbound frame filter (none: every layer takes every frame).
+    void set_inbound_filter(InboundFilter filter) { inbound_filter_ = std::move(filter); }
+    /// Sets the outbound message filter (none: every message goes out as given).
+    void set_outbound_filter(OutboundFilter filter) { outbound_filter_ = std::move(filter); }
     /// Sets the output notification (used by the driver running this stack).
     void set_output_handler(OutputHandler handler) { on_output_ = std::move(handler); }
 
@@ -231,7 +231,7 @@ public:
                        bool auto_proceed = true);
     /// Sends Data Proceed on an incoming stream (manual proceed).
     bool proceed_stream(std::uint32_t id);
-    /// The stream transport (counters, faults); change it through the calls above.
+    /// The stream transport (counters, window policy); streams change through the calls above.
     StreamTransport& streams() { return streams_; }
     /// Next frame to transmit, oldest first.
     std::optional<CanFrame> pop_frame();
@@ -276,9 +276,7 @@ private:
     void dispatch(const Message& msg);
     bool handle_builtin(const Message& msg);
     void push_verified_node_id();
-    bool in_burst(TimePoint now, std::uint16_t source);
-    void route_message_frame(const CanFrame& frame, TimePoint now, bool burst);
-    void on_standard_frame();
+    void route_message_frame(const CanFrame& frame, TimePoint now);
     void announce_duplicate();
     void on_datagram_frame(const CanFrame& frame, TimePoint now);
     void on_addressed_frame(const CanFrame& frame, TimePoint now);
@@ -315,6 +313,8 @@ private:
     AliasEventHandler on_alias_event_;
     OutputHandler on_output_;
     StreamHandler on_stream_;
+    InboundFilter inbound_filter_;
+    OutboundFilter outbound_filter_;
 
     bool started_ = false;
     bool initialized_ = false;  // message layer; alias_.permitted() tells the link layer
@@ -332,13 +332,6 @@ private:
     TimePoint now_{};
     std::optional<TimePoint> last_ame_;  // AMDs right after an AME answer it (no re-init)
     std::optional<TimePoint> last_duplicate_pcer_;  // rate limit of duplicate_id_pcer
-    // Arrival times and sources of the last frames (drop_addressed_in_bursts), a ring.
-    struct Arrival {
-        TimePoint at{};
-        std::uint16_t source = 0;
-    };
-    std::array<Arrival, 4 * kBurstFrames> arrivals_{};
-    std::size_t arrivals_seen_ = 0;
 };
 
 }  // namespace olcb

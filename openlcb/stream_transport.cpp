@@ -109,20 +109,20 @@ void StreamTransport::maybe_complete(Stream& s) {
     s.state = State::kClosed;
     s.info.open = false;
     s.deadline = {};
-    if (!config_.faults.no_complete) {
-        const std::uint64_t count = s.info.bytes + (config_.faults.wrong_count ? 1 : 0);
-        send(Mti::kStreamDataComplete, s.info.remote,
-             stream::encode(stream::DataComplete{s.info.source_id, s.info.dest_id,
-                                                 static_cast<std::uint32_t>(count)}));
-    }
+    send(Mti::kStreamDataComplete, s.info.remote,
+         stream::encode(stream::DataComplete{s.info.source_id, s.info.dest_id,
+                                             static_cast<std::uint32_t>(s.info.bytes)}));
     for (auto& [id, other] : streams_) {
         if (&other == &s) emit(StreamEvent::Kind::kCompleted, id, s);
     }
 }
 
 bool StreamTransport::ready_to_send(const Stream& s) const {
-    return s.info.outgoing && s.state == State::kOpen && !s.queue.empty() &&
-           (s.window > 0 || config_.faults.ignore_proceed);
+    return s.info.outgoing && s.state == State::kOpen && !s.queue.empty() && s.window > 0;
+}
+
+std::uint64_t StreamTransport::grant(std::uint16_t buffer) const {
+    return window_policy_ ? std::min(window_policy_(buffer), kUnlimitedWindow) : buffer;
 }
 
 std::optional<Message> StreamTransport::next_data() {
@@ -134,7 +134,7 @@ std::optional<Message> StreamTransport::next_data() {
         if (!ready_to_send(s)) continue;
         round_robin_ = it->first;
         std::size_t len = std::min(stream::kMaxDataPerFrame, s.queue.size());
-        if (!config_.faults.ignore_proceed) len = std::min<std::size_t>(len, s.window);
+        len = static_cast<std::size_t>(std::min<std::uint64_t>(len, s.window));
         std::vector<std::uint8_t> payload{s.info.dest_id};
         payload.insert(payload.end(), s.queue.begin(),
                        s.queue.begin() + static_cast<std::ptrdiff_t>(len));
@@ -143,7 +143,7 @@ std::optional<Message> StreamTransport::next_data() {
         s.info.bytes += len;
         ++s.info.data_frames;
         Message m{Mti::kStreamDataSend, {}, s.info.remote, std::move(payload)};
-        if (s.window == 0 && !s.queue.empty() && !config_.faults.ignore_proceed) {
+        if (s.window == 0 && !s.queue.empty()) {
             s.deadline = now_ + config_.proceed_timeout;
         }
         maybe_complete(s);
@@ -173,8 +173,7 @@ bool StreamTransport::on_initiate_reply(const Message& msg, TimePoint now) {
     s->info.dest_id = reply->dest_id;
     // A sink granting more than proposed gets only what we proposed.
     s->info.buffer = std::min(reply->max_buffer, s->info.proposed);
-    const std::uint64_t scale = config_.faults.exceed_buffer ? 2 : 1;
-    s->window = s->info.buffer * scale;
+    s->window = grant(s->info.buffer);
     now_ = now;
     emit(StreamEvent::Kind::kOpened, id, *s);
     maybe_complete(*s);
@@ -187,8 +186,8 @@ bool StreamTransport::on_proceed(const Message& msg, TimePoint now) {
     Stream* s = find_outgoing(msg.source.alias, p->source_id);
     if (s == nullptr || s->state != State::kOpen) return false;
     ++s->info.proceeds;
-    const std::uint64_t scale = config_.faults.exceed_buffer ? 2 : 1;
-    s->window += s->info.buffer * scale;  // an early Proceed extends the window (as OpenMRN)
+    // An early Proceed extends the window (as OpenMRN).
+    s->window = std::min(s->window + grant(s->info.buffer), kUnlimitedWindow);
     s->deadline = {};
     now_ = now;
     return true;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -18,14 +19,6 @@
 #include "openlcb/stream_defs.hpp"
 
 namespace olcb {
-
-/// Wire misbehaviours of the source side, for fault injection; all off in a good node.
-struct StreamSourceFaults {
-    bool wrong_count = false;     ///< Data Complete carries one more byte than was sent
-    bool no_complete = false;     ///< never sends Data Complete
-    bool ignore_proceed = false;  ///< sends everything without waiting for Data Proceed
-    bool exceed_buffer = false;   ///< sends twice the granted buffer before waiting
-};
 
 /// Tunables of StreamTransport.
 struct StreamTransportConfig {
@@ -41,7 +34,6 @@ struct StreamTransportConfig {
     Duration initiate_timeout = base::kStreamInitiateTimeout;  ///< source: wait for the reply
     Duration proceed_timeout = base::kStreamProceedTimeout;    ///< source: wait for Data Proceed
     Duration idle_timeout = base::kStreamIdleTimeout;          ///< sink: wait for the next data
-    StreamSourceFaults faults;                                 ///< source misbehaviours
 };
 
 /// Something the owner must know about one stream.
@@ -132,11 +124,23 @@ public:
     std::optional<StreamInfo> info(std::uint32_t id) const;
     /// Streams open now.
     std::size_t open_streams() const;
-    /// The configuration (faults may be changed at run time).
+    /// The configuration (may be changed at run time).
     StreamTransportConfig& config() { return config_; }
+
+    /// How many bytes a source may send for one grant of `buffer` bytes (the Initiate Reply's
+    /// buffer, then again per Data Proceed). The standard's answer is `buffer`, the default; an
+    /// owner that must overrun a sink on purpose (simnode's faults) returns more, up to
+    /// kUnlimitedWindow (never wait for a Proceed).
+    using WindowPolicy = std::function<std::uint64_t(std::uint16_t buffer)>;
+    /// A window no stream exhausts.
+    static constexpr std::uint64_t kUnlimitedWindow = std::uint64_t{1} << 62;
+    /// Sets the window policy (none: exactly the granted buffer).
+    void set_window_policy(WindowPolicy policy) { window_policy_ = std::move(policy); }
 
 private:
     enum class State : std::uint8_t { kInitiating, kOpen, kClosed };
+    // The window one grant of `buffer` opens (window_policy_, bounded by kUnlimitedWindow).
+    std::uint64_t grant(std::uint16_t buffer) const;
     struct Stream {
         StreamInfo info;
         State state = State::kInitiating;
@@ -176,6 +180,7 @@ private:
     std::map<std::uint32_t, Stream> streams_;
     std::vector<Expectation> expected_;
     std::deque<Message> control_;
+    WindowPolicy window_policy_;
     std::deque<StreamEvent> events_;
     std::uint32_t round_robin_ = 0;  // id after which next_data() looks first
     std::uint8_t next_sid_ = 1;

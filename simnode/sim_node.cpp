@@ -30,15 +30,15 @@ constexpr AcdiField kManufacturerFields[] = {{0, 1}, {1, 41}, {42, 41}, {83, 21}
 constexpr AcdiField kUserFields[] = {{0, 1}, {1, 63}, {64, 64}};
 
 // field-reads-only: cuts a Read Reply of 251/252 to the field it starts at (a string up to and
-// including its NUL) or to 1 byte off a field start; true when it changed.
-bool cut_to_field(memory::ReadReply& r) {
+// including its NUL) or to 1 byte off a field start.
+void cut_to_field(memory::ReadReply& r) {
     std::span<const AcdiField> fields;
     if (r.space == memory::Space::kAcdiManufacturer) {
         fields = kManufacturerFields;
     } else if (r.space == memory::Space::kAcdiUser) {
         fields = kUserFields;
     } else {
-        return false;
+        return;
     }
     std::size_t keep = 1;
     for (const AcdiField& field : fields) {
@@ -48,9 +48,7 @@ bool cut_to_field(memory::ReadReply& r) {
         const auto nul = std::find(r.data.begin(), end, std::uint8_t{0});
         keep = static_cast<std::size_t>((nul == end ? end : nul + 1) - r.data.begin());
     }
-    if (r.data.size() <= keep) return false;
-    r.data.resize(keep);
-    return true;
+    if (r.data.size() > keep) r.data.resize(keep);
 }
 
 Protocol pip_protocol(PipBit bit) {
@@ -83,24 +81,20 @@ memory::SpaceForm other_form(memory::Space space, memory::SpaceForm form) {
 
 namespace {
 
-// The stack of a node: what it serves, its frame-level faults and its stream transport.
+// The stack of a node: what it serves, the faults its configuration decides (its PIP, the
+// duplicate-ID PCER, its alias after a restart) and its stream transport. The faults on frames
+// and streams are hooks of StackFaults.
 NodeStackConfig stack_config_for(const NodeConfig& config, ProtocolSet served) {
     NodeStackConfig sc;
     sc.node_id = config.node_id;
     sc.protocols = served;
     if (config.faults.pip_missing)
         sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
-    sc.builtins.defend_alias = !config.faults.alias_conflict_ignored;
     sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
-    sc.faults.drop_addressed_in_bursts = config.faults.burst_drops;
-    sc.faults.answer_standard_frames = config.faults.answers_standard_frames;
     sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
     sc.streams = config.streams;
     // Incoming streams are taken (and their data dropped), as OlcbChecker's st checks expect.
     sc.stream.accept_unsolicited = true;
-    sc.stream.faults =
-        StreamSourceFaults{config.faults.stream_wrong_count, config.faults.stream_no_complete,
-                           config.faults.stream_ignore_proceed, config.faults.stream_exceed_buffer};
     if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
         // The stack would answer these at once; the node answers them itself, late.
         sc.builtins.verify_node_id = false;
@@ -192,8 +186,9 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
           return c;
       }()),
       served_protocols_(served),
-      answer_delay_(config_.faults.latency, config_.faults.latency_jitter,
-                    config_.node_id.value()) {
+      answer_delay_(config_.faults.latency, config_.faults.latency_jitter, config_.node_id.value()),
+      stack_faults_(config_.faults) {
+    stack_faults_.attach(stack_);
     memory_->serve(server_);
     startup_events_ = memory_->events();
     if (config_.faults.abort_on_value.count() > 0 || config_.faults.factory_reset_on_version_change)
@@ -536,7 +531,7 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
     }
     const memory::SideEffects& fx = decision.effects;
     const bool write_reboot = fx.written && reboot_on_this_write();
-    if (write_reboot) decision.reply.clear();  // the OK still says Reply Pending
+    if (write_reboot) decision.reply.reset();  // the OK still says Reply Pending
     send_answer(src, decision);
     if (fx.stream_read) start_stream_read(src, *fx.stream_read);
     if (std::exchange(silence_after_answer_, false)) {
@@ -583,20 +578,25 @@ memory::WriteStatus SimNode::write_memory(std::uint8_t space, std::uint32_t addr
     return status;
 }
 
+// The datagram is decoded here once; the faults change the typed request and the typed reply,
+// which send_answer() encodes once.
 memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t> payload) {
-    if (auto early = command_faults(payload)) return std::move(*early);
+    memory::DecodeResult asked = memory::decode(payload);
+    if (auto early = command_faults(asked)) return std::move(*early);
     memory::Source source;
     source.alias = src;
     source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
     const FaultSet& f = config_.faults;
-    const std::vector<std::uint8_t> request =
-        f.mask_ignored.count() > 0 ? unmasked(payload)
-                                   : std::vector<std::uint8_t>(payload.begin(), payload.end());
+    const std::optional<memory::Read> read =
+        asked.ok() && std::holds_alternative<memory::Read>(asked.message)
+            ? std::optional(std::get<memory::Read>(asked.message))
+            : std::nullopt;
+    if (f.mask_ignored.count() > 0) unmask(asked);
     memory::Decision decision = f.write_past_end_spills || f.write_past_end_grows
-                                    ? crossing_write(source, request)
-                                    : server_.handle(source, request);
+                                    ? crossing_write(source, asked)
+                                    : server_.handle(source, asked);
     apply_reject_faults(decision);
-    apply_reply_faults(decision, payload);
+    apply_reply_faults(decision, read);
     const memory::SideEffects& fx = decision.effects;
     if (decision.accepted && fx.unique_id_counter &&
         !memory_->store_unique_id_counter(*fx.unique_id_counter)) {
@@ -606,12 +606,10 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
     return decision;
 }
 
-std::optional<memory::Decision> SimNode::command_faults(
-    std::span<const std::uint8_t> payload) const {
+std::optional<memory::Decision> SimNode::command_faults(const memory::DecodeResult& asked) const {
     const FaultSet& f = config_.faults;
     if (!f.reset_rejected && !f.lock_rejected) return std::nullopt;
     // Decided before the server sees the command: it would clear or take the lock.
-    const memory::DecodeResult asked = memory::decode(payload);
     if (!asked.ok()) return std::nullopt;
     if ((f.reset_rejected && std::holds_alternative<memory::ResetReboot>(asked.message)) ||
         (f.lock_rejected && std::holds_alternative<memory::Lock>(asked.message))) {
@@ -622,14 +620,13 @@ std::optional<memory::Decision> SimNode::command_faults(
 
 // mask-ignored: a Write Under Mask becomes a Write of its data bytes (the masks ignored), and
 // the node goes silent once it has answered.
-std::vector<std::uint8_t> SimNode::unmasked(std::span<const std::uint8_t> payload) {
-    const memory::DecodeResult asked = memory::decode(payload);
+void SimNode::unmask(memory::DecodeResult& asked) {
     const auto* masked = std::get_if<memory::WriteUnderMask>(&asked.message);
-    if (!asked.ok() || masked == nullptr) return {payload.begin(), payload.end()};
+    if (!asked.ok() || masked == nullptr) return;
     memory::Write whole{masked->space, masked->address, {}, masked->form};
     for (const memory::MaskedByte& b : masked->bytes) whole.data.push_back(b.value);
     silence_after_answer_ = true;
-    return memory::encode(whole);
+    asked.message = std::move(whole);
 }
 
 // write-past-end-spills and write-past-end-grows: a write crossing the end of its space stores
@@ -638,19 +635,18 @@ std::vector<std::uint8_t> SimNode::unmasked(std::span<const std::uint8_t> payloa
 // of other spaces it is dropped. Grows: the bytes past the end are kept beside the space's image,
 // where no read reaches them, as OpenMRN's config file grows by them.
 memory::Decision SimNode::crossing_write(const memory::Source& source,
-                                         std::span<const std::uint8_t> payload) {
-    const memory::DecodeResult asked = memory::decode(payload);
+                                         const memory::DecodeResult& asked) {
     const auto* write = std::get_if<memory::Write>(&asked.message);
     memory::MemorySpace* space =
         write != nullptr ? memory_->space(memory::to_u8(write->space)) : nullptr;
     if (space == nullptr || space->read_only() || write->address >= space->size() ||
         write->data.size() <= space->size() - write->address) {
-        return server_.handle(source, payload);
+        return server_.handle(source, asked);
     }
     const std::size_t fits = space->size() - write->address;
     memory::Write head = *write;
     head.data.resize(fits);
-    memory::Decision decision = server_.handle(source, memory::encode(head));
+    memory::Decision decision = server_.handle(source, memory::DecodeResult{head});
     if (!decision.accepted) return decision;
     const std::span<const std::uint8_t> tail = std::span(write->data).subspan(fits);
     if (config_.faults.write_past_end_grows) {
@@ -677,21 +673,24 @@ bool SimNode::reboot_on_this_write() {
 void SimNode::send_answer(std::uint16_t src, memory::Decision& decision) {
     const std::uint8_t flags =
         datagram::ok_flags(decision.reply_pending, decision.reply_timeout_exponent);
-    if (decision.reply.empty()) {
+    if (!decision.reply) {
         stack_.accept_datagram(src, flags);
-    } else if (config_.faults.no_datagram_ack) {
-        send_reply(src, std::move(decision.reply));
+        return;
+    }
+    std::vector<std::uint8_t> reply = decision.reply_bytes();
+    if (config_.faults.no_datagram_ack) {
+        send_reply(src, std::move(reply));
         stack_.accept_datagram(src, flags);
     } else if (config_.faults.slow_reply.count() > 0 && replies_++ % kSlowReplyEvery == 0) {
         stack_.accept_datagram(src, flags);
         const std::uint32_t generation = boot_generation_;
         stack_.schedule(stack_.now() + config_.faults.slow_reply,
-                        [this, generation, src, reply = std::move(decision.reply)](TimePoint) {
+                        [this, generation, src, reply = std::move(reply)](TimePoint) {
                             if (generation == boot_generation_) send_reply(src, reply);
                         });
     } else {
         stack_.accept_datagram(src, flags);
-        send_reply(src, std::move(decision.reply));
+        send_reply(src, std::move(reply));
     }
 }
 
@@ -700,30 +699,24 @@ void SimNode::send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply) {
 }
 
 void SimNode::apply_reply_faults(memory::Decision& decision,
-                                 std::span<const std::uint8_t> request) {
+                                 const std::optional<memory::Read>& read) const {
     const FaultSet& f = config_.faults;
-    if (decision.reply.empty() ||
-        !(f.read_past_end || f.read_past_end_garbage || f.space_info_short || f.reply_form ||
-          f.field_reads_only || f.highest_unreadable)) {
+    if (!decision.reply || !(f.read_past_end || f.read_past_end_garbage || f.space_info_short ||
+                             f.reply_form || f.field_reads_only || f.highest_unreadable)) {
         return;
     }
-    memory::DecodeResult reply = memory::decode(decision.reply);
-    if (!reply.ok()) return;
-    bool changed = false;
+    memory::Message& reply = *decision.reply;
     if (f.field_reads_only) {
-        if (auto* r = std::get_if<memory::ReadReply>(&reply.message)) changed = cut_to_field(*r);
+        if (auto* r = std::get_if<memory::ReadReply>(&reply)) cut_to_field(*r);
     }
-    if (f.read_past_end || f.read_past_end_garbage)
-        changed = fill_past_end(reply, request) || changed;
-    if (auto* info = std::get_if<memory::SpaceInfoReply>(&reply.message)) {
+    if (f.read_past_end || f.read_past_end_garbage) fill_past_end(reply, read);
+    if (auto* info = std::get_if<memory::SpaceInfoReply>(&reply)) {
         if (f.highest_unreadable &&
             (info->space == memory::Space::kAcdiUser || info->space == memory::Space::kConfig)) {
             ++info->highest_address;  // the size, as OpenMRN's FileMemorySpace says
-            changed = true;
         }
         if (f.space_info_short) {
             info->highest_address -= std::min(info->highest_address, kSpaceInfoShortBy);
-            changed = true;
         }
     }
     if (f.reply_form) {
@@ -734,34 +727,25 @@ void SimNode::apply_reply_faults(memory::Decision& decision,
                               std::is_same_v<T, memory::ReadReplyFail> ||
                               std::is_same_v<T, memory::WriteReply> ||
                               std::is_same_v<T, memory::WriteReplyFail>) {
-                    const auto form = other_form(m.space, m.form);
-                    changed = changed || form != m.form;
-                    m.form = form;
+                    m.form = other_form(m.space, m.form);
                 }
             },
-            reply.message);
+            reply);
     }
-    if (changed) decision.reply = memory::encode(reply.message);
 }
 
 // read-past-end (every space: zeros) and read-past-end-garbage (0xFD only: 0xA5 bytes): a read
 // starting at/after the end gets Read Reply OK with `count` bytes instead of the 0x1082 failure.
-bool SimNode::fill_past_end(memory::DecodeResult& reply,
-                            std::span<const std::uint8_t> request) const {
-    const auto* fail = std::get_if<memory::ReadReplyFail>(&reply.message);
-    if (fail == nullptr || fail->error != memory::ErrorCode::kOutOfBounds) return false;
-    const memory::DecodeResult asked = memory::decode(request);
-    const auto* read = std::get_if<memory::Read>(&asked.message);
-    if (read == nullptr) return false;
+void SimNode::fill_past_end(memory::Message& reply, const std::optional<memory::Read>& read) const {
+    const auto* fail = std::get_if<memory::ReadReplyFail>(&reply);
+    if (fail == nullptr || fail->error != memory::ErrorCode::kOutOfBounds || !read) return;
     std::uint8_t fill = 0;
     if (!config_.faults.read_past_end) {
-        if (read->space != memory::Space::kConfig) return false;
+        if (read->space != memory::Space::kConfig) return;
         fill = kPastEndGarbage;
     }
-    reply.message =
-        memory::ReadReply{read->space, read->address,
-                          std::vector<std::uint8_t>(read->count & 0x7F, fill), read->form};
-    return true;
+    reply = memory::ReadReply{read->space, read->address,
+                              std::vector<std::uint8_t>(read->count & 0x7F, fill), read->form};
 }
 
 void SimNode::apply_reject_faults(memory::Decision& decision) const {

@@ -22,6 +22,7 @@
 #include "simnode/event_roles.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/node_memory.hpp"
+#include "simnode/stack_faults.hpp"
 
 namespace olcb::simnode {
 
@@ -138,7 +139,7 @@ private:
     void answer_datagram(const ReceivedDatagram& datagram);
     void after_write(const memory::WrittenRange& written);
     memory::Decision decide(std::uint16_t src, std::span<const std::uint8_t> payload);
-    std::optional<memory::Decision> command_faults(std::span<const std::uint8_t> payload) const;
+    std::optional<memory::Decision> command_faults(const memory::DecodeResult& asked) const;
     void send_answer(std::uint16_t src, memory::Decision& decision);
     bool reboot_on_this_write();
     void find_watched();
@@ -151,12 +152,13 @@ private:
     void advertise_all();
     void identified(EventId id, bool producer);
     void send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply);
-    void apply_reply_faults(memory::Decision& decision, std::span<const std::uint8_t> request);
+    void apply_reply_faults(memory::Decision& decision,
+                            const std::optional<memory::Read>& read) const;
     void apply_reject_faults(memory::Decision& decision) const;
-    bool fill_past_end(memory::DecodeResult& reply, std::span<const std::uint8_t> request) const;
+    void fill_past_end(memory::Message& reply, const std::optional<memory::Read>& read) const;
     memory::Decision crossing_write(const memory::Source& source,
-                                    std::span<const std::uint8_t> payload);
-    std::vector<std::uint8_t> unmasked(std::span<const std::uint8_t> payload);
+                                    const memory::DecodeResult& asked);
+    void unmask(memory::DecodeResult& asked);
     std::vector<std::pair<EventId, EventRole>> advertised_events() const;
     void schedule_unsolicited(TimePoint at);
     void start_stream_read(std::uint16_t src, const memory::StreamRead& read);
@@ -175,6 +177,7 @@ private:
     ProtocolSet served_protocols_;
     NodeCounters counters_;
     AnswerDelay answer_delay_;           // the latency fault
+    StackFaults stack_faults_;           // the faults on frames and streams (stack hooks)
     std::uint64_t replies_ = 0;          // numbers replies for slow-reply
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;

@@ -57,7 +57,7 @@ protected:
         const Decision d = handle(request);
         EXPECT_TRUE(d.accepted);
         EXPECT_TRUE(d.reply_pending);
-        EXPECT_EQ(d.reply, hex(reply));
+        EXPECT_EQ(d.reply_bytes(), hex(reply));
     }
 
     // Expects Datagram Rejected with code and nothing else.
@@ -66,7 +66,7 @@ protected:
         const Decision d = handle(request);
         EXPECT_FALSE(d.accepted);
         EXPECT_EQ(d.reject_error, code);
-        EXPECT_TRUE(d.reply.empty());
+        EXPECT_FALSE(d.reply);
         EXPECT_EQ(d.effects, SideEffects{});
     }
 
@@ -103,7 +103,7 @@ TEST_F(ServerTest, ConfigOptionsName) {
     config.name = "sim";
     MemoryConfigServer server(config);
     server.add_space(Space::kCdi, cdi_);
-    EXPECT_EQ(server.handle({}, hex("20 80")).reply, hex("20 82 E000 E2 FF FF 73696D 00"));
+    EXPECT_EQ(server.handle({}, hex("20 80")).reply_bytes(), hex("20 82 E000 E2 FF FF 73696D 00"));
 }
 
 // ---- Get Address Space Information -----------------------------------------------------------
@@ -210,7 +210,7 @@ TEST_F(ServerTest, WriteShortFormStoresAndRepliesOk) {
     const Decision d = handle("20 01 00000010 AABB");
     EXPECT_TRUE(d.accepted);
     EXPECT_TRUE(d.reply_pending);
-    EXPECT_EQ(d.reply, hex("20 11 00000010"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 11 00000010"));
     EXPECT_EQ(config_space_.bytes()[0x10], 0xAA);
     EXPECT_EQ(config_space_.bytes()[0x11], 0xBB);
     ASSERT_TRUE(d.effects.written.has_value());
@@ -246,12 +246,12 @@ TEST_F(ServerTest, WritePlainOkWhenConfigured) {
     Decision d = server.handle({}, hex("20 01 00000000 07"));
     EXPECT_TRUE(d.accepted);
     EXPECT_FALSE(d.reply_pending);
-    EXPECT_TRUE(d.reply.empty());
+    EXPECT_FALSE(d.reply);
     EXPECT_EQ(config_space_.bytes()[0], 0x07);
     // A failure still needs a reply, so it is announced.
     d = server.handle({}, hex("20 01 00000100 07"));
     EXPECT_TRUE(d.reply_pending);
-    EXPECT_EQ(d.reply, hex("20 19 00000100 1082"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 19 00000100 1082"));
 }
 
 TEST_F(ServerTest, WriteReadOnlyRejected1083) {
@@ -308,7 +308,7 @@ TEST_F(ServerTest, WriteUnderMaskChangesOnlyMaskedBits) {
     ASSERT_EQ(config_space_.write(0x10, hex("F0 FF")), WriteStatus::kOk);
     // byte 0x10: mask 0F value 05 -> F5; byte 0x11: mask 80 value 00 -> 7F.
     const Decision d = handle("20 09 00000010 0F05 8000");
-    EXPECT_EQ(d.reply, hex("20 11 00000010"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 11 00000010"));
     EXPECT_EQ(config_space_.bytes()[0x10], 0xF5);
     EXPECT_EQ(config_space_.bytes()[0x11], 0x7F);
     ASSERT_TRUE(d.effects.written.has_value());
@@ -325,7 +325,7 @@ TEST_F(ServerTest, WriteUnderMaskByte6FormAndErrors) {
 
 TEST_F(ServerTest, WriteToAcdiUserSpaceFlagsIdentificationChange) {
     const Decision d = handle("20 00 00000001 FB 4142");
-    EXPECT_EQ(d.reply, hex("20 10 00000001 FB"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 10 00000001 FB"));
     EXPECT_TRUE(d.effects.identification_changed);
     EXPECT_EQ(decode_acdi_user(acdi_user_.bytes()).name, "AB");
     // Same bytes again: nothing changed, nothing to announce.
@@ -342,7 +342,7 @@ TEST_F(ServerTest, WriteStorageFailureRepliesFail1000) {
     server_.add_space(Space::kConfig, broken);
     const Decision d = handle("20 01 00000000 01");
     EXPECT_TRUE(d.accepted);
-    EXPECT_EQ(d.reply, hex("20 19 00000000 1000"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 19 00000000 1000"));
     EXPECT_FALSE(d.effects.written.has_value());
 }
 
@@ -374,15 +374,15 @@ TEST_F(ServerTest, GetUniqueIdsFromNodeIdAndCounter) {
     MemoryConfigServer server(config);
     Decision d = server.handle({}, hex("20 8C 02"));
     EXPECT_TRUE(d.reply_pending);
-    EXPECT_EQ(d.reply, hex("20 8D 0501010112340005 0501010112340006"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 8D 0501010112340005 0501010112340006"));
     EXPECT_EQ(d.effects.unique_id_counter, 7u);
     d = server.handle({}, hex("20 8C 01"));
-    EXPECT_EQ(d.reply, hex("20 8D 0501010112340007"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 8D 0501010112340007"));
     d = server.handle({}, hex("20 8C 00"));
-    EXPECT_EQ(d.reply, hex("20 8D"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 8D"));
     // Only the low three bits count: 0xF9 asks for 1.
     d = server.handle({}, hex("20 8C F9"));
-    EXPECT_EQ(d.reply, hex("20 8D 0501010112340008"));
+    EXPECT_EQ(d.reply_bytes(), hex("20 8D 0501010112340008"));
     EXPECT_EQ(server.unique_id_counter(), 9u);
 }
 
@@ -393,7 +393,7 @@ TEST_F(ServerTest, GetUniqueIdNeverWrapsAround) {
     const Decision refused = server.handle({}, hex("20 8C 02"));
     EXPECT_FALSE(refused.accepted);
     EXPECT_EQ(refused.reject_error, ErrorCode::kPermanent);
-    EXPECT_EQ(server.handle({}, hex("20 8C 01")).reply, hex("20 8D 050101011234FFFF"));
+    EXPECT_EQ(server.handle({}, hex("20 8C 01")).reply_bytes(), hex("20 8D 050101011234FFFF"));
     EXPECT_FALSE(server.handle({}, hex("20 8C 01")).accepted);
 }
 
@@ -406,7 +406,7 @@ TEST_F(ServerTest, ResetRebootRequestsReboot) {
     const Decision d = handle("20 A9");
     EXPECT_TRUE(d.accepted);
     EXPECT_FALSE(d.reply_pending);
-    EXPECT_TRUE(d.reply.empty());
+    EXPECT_FALSE(d.reply);
     EXPECT_TRUE(d.effects.reboot);
     EXPECT_FALSE(d.effects.factory_reset);
 }
@@ -456,7 +456,7 @@ TEST_F(ServerTest, StreamReadsWhenEnabled) {
     Decision d = handle("20 63 00000000 FF 05 00000000");
     EXPECT_TRUE(d.accepted);
     EXPECT_TRUE(d.reply_pending);
-    EXPECT_TRUE(d.reply.empty());
+    EXPECT_FALSE(d.reply);
     ASSERT_TRUE(d.effects.stream_read);
     const StreamRead read = *d.effects.stream_read;
     EXPECT_EQ(read, (StreamRead{Space::kCdi, 0, 7, 0, 0x05, SpaceForm::kShort}));
@@ -513,7 +513,7 @@ TEST(ServerWithImage, AcknowledgedWriteIsInTheImageFile) {
         MemoryConfigServer server(MemoryConfigServer::Config{});
         server.add_space(Space::kConfig, space);
         const Decision d = server.handle({}, hex("20 01 00000020 C0FFEE"));
-        EXPECT_EQ(d.reply, hex("20 11 00000020"));
+        EXPECT_EQ(d.reply_bytes(), hex("20 11 00000020"));
         // Before the owner even sends the acknowledgement, the bytes are in the file.
         std::ifstream in(path, std::ios::binary);
         in.seekg(0x20);
@@ -557,13 +557,22 @@ TEST_F(ServerTest, FaultGarbagePastEndByWrappingTheSpace) {
     expect_reply("20 43 00000007 02", "20 53 00000007 EEEE");
 }
 
-TEST_F(ServerTest, FaultWrongFormByRewritingTheDecision) {
+// An owner changes the typed reply, and the bytes follow when it is encoded once.
+TEST_F(ServerTest, AnOwnerRewritesTheTypedReply) {
     Decision d = handle("20 43 00000000 01");
-    DecodeResult reply = decode(d.reply);
-    ASSERT_TRUE(reply.ok());
-    std::get<ReadReply>(reply.message).form = SpaceForm::kByte6;
-    d.reply = encode(reply.message);
-    EXPECT_EQ(d.reply, hex("20 50 00000000 FF 3C"));
+    ASSERT_TRUE(d.reply);
+    std::get<ReadReply>(*d.reply).form = SpaceForm::kByte6;
+    EXPECT_EQ(d.reply_bytes(), hex("20 50 00000000 FF 3C"));
+}
+
+// The owner that decoded a datagram hands the server its decoding: nothing is decoded again.
+TEST_F(ServerTest, ADecodedRequestIsNotDecodedAgain) {
+    const DecodeResult request = decode(hex("20 43 00000000 01"));
+    const CodecCounts before = codec_counts();
+    const Decision d = server_.handle(Source{}, request);
+    EXPECT_EQ(codec_counts().decoded, before.decoded);
+    EXPECT_EQ(codec_counts().encoded, before.encoded) << "the reply stays typed";
+    EXPECT_EQ(d.reply_bytes(), hex("20 53 00000000 3C"));
 }
 
 }  // namespace

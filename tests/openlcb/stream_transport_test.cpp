@@ -260,31 +260,41 @@ TEST(StreamTransportTest, ConcurrentStreamsShareTheBusFrameByFrame) {
     EXPECT_FALSE(t.on_message(proceed, now));
 }
 
-class StreamFaultTest : public StreamFixture {};
+// The hooks an owner breaks the stream rules through (simnode's stream-* faults): the outbound
+// filter sees Data Complete, the window policy sizes what one grant allows.
+class StreamHookTest : public StreamFixture {};
 
-TEST_F(StreamFaultTest, WrongCountNoCompleteIgnoreProceedExceedBuffer) {
-    auto& faults = stack_.streams().config().faults;
-    faults.wrong_count = true;
+TEST_F(StreamHookTest, OutboundFilterRewritesOrDropsDataComplete) {
+    bool drop = false;
+    stack_.set_outbound_filter([&drop](Message& m) {
+        if (m.mti != Mti::kStreamDataComplete) return true;
+        if (drop) return false;
+        auto complete = stream::decode_data_complete(m.payload);
+        ++*complete->total_bytes;
+        m.payload = stream::encode(*complete);
+        return true;
+    });
     std::uint32_t id = open_accepted();
     stack_.write_stream(id, std::vector<std::uint8_t>(3, 1));
     stack_.close_stream(id);
     net_.run_for(0ms);
     EXPECT_EQ(take(), (Strings{":X1F12C343N07010101;", ":X198A8343N012C010700000004;"}));
-    faults = {};
-    faults.no_complete = true;
+    drop = true;
     id = open_accepted();
     stack_.write_stream(id, std::vector<std::uint8_t>(3, 1));
     stack_.close_stream(id);
     net_.run_for(0ms);
     EXPECT_EQ(take(), Strings{":X1F12C343N07010101;"});
-    faults = {};
-    faults.ignore_proceed = true;
-    id = open_accepted();
+}
+
+TEST_F(StreamHookTest, WindowPolicySizesWhatOneGrantAllows) {
+    stack_.streams().set_window_policy(
+        [](std::uint16_t) { return StreamTransport::kUnlimitedWindow; });
+    std::uint32_t id = open_accepted();
     stack_.write_stream(id, std::vector<std::uint8_t>(35, 2));
     net_.run_for(0ms);
     EXPECT_EQ(take().size(), 5u);  // all 35 bytes, past the 16-byte buffer
-    faults = {};
-    faults.exceed_buffer = true;
+    stack_.streams().set_window_policy([](std::uint16_t buffer) { return 2ull * buffer; });
     id = open_accepted();
     stack_.write_stream(id, std::vector<std::uint8_t>(40, 3));
     net_.run_for(0ms);

@@ -91,7 +91,10 @@ TEST(MessageAddressingChecksTest, MessagesToAnotherNodeAnsweredWarn) {
     auto node = b.start();
     ASSERT_TRUE(node);
     // The fake answers in the node's name: the node must not take that for a collision.
-    b.dut->stack().builtins().defend_alias = false;
+    NodeStack& dut = b.dut->stack();
+    dut.set_inbound_filter([&dut](const CanFrame& f, TimePoint) {
+        return FrameRoute{can::source_alias(f.id) != dut.alias(), true};
+    });
     answer_for_everyone(b.net, node->alias);
     auto results = run_list(*b.session, *node, checks::message_addressing_checks());
     for (const char* id :

@@ -1,7 +1,8 @@
 // NodeStack: the duplicate-node-ID PCER (NodeBuiltins::duplicate_id_pcer), the reserved bit 28
-// ignored on receive, and the frame-level faults (NodeStackFaults) simnode injects.
+// ignored on receive, and the inbound and outbound filters an owner breaks rules through.
 #include <gtest/gtest.h>
 
+#include "openlcb/can_defs.hpp"
 #include "openlcb/node/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
 
@@ -89,50 +90,52 @@ TEST_F(StackFramesTest, ReservedBit28IsIgnoredOnReceive) {
     EXPECT_EQ(take(), Strings{kVerified});
 }
 
-class BurstDropTest : public test::StackFixture {
-protected:
-    BurstDropTest()
-        : StackFixture(with([](NodeStackConfig& c) { c.faults.drop_addressed_in_bursts = true; })) {
-    }
-};
-
-TEST_F(BurstDropTest, AddressedMessagesDroppedWhileMoreThan16OtherFramesIn10Ms) {
+// The inbound filter decides which layers take a frame in: an owner breaking a rule on purpose
+// (simnode's faults, tests/simnode/stack_faults_test.cpp) does it here, not in the core.
+TEST_F(StackFramesTest, InboundFilterHidesFramesFromTheAliasLayer) {
+    stack_.set_inbound_filter([this](const CanFrame& f, TimePoint) {
+        return FrameRoute{can::source_alias(f.id) != stack_.alias(), true};
+    });
     boot();
-    net_.run_for(20ms);
-    for (int i = 0; i < 16; ++i) port_.send(test::gc(":X198F4456N0909090909090909;"));
-    inject(":X1948812CN0343;");
-    EXPECT_EQ(take(), Strings{kVerified}) << "16 frames of another source: no burst";
-    port_.send(test::gc(":X198F4456N0909090909090909;"));
-    inject(":X1948812CN0343;");
-    EXPECT_TRUE(take().empty()) << "17 frames of another source within 10 ms";
-    inject(":X19490456N;");
-    EXPECT_EQ(take(), Strings{kVerified}) << "global messages still answered";
-    net_.run_for(10ms);
-    inject(":X1948812CN0343;");
-    EXPECT_EQ(take(), Strings{kVerified}) << "10 ms later the burst is over";
+    inject(":X17050343N;", 10ms);            // CID of our alias: no RID
+    inject(":X19170343N020000000001;", 1s);  // a frame using our alias: no AMR, alias kept
+    EXPECT_TRUE(take().empty());
+    EXPECT_EQ(stack_.alias(), 0x343);
+    inject(":X19490AAAN;");
+    EXPECT_EQ(take(), Strings{kVerified}) << "the message layer still answers";
 }
 
-TEST_F(BurstDropTest, TheRequestersOwnQuickTrafficIsNoBurst) {
+TEST_F(StackFramesTest, InboundFilterHidesFramesFromTheMessageLayerAndSeesStandardFrames) {
+    int standard = 0;
+    stack_.set_inbound_filter([&standard](const CanFrame& f, TimePoint) {
+        if (!f.extended) ++standard;
+        return FrameRoute{true, can::source_alias(f.id) != 0x12C};
+    });
     boot();
-    net_.run_for(20ms);
-    for (int i = 0; i < 40; ++i) port_.send(test::gc(":X198F412CN0909090909090909;"));
     inject(":X1948812CN0343;");
+    EXPECT_TRUE(take().empty()) << "hidden from the message layer";
+    inject(":X17050343N;");
+    EXPECT_EQ(take(), Strings{":X10700343N;"}) << "the alias layer still defends";
+    inject(":X19488456N0343;");
     EXPECT_EQ(take(), Strings{kVerified});
+    inject(":S123N0102;");
+    EXPECT_EQ(standard, 1);
+    EXPECT_TRUE(take().empty());
 }
 
-class StandardFramesTest : public test::StackFixture {
-protected:
-    StandardFramesTest()
-        : StackFixture(with([](NodeStackConfig& c) { c.faults.answer_standard_frames = true; })) {}
-};
-
-TEST_F(StandardFramesTest, EveryStandardFrameAnsweredWithVerifiedNodeId) {
+TEST_F(StackFramesTest, OutboundFilterChangesOrDropsMessages) {
+    stack_.set_outbound_filter([](Message& m) {
+        if (m.mti == Mti::kProtocolSupportReply) return false;
+        if (m.mti == Mti::kVerifiedNodeId) m.payload.back() ^= 0xFF;
+        return true;
+    });
     boot();
-    inject(":S123N0102;");
-    inject(":S7FFN;");
-    EXPECT_EQ(take(), (Strings{kVerified, kVerified}));
-    inject(":S123R;");
-    EXPECT_TRUE(take().empty()) << "remote frames stay ignored";
+    stack_.send_message(
+        Message{Mti::kVerifiedNodeId, {}, std::nullopt, {0x05, 0x01, 0x01, 0x01, 0x22, 0x00}});
+    stack_.send_message(
+        Message{Mti::kProtocolSupportReply, {}, NodeHandle{NodeId{}, 0x12C}, {0, 0, 0, 0, 0, 0}});
+    net_.run_for(0ms);
+    EXPECT_EQ(take(), Strings{":X19170343N0501010122FF;"});
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// NodeStack owner timers (schedule / now) and the defend_alias built-in switch.
+// NodeStack owner timers (schedule / now).
 #include <gtest/gtest.h>
 
 #include "openlcb/node/node_test_util.hpp"
@@ -66,36 +66,6 @@ TEST_F(NodeStackTimerTest, NowFollowsFramesAndPolls) {
     inject(":X19490AAAN;");
     EXPECT_GE(stack_.now(), before);
     EXPECT_EQ(stack_.now(), net_.now());
-}
-
-class NoDefenceTest : public NodeStackTimerTest {
-protected:
-    static NodeStackConfig config() {
-        NodeStackConfig c = test::stack_config();
-        c.builtins.defend_alias = false;
-        return c;
-    }
-    NoDefenceTest() : NodeStackTimerTest(config()) {}
-};
-
-TEST_F(NoDefenceTest, IgnoresCidAndConflictOnItsActiveAlias) {
-    boot();
-    inject(":X17050343N;", 10ms);
-    EXPECT_TRUE(take().empty());
-    inject(":X19170343N020000000001;", 1s);
-    EXPECT_TRUE(take().empty());
-    EXPECT_EQ(stack_.alias(), 0x343);
-    EXPECT_TRUE(stack_.initialized());
-    inject(":X19490AAAN;", 10ms);  // still answers
-    EXPECT_EQ(take(), (Strings{":X19170343N050101012200;"}));
-}
-
-TEST_F(NoDefenceTest, StillRestartsReservationOnTentativeConflict) {
-    stack_.start(net_.now());
-    inject(":X17050343N;", 10ms);  // during reservation the switch changes nothing
-    net_.run_for(1s);
-    EXPECT_NE(stack_.alias(), 0x343);
-    EXPECT_TRUE(stack_.initialized());
 }
 
 }  // namespace

@@ -1,0 +1,101 @@
+// StackFaults: alias-conflict-ignored, burst-drops and answers-standard-frames on a NodeStack of
+// their own (the stream-* faults: stream_read_test.cpp), frames as GridConnect strings.
+#include "simnode/stack_faults.hpp"
+
+#include <gtest/gtest.h>
+
+#include "openlcb/node/node_test_util.hpp"
+
+namespace olcb::simnode {
+namespace {
+
+using namespace std::chrono_literals;
+using Strings = std::vector<std::string>;
+
+const std::string kVerified = ":X19170343N050101012200;";
+
+FaultSet faults_of(const std::string& names) {
+    std::string error;
+    auto parsed = parse_faults({names}, error);
+    EXPECT_TRUE(parsed) << error;
+    return parsed.value_or(FaultSet{});
+}
+
+class StackFaultsTest : public olcb::test::StackFixture {
+protected:
+    void attach(const std::string& names) {
+        faults_ = std::make_unique<StackFaults>(faults_of(names));
+        faults_->attach(stack_);
+    }
+    std::unique_ptr<StackFaults> faults_;
+};
+
+TEST_F(StackFaultsTest, AliasConflictIgnoredIgnoresCidAndConflictOnItsActiveAlias) {
+    attach("alias-conflict-ignored");
+    boot();
+    inject(":X17050343N;", 10ms);
+    EXPECT_TRUE(take().empty());
+    inject(":X19170343N020000000001;", 1s);
+    EXPECT_TRUE(take().empty());
+    EXPECT_EQ(stack_.alias(), 0x343);
+    EXPECT_TRUE(stack_.initialized());
+    inject(":X19490AAAN;", 10ms);  // still answers
+    EXPECT_EQ(take(), (Strings{kVerified}));
+}
+
+TEST_F(StackFaultsTest, AliasConflictIgnoredStillRestartsReservationOnTentativeConflict) {
+    attach("alias-conflict-ignored");
+    stack_.start(net_.now());
+    inject(":X17050343N;", 10ms);  // during reservation the fault changes nothing
+    net_.run_for(1s);
+    EXPECT_NE(stack_.alias(), 0x343);
+    EXPECT_TRUE(stack_.initialized());
+}
+
+TEST_F(StackFaultsTest, BurstDropsAddressedMessagesWhileMoreThan16OtherFramesIn10Ms) {
+    attach("burst-drops");
+    boot();
+    net_.run_for(20ms);
+    for (int i = 0; i < 16; ++i) port_.send(olcb::test::gc(":X198F4456N0909090909090909;"));
+    inject(":X1948812CN0343;");
+    EXPECT_EQ(take(), Strings{kVerified}) << "16 frames of another source: no burst";
+    port_.send(olcb::test::gc(":X198F4456N0909090909090909;"));
+    inject(":X1948812CN0343;");
+    EXPECT_TRUE(take().empty()) << "17 frames of another source within 10 ms";
+    inject(":X19490456N;");
+    EXPECT_EQ(take(), Strings{kVerified}) << "global messages still answered";
+    net_.run_for(10ms);
+    inject(":X1948812CN0343;");
+    EXPECT_EQ(take(), Strings{kVerified}) << "10 ms later the burst is over";
+}
+
+TEST_F(StackFaultsTest, BurstDropsCountsNotTheRequestersOwnQuickTraffic) {
+    attach("burst-drops");
+    boot();
+    net_.run_for(20ms);
+    for (int i = 0; i < 40; ++i) port_.send(olcb::test::gc(":X198F412CN0909090909090909;"));
+    inject(":X1948812CN0343;");
+    EXPECT_EQ(take(), Strings{kVerified});
+}
+
+TEST_F(StackFaultsTest, AnswersStandardFramesWithVerifiedNodeId) {
+    attach("answers-standard-frames");
+    boot();
+    inject(":S123N0102;");
+    inject(":S7FFN;");
+    EXPECT_EQ(take(), (Strings{kVerified, kVerified}));
+    inject(":S123R;");
+    EXPECT_TRUE(take().empty()) << "remote frames stay ignored";
+}
+
+TEST_F(StackFaultsTest, NoFaultInstallsNoHook) {
+    attach("snip-mismatch");
+    boot();
+    inject(":X17050343N;");
+    EXPECT_EQ(take(), Strings{":X10700343N;"}) << "the alias is defended";
+    inject(":S123N0102;");
+    EXPECT_TRUE(take().empty());
+}
+
+}  // namespace
+}  // namespace olcb::simnode
