@@ -1,5 +1,7 @@
 // The one hex formatting: uppercase digits, "0x00A5" for a number, "0A 0B" for bytes; and the one
 // reader of a hex digit. Every library formats hex through these, so output never mixes styles.
+// Lowercase only where a format outside ours asks for it (OpenLCB_Java's backup files) or where
+// text already names things in it (per-space result IDs such as "memory.short-read.fd").
 #pragma once
 
 #include <array>
@@ -13,9 +15,15 @@ namespace olcb::base {
 /// The uppercase hex digits, indexed by value.
 inline constexpr std::string_view kHexDigits = "0123456789ABCDEF";
 
-/// The uppercase hex digit of the low 4 bits of value.
-constexpr char hex_digit(std::uint64_t value) {
-    return kHexDigits[value & 0xF];
+/// The lowercase hex digits, indexed by value.
+inline constexpr std::string_view kHexDigitsLower = "0123456789abcdef";
+
+/// The letters hex digits are written with.
+enum class HexCase : std::uint8_t { kUpper, kLower };
+
+/// The hex digit of the low 4 bits of value, uppercase unless asked.
+constexpr char hex_digit(std::uint64_t value, HexCase letters = HexCase::kUpper) {
+    return (letters == HexCase::kLower ? kHexDigitsLower : kHexDigits)[value & 0xF];
 }
 
 namespace detail {
@@ -45,15 +53,16 @@ constexpr char* put_hex(char* out, std::uint64_t value, int width) {
     return out;
 }
 
-/// Value in uppercase hex, zero-padded to at least `width` digits (a wider value keeps all its
-/// digits): hex_digits(0xA5, 4) == "00A5".
-std::string hex_digits(std::uint64_t value, int width = 1);
+/// Value in hex, zero-padded to at least `width` digits (a wider value keeps all its digits):
+/// hex_digits(0xA5, 4) == "00A5", hex_digits(0xFD, 2, HexCase::kLower) == "fd".
+std::string hex_digits(std::uint64_t value, int width = 1, HexCase letters = HexCase::kUpper);
 
 /// "0x" and hex_digits(value, width): hex(0xA5, 4) == "0x00A5".
 std::string hex(std::uint64_t value, int width = 1);
 
-/// Each byte as two uppercase digits with `separator` between them: "0A 0B"; with "" plain
-/// "0A0B", with "." the dotted form of node and event IDs.
-std::string hex_bytes(std::span<const std::uint8_t> bytes, std::string_view separator = " ");
+/// Each byte as two digits with `separator` between them: "0A 0B"; with "" plain "0A0B", with "."
+/// the dotted form of node and event IDs; with HexCase::kLower "0a 0b".
+std::string hex_bytes(std::span<const std::uint8_t> bytes, std::string_view separator = " ",
+                      HexCase letters = HexCase::kUpper);
 
 }  // namespace olcb::base

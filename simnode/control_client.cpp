@@ -2,11 +2,11 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 #include <utility>
 #include <vector>
 
+#include "base/hex.hpp"
 #include "base/number.hpp"
 #include "openlcb/asio.hpp"
 
@@ -166,9 +166,7 @@ std::string dump_lines(const Json& response) {
     const std::uint64_t address = response.value("address", std::uint64_t{0});
     std::string out;
     for (std::size_t i = 0; i < hex.size(); i += 2 * kDumpBytesPerLine) {
-        char at[24];
-        std::snprintf(at, sizeof at, "0x%08llX:", static_cast<unsigned long long>(address) + i / 2);
-        out += at;
+        out += base::hex(address + i / 2, 8) + ":";
         for (std::size_t j = i; j < std::min(hex.size(), i + 2 * kDumpBytesPerLine); j += 2) {
             out += ' ';
             out += hex.substr(j, 2);

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <charconv>
-#include <cstdio>
 #include <initializer_list>
 #include <optional>
 #include <set>
 #include <utility>
 #include <vector>
 
+#include "base/hex.hpp"
 #include "base/number.hpp"
 #include "openlcb/clock.hpp"
 
@@ -49,29 +49,13 @@ std::string quoted(const Json& value) {
     return "'" + text + "'";
 }
 
-std::string hex_byte_text(std::span<const std::uint8_t> bytes) {
-    static constexpr char kDigits[] = "0123456789abcdef";
-    std::string out;
-    out.reserve(bytes.size() * 2);
-    for (const std::uint8_t b : bytes) {
-        out.push_back(kDigits[b >> 4]);
-        out.push_back(kDigits[b & 0x0F]);
-    }
-    return out;
-}
-
 std::string space_name(std::uint64_t number) {
-    char text[32];
-    std::snprintf(text, sizeof text, "space %llu (0x%02llX)",
-                  static_cast<unsigned long long>(number), static_cast<unsigned long long>(number));
-    return text;
+    return "space " + std::to_string(number) + " (" + base::hex(number, 2) + ")";
 }
 
 Json alias_json(std::uint16_t alias) {
     if (alias == 0) return nullptr;
-    char text[8];
-    std::snprintf(text, sizeof text, "0x%03X", alias);
-    return text;
+    return base::hex(alias, 3);
 }
 
 Json describe(const SimNode& node) {
@@ -447,7 +431,8 @@ Json ControlCommands::read(const Json& request) {
     return accepted({{"node", node->node_id().to_string()},
                      {"space", *number},
                      {"address", *address},
-                     {"data", hex_byte_text(bytes)}});
+                     // Lowercase: the reply docs/control.md shows, which clients compare as text.
+                     {"data", base::hex_bytes(bytes, "", base::HexCase::kLower)}});
 }
 
 Json ControlCommands::write(const Json& request) {

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <utility>
 
+#include "base/hex.hpp"
 #include "cdi/decimal.hpp"
 #include "cdi/value_codec.hpp"
 
@@ -48,10 +49,7 @@ bool needs_escape(std::uint32_t cp) {
 
 // Lower-case hex, as OpenLCB_Java writes it (keys must match its files exactly).
 std::string hex4(std::uint32_t v) {
-    static constexpr char kHex[] = "0123456789abcdef";
-    std::string s = "\\x";
-    for (int shift = 12; shift >= 0; shift -= 4) s += kHex[(v >> shift) & 0xF];
-    return s;
+    return "\\x" + base::hex_digits(v & 0xFFFF, 4, base::HexCase::kLower);
 }
 
 constexpr bool valid_int_size(std::uint64_t size) {

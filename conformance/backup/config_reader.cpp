@@ -1,8 +1,8 @@
 #include "conformance/backup/config_reader.hpp"
 
 #include <algorithm>
-#include <sstream>
 
+#include "base/hex.hpp"
 #include "conformance/backup/backup_values.hpp"
 
 namespace olcb::conform {
@@ -22,9 +22,7 @@ bool readable(const ConfigEntry& e) {
 }
 
 std::string read_error(const AccessResult& r) {
-    std::ostringstream m;
-    m << "read failed (error 0x" << std::hex << r.error << ")";
-    return m.str();
+    return "read failed (error " + base::hex(r.error) + ")";
 }
 
 void decode_into(const ConfigEntry& e, std::span<const std::uint8_t> bytes, ConfigValue& out) {

@@ -3,6 +3,7 @@
 #include <map>
 #include <sstream>
 
+#include "base/hex.hpp"
 #include "conformance/backup/backup_values.hpp"
 
 namespace olcb::conform {
@@ -107,9 +108,7 @@ ConfigRestoreOutcome apply_restore(const RestorePlan& plan, MemoryAccess& memory
         AccessResult w = memory.write(static_cast<std::uint8_t>(e.space),
                                       static_cast<std::uint32_t>(e.address), c.bytes);
         if (!w.ok) {
-            std::ostringstream m;
-            m << e.key << ": write failed (error 0x" << std::hex << w.error << ")";
-            out.errors.push_back(m.str());
+            out.errors.push_back(e.key + ": write failed (error " + base::hex(w.error) + ")");
             continue;
         }
         written.push_back(e);

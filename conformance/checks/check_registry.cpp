@@ -41,9 +41,7 @@ bool any_result_id(const CheckSpec& spec, F&& f) {
     const std::string_view base = spec.id.substr(0, spec.id.size() - kPerSpace.size());
     if (f(base)) return true;
     for (unsigned sp = 0; sp <= 0xFF; ++sp) {
-        char suffix[4];
-        std::snprintf(suffix, sizeof suffix, "%02x", sp);
-        if (f(std::string(base) + "." + suffix)) return true;
+        if (f(std::string(base) + "." + space_suffix(static_cast<std::uint8_t>(sp)))) return true;
     }
     return false;
 }

@@ -1,10 +1,10 @@
 #include "conformance/checks/check_run.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <set>
 #include <variant>
 
+#include "base/hex.hpp"
 #include "cdi/validator.hpp"
 #include "conformance/report/report.hpp"
 #include "memory/acdi.hpp"
@@ -58,9 +58,7 @@ MemResult read_acdi_block(Session& s, const NodeInfo& node, Space space) {
 }  // namespace
 
 std::string hex(unsigned value, int width) {
-    char b[16];
-    std::snprintf(b, sizeof b, "0x%0*X", width, value);
-    return b;
+    return base::hex(value, width);
 }
 
 std::string clip(std::string_view text) {
@@ -98,9 +96,7 @@ Refusal judge_refusal(const MemResult& r, const std::string& what, std::uint16_t
 }
 
 std::string space_suffix(std::uint8_t space) {
-    char b[4];
-    std::snprintf(b, sizeof b, "%02x", space);
-    return b;
+    return base::hex_digits(space, 2, base::HexCase::kLower);
 }
 
 void Verdict::judge(bool ok, std::string message, std::string expected, std::string seen) {

@@ -1,11 +1,11 @@
 #include "conformance/checks/protocol_checks.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <optional>
 #include <set>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "conformance/checks/check_run.hpp"
 
@@ -55,10 +55,8 @@ std::vector<const ShortRead*> short_reads_inside(Session& s, const NodeInfo& nod
 
 CheckResult short_read_check(Session& s, const NodeInfo& node, std::uint8_t space,
                              CheckContext& ctx) {
-    char id[8];
-    std::snprintf(id, sizeof id, "%02x", space);
-    CheckResult c{
-        std::string("memory.short-read.") + id, Category::kMemory, Status::kPass, "", "", "", ""};
+    std::string id = "memory.short-read." + space_suffix(space);
+    CheckResult c{std::move(id), Category::kMemory, Status::kPass, "", "", "", ""};
     if (const CheckSpec* spec = find_check(c.id)) c.section = std::string(spec->section);
     const std::string name = hex(space, 2);
     const std::uint64_t reads = s.reads(node.id, space);

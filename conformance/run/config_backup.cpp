@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "base/file.hpp"
+#include "base/hex.hpp"
 #include "cdi/parser.hpp"
 #include "conformance/backup/backup_csv.hpp"
 #include "conformance/link/session.hpp"
@@ -140,9 +141,7 @@ bool load_node_config(Session& session, const NodeInfo& node, NodeConfig& config
                       std::string& error) {
     MemResult cdi = session.read_range(node, memory::Space::kCdi, 0, kMaxCdiBytes, true);
     if (cdi.data.empty()) {
-        std::ostringstream m;
-        m << "could not read the CDI (space 0xFF, error 0x" << std::hex << cdi.error << ")";
-        error = m.str();
+        error = "could not read the CDI (space 0xFF, error " + base::hex(cdi.error) + ")";
         return false;
     }
     std::string_view xml(reinterpret_cast<const char*>(cdi.data.data()), cdi.data.size());

@@ -3,9 +3,9 @@
 // original bytes again and they read back; the one request made while a test value is in place
 // is that variable's own read-back (for the ACDI user name: the SNIP reply that reports it).
 #include <cmath>
-#include <cstdio>
 #include <map>
 
+#include "base/hex.hpp"
 #include "cdi/string_codec.hpp"
 #include "cdi/value_codec.hpp"
 #include "conformance/report/report.hpp"
@@ -51,10 +51,8 @@ std::string check_id(ElementKind kind) {
 
 std::string code_text(const AccessResult& r) {
     if (r.error == 0) return r.ok ? "no data" : "no error code";
-    char buf[16];
-    std::snprintf(buf, sizeof buf, "0x%04X", r.error);
-    return r.error == base::to_u16(base::ErrorCode::kTimeout) ? std::string(buf) + " (timed out)"
-                                                              : buf;
+    const std::string code = base::hex(r.error, 4);
+    return r.error == base::to_u16(base::ErrorCode::kTimeout) ? code + " (timed out)" : code;
 }
 
 // Findings of one check kind, summarised into one CheckResult.
@@ -540,9 +538,8 @@ bool EncodingRun::write_before_reset(Written& set) {
 // The verdict on what the reset did to the values set; false when the node stopped answering.
 bool EncodingRun::judge_reset(const RebootOutcome& rb, const Written& set, CheckResult& c) {
     if (rb.rejected != 0) {
-        char code[8];
-        std::snprintf(code, sizeof code, "0x%04X", rb.rejected);
-        c.message = std::string("Reset/Reboot rejected with ") + code + "; persistence not tested";
+        c.message =
+            "Reset/Reboot rejected with " + base::hex(rb.rejected, 4) + "; persistence not tested";
         return true;
     }
     if (!rb.back) {

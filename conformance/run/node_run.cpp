@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "base/hex.hpp"
 #include "cdi/parser.hpp"
 #include "conformance/checks/events.hpp"
 #include "conformance/checks/protocol_checks.hpp"
@@ -43,10 +44,9 @@ auto wall() {
 
 // "space 0xFD at 0x00000157" for one run of bytes past the end of a space.
 std::string past_end_text(const PastEndBytes& p) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%u byte%s past the end of space 0x%02X (at 0x%08X)", p.count,
-                  p.count == 1 ? "" : "s", p.space, p.address);
-    return b;
+    return std::to_string(p.count) + (p.count == 1 ? " byte" : " bytes") +
+           " past the end of space " + base::hex(p.space, 2) + " (at " + base::hex(p.address, 8) +
+           ")";
 }
 
 // The restore line, computed from what was written (the ledger) and what read back.
@@ -417,11 +417,7 @@ bool NodeRun::take_lock() {
     // Lock/Reserve is optional: a node that rejects or ignores it is written without it, but
     // then nothing keeps a second tool from writing at the same time.
     std::string how = r.timed_out ? "not answered" : "rejected";
-    if (!r.timed_out && r.error != 0) {
-        char code[8];
-        std::snprintf(code, sizeof code, "0x%04X", r.error);
-        how += std::string(" with ") + code;
-    }
+    if (!r.timed_out && r.error != 0) how += " with " + base::hex(r.error, 4);
     // An optional command: "not implemented" is no finding, only a caution for the user.
     const bool absent =
         !r.timed_out && r.error == base::to_u16(base::ErrorCode::kSubcommandUnknown);

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <sstream>
@@ -13,6 +12,7 @@
 
 #include "base/error_codes.hpp"
 #include "base/file.hpp"
+#include "base/hex.hpp"
 #include "base/number.hpp"
 
 namespace olcb::conform {
@@ -22,28 +22,8 @@ constexpr const char* kHeader = "# lcc-conform safety backup v1";
 // A backup never holds more than a whole 32-bit space; refuse absurd files instead of allocating.
 constexpr std::size_t kMaxRangeBytes = std::size_t{1} << 24;
 
-int hex_digit(char c) {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return -1;
-}
-
-std::string plain_hex(std::span<const std::uint8_t> bytes) {
-    constexpr const char* kDigits = "0123456789ABCDEF";
-    std::string out;
-    out.reserve(bytes.size() * 2);
-    for (std::uint8_t b : bytes) {
-        out.push_back(kDigits[b >> 4]);
-        out.push_back(kDigits[b & 0xF]);
-    }
-    return out;
-}
-
 std::string where(std::uint8_t space, std::uint32_t address) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "space %u @0x%08X", static_cast<unsigned>(space), address);
-    return buf;
+    return "space " + std::to_string(space) + " @" + base::hex(address, 8);
 }
 
 }  // namespace
@@ -102,16 +82,12 @@ std::string SafetyBackup::save_bytes(MemoryAccess& memory, const RangeRequest& r
             ranges_.push_back({piece.space, piece.address, std::move(got.data)});
             continue;
         }
-        char buf[64];
         if (got.ok) {
-            std::snprintf(buf, sizeof buf, "%zu of %u bytes came back", got.data.size(),
-                          piece.length);
-        } else {
-            std::snprintf(
-                buf, sizeof buf, "read failed with 0x%04X%s", got.error,
-                got.error == base::to_u16(base::ErrorCode::kTimeout) ? " (timed out)" : "");
+            return std::to_string(got.data.size()) + " of " + std::to_string(piece.length) +
+                   " bytes came back";
         }
-        return buf;
+        return "read failed with " + base::hex(got.error, 4) +
+               (got.error == base::to_u16(base::ErrorCode::kTimeout) ? " (timed out)" : "");
     }
     return {};
 }
@@ -145,10 +121,8 @@ std::string SafetyBackup::to_text() const {
            "FILE\n";
     out << "node " << node_id_ << "\n";
     for (const BackupRange& r : ranges_) {
-        char head[64];
-        std::snprintf(head, sizeof head, "range %u 0x%08X %zu ", static_cast<unsigned>(r.space),
-                      r.address, r.bytes.size());
-        out << head << plain_hex(r.bytes) << "\n";
+        out << "range " << static_cast<unsigned>(r.space) << " " << base::hex(r.address, 8) << " "
+            << r.bytes.size() << " " << base::hex_bytes(r.bytes, "") << "\n";
     }
     out << "end\n";
     return out.str();
@@ -205,7 +179,7 @@ std::optional<BackupRange> parse_range_line(const std::string& line, std::string
     fields >> word >> space_text >> address_text >> length_text;
     std::getline(fields >> std::ws, hex);
     const auto space = range_field(space_text, 255);
-    // The address is written as 0x%08X; a bare number is refused, not read as decimal.
+    // The address is written in hex with its 0x; a bare number is refused, not read as decimal.
     const bool hex_address = address_text.starts_with("0x") || address_text.starts_with("0X");
     const auto address = range_field(address_text, 0xFFFFFFFFu);
     const auto length = range_field(length_text, kMaxRangeBytes);
@@ -220,8 +194,8 @@ std::optional<BackupRange> parse_range_line(const std::string& line, std::string
     BackupRange r{static_cast<std::uint8_t>(*space), static_cast<std::uint32_t>(*address), {}};
     r.bytes.reserve(*length);
     for (std::size_t i = 0; i < *length; ++i) {
-        const int hi = hex_digit(hex[2 * i]);
-        const int lo = hex_digit(hex[2 * i + 1]);
+        const int hi = base::hex_value(hex[2 * i]);
+        const int lo = base::hex_value(hex[2 * i + 1]);
         if (hi < 0 || lo < 0) {
             why = "bad hex digit";
             return std::nullopt;
@@ -315,11 +289,10 @@ std::string difference(const BackupRange& r, const AccessResult& got) {
 }
 
 std::string access_failed(const char* what, const BackupRange& r, const AccessResult& a) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, " (error 0x%04X)", a.error);
     return std::string(what) + " of " + std::to_string(r.bytes.size()) + " bytes at " +
            where(r.space, r.address) + " failed" +
-           (a.not_sent.empty() ? buf : " (" + a.not_sent + ")");
+           (a.not_sent.empty() ? " (error " + base::hex(a.error, 4) + ")"
+                               : " (" + a.not_sent + ")");
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #include "conformance/run/write_cover.hpp"
 
-#include <cstdio>
 #include <utility>
+
+#include "base/hex.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -54,10 +55,9 @@ GateDecision WriteCover::decide(const PlannedWrite& w, bool past_end_allowed) {
         const MemResult r = session_.read_range(node_, static_cast<memory::Space>(w.space),
                                                 piece.address, piece.length, false);
         if (!r.ok) {
-            char code[16];
-            std::snprintf(code, sizeof code, "error 0x%04X", r.error);
             return refuse(std::string("the bytes it would change do not read (") +
-                          (r.timed_out ? "no answer" : code) + "), so they cannot be saved");
+                          (r.timed_out ? "no answer" : "error " + base::hex(r.error, 4)) +
+                          "), so they cannot be saved");
         }
         const std::size_t got = std::min<std::size_t>(r.data.size(), piece.length);
         const std::uint64_t piece_end = std::uint64_t{piece.address} + piece.length;

@@ -1,9 +1,9 @@
 #include "simnode/audit/client_audit.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <string>
 
+#include "base/hex.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/mti.hpp"
 #include "simnode/audit/audit_limits.hpp"
@@ -74,20 +74,18 @@ void ClientAudit::judge_mti(const CanFrame& frame, std::optional<std::uint16_t> 
                             TimePoint now) {
     if (!can::is_message(frame.id)) return;
     const auto format = can::frame_format(frame.id);
-    char what[48];
+    std::string what;
     if (format == can::FrameFormat::kReserved0 || format == can::FrameFormat::kReserved6) {
-        std::snprintf(what, sizeof what, "a frame in the reserved CAN frame format %u",
-                      static_cast<unsigned>(format));
+        what = "a frame in the reserved CAN frame format " +
+               std::to_string(static_cast<unsigned>(format));
     } else if (format == can::FrameFormat::kGlobalAddressed &&
                !is_allocated(can::can_mti(frame.id))) {
-        std::snprintf(what, sizeof what, "a message with MTI 0x%04X",
-                      static_cast<unsigned>(can::can_mti(frame.id)));
+        what = "a message with MTI " + base::hex(can::can_mti(frame.id), 4);
     } else {
         return;
     }
     ctx_.report(RuleId::kMessageUnknownMti, can::source_alias(frame.id), node,
-                std::string(what) + ", which no standard allocates", std::span(&frame, 1), what,
-                now);
+                what + ", which no standard allocates", std::span(&frame, 1), what, now);
 }
 
 void ClientAudit::on_disconnect(std::uint64_t connection, TimePoint now) {

@@ -1,9 +1,9 @@
 #include "simnode/audit/memory_watch.hpp"
 
-#include <cstdio>
 #include <string>
 #include <variant>
 
+#include "base/hex.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "memory/memory_config_defs.hpp"
 #include "simnode/audit/audit_limits.hpp"
@@ -12,17 +12,12 @@ namespace olcb::simnode::audit {
 namespace {
 
 std::string space_key(std::uint8_t space) {
-    char buf[8];
-    std::snprintf(buf, sizeof buf, "%02X", static_cast<unsigned>(space));
-    return buf;
+    return base::hex_digits(space, 2);
 }
 
 // "0xFD @0x000000B3"
 std::string where(std::uint8_t space, std::uint64_t address) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "0x%02X @0x%08llX", static_cast<unsigned>(space),
-                  static_cast<unsigned long long>(address));
-    return buf;
+    return base::hex(space, 2) + " @" + base::hex(address, 8);
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #include "simnode/audit/write_judge.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <utility>
 
+#include "base/hex.hpp"
 #include "cdi/value_codec.hpp"
 #include "simnode/audit/audit_limits.hpp"
 
@@ -11,17 +11,12 @@ namespace olcb::simnode::audit {
 namespace {
 
 std::string place(std::uint8_t space, std::uint64_t address) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%02X:%08llX", static_cast<unsigned>(space),
-                  static_cast<unsigned long long>(address));
-    return buf;
+    return base::hex_digits(space, 2) + ":" + base::hex_digits(address, 8);
 }
 
 // "<int> 'Settings/Trim' (0xFD @0x00000001)"
 std::string describe(std::uint8_t space, const VariableRef& v) {
-    char where[40];
-    std::snprintf(where, sizeof where, " (0x%02X @0x%08llX)", static_cast<unsigned>(space),
-                  static_cast<unsigned long long>(v.address));
+    const std::string where = " (" + base::hex(space, 2) + " @" + base::hex(v.address, 8) + ")";
     return "<" +
            std::string(v.element->tag.empty() ? cdi::kind_name(v.element->kind)
                                               : v.element->tag.c_str()) +
@@ -96,13 +91,9 @@ std::vector<Verdict> WriteJudge::write(const NodeProfile& node, std::uint8_t spa
     std::optional<std::uint64_t> uncovered_from;
     const auto report_uncovered = [&](std::uint64_t to) {
         Verdict v{RuleId::kMemoryWriteUncovered, "", place(space, *uncovered_from), {}};
-        char buf[96];
-        std::snprintf(buf, sizeof buf,
-                      "wrote %llu byte(s) at 0x%02X @0x%08llX that no variable of the CDI covers",
-                      static_cast<unsigned long long>(to - *uncovered_from),
-                      static_cast<unsigned>(space),
-                      static_cast<unsigned long long>(*uncovered_from));
-        v.message = buf;
+        v.message = "wrote " + std::to_string(to - *uncovered_from) + " byte(s) at " +
+                    base::hex(space, 2) + " @" + base::hex(*uncovered_from, 8) +
+                    " that no variable of the CDI covers";
         add_frames(v.frames, frames);
         out.push_back(std::move(v));
         uncovered_from.reset();

@@ -32,6 +32,16 @@ TEST(Hex, BytesSeparatedAsAsked) {
     EXPECT_EQ(hex_bytes({}), "");
 }
 
+TEST(Hex, LowercaseOnlyWhenAsked) {
+    const std::vector<std::uint8_t> bytes{0x0A, 0xBC, 0xFF};
+    EXPECT_EQ(hex_bytes(bytes, "", HexCase::kLower), "0abcff");
+    EXPECT_EQ(hex_bytes(bytes, " ", HexCase::kLower), "0a bc ff");
+    EXPECT_EQ(hex_digits(0xFD, 2, HexCase::kLower), "fd");
+    EXPECT_EQ(hex_digits(0xABC, 4, HexCase::kLower), "0abc");
+    EXPECT_EQ(hex_digits(0xABC, 4, HexCase::kUpper), "0ABC");
+    EXPECT_EQ(hex_digit(0x1C, HexCase::kLower), 'c');
+}
+
 TEST(Hex, PutWritesExactlyTheWidth) {
     char buf[8] = {};
     char* end = put_hex(buf, 0x1ABC, 3);
