@@ -33,29 +33,12 @@ constexpr int kUsage = 2;
 // The tool's own node IDs: self-assigned IDs of the experimental range 05.01.01.01.3F.01 to
 // 05.01.01.01.3F.FE; each run takes one of its own so concurrent runs on one bus don't collide.
 
-// A node ID option as typed: every dotted byte with both its hex digits, so a truncated
-// "05.01.01.01.22.0" is refused rather than taken as 05.01.01.01.22.00 (another node).
+// Checked before anything connects, so a mistyped ID is a usage error rather than a run against
+// no node; the codec's sentence already quotes the text.
 bool check_node_id_option(const std::string& option, const std::string& text, std::string& error) {
-    if (text.find('.') != std::string::npos) {
-        std::size_t field = 0;
-        for (std::size_t start = 0; start <= text.size(); ++field) {
-            const std::size_t dot = std::min(text.find('.', start), text.size());
-            const std::size_t digits = dot - start;
-            if (digits != 2) {
-                error = "--" + option;
-                error.append(" ").append(text).append(": byte ");
-                error.append(std::to_string(field + 1)).append(" has ");
-                error.append(std::to_string(digits))
-                    .append(" hex digit(s); write all six bytes with two each, e.g. ")
-                    .append("05.01.01.01.22.00");
-                return false;
-            }
-            start = dot + 1;
-        }
-    }
     std::string why;
     if (NodeId::parse(text, &why)) return true;
-    error = "--" + option + " " + text + ": " + why;
+    error = "--" + option + ": " + why;
     return false;
 }
 

@@ -99,7 +99,9 @@ TEST(ErrorsE2e, ANodeIdWithAShortLastByteIsAUsageError) {
     const auto [code, out] =
         run_merged(LCC_CONFORM_PATH, {"--connect", "127.0.0.1:1", "--node", "05.01.01.01.22.0"});
     EXPECT_EQ(code, 2) << out;
-    EXPECT_NE(out.find("--node 05.01.01.01.22.0: byte 6 has 1 hex digit"), std::string::npos)
+    EXPECT_NE(out.find("--node: byte 6 of node ID '05.01.01.01.22.0' has 1 hex digit; expected "
+                       "exactly 2"),
+              std::string::npos)
         << out;
     EXPECT_EQ(out.find("cannot connect"), std::string::npos) << "refused before connecting";
 }
