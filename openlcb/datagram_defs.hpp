@@ -6,17 +6,12 @@
 #include <cstdint>
 #include <optional>
 
-#include "base/timings.hpp"
-
 namespace olcb::datagram {
 
 /// Largest datagram payload (content type byte included).
 inline constexpr std::size_t kMaxSize = 72;
 /// Content bytes per CAN frame.
 inline constexpr std::size_t kBytesPerFrame = 8;
-/// Minimum time a sender waits for OK/Rejected: base::kDatagramAckTimeout, under the name
-/// simnode's audit still uses.
-inline constexpr std::chrono::seconds kAckTimeout = base::kDatagramAckTimeout;
 
 /// Allocated content types (datagram byte 0).
 enum class ContentType : std::uint8_t {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "conformance/checks/check_context.hpp"
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/link/session.hpp"
@@ -20,7 +21,7 @@ struct ProtocolOptions {
     /// Shortest span over which the node must send nothing unsolicited (the run counts).
     Duration quiet_window = std::chrono::milliseconds(1200);
     /// Largest reply latency that passes.
-    Duration max_reply_latency = std::chrono::milliseconds(750);
+    Duration max_reply_latency = base::kReplyDue;
     /// Skip the writes to read-only spaces (they rewrite the byte already there).
     bool read_only = false;
     /// Upper bound of the CDI download when Space Info gives none.

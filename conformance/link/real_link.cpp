@@ -1,6 +1,9 @@
 #include "conformance/link/real_link.hpp"
 
 #include <algorithm>
+#include <chrono>
+
+#include "base/timings.hpp"
 
 namespace olcb::conform {
 
@@ -25,9 +28,11 @@ namespace {
 // On a real link lcc-conform waits 50 ms past the standard's 200 ms between its last CID and
 // RID: a hub or node times frames when it gets to them, so CIDs read late (a busy hub, a slow
 // accept) would otherwise make a correct wait look short to it. Waiting longer is conformant.
+constexpr auto kReservationMargin = std::chrono::milliseconds(50);
+
 NodeStackConfig real_stack_config(NodeId tool_id) {
     NodeStackConfig config = tool_stack_config(tool_id);
-    config.alias.reservation_wait = std::chrono::milliseconds(250);
+    config.alias.reservation_wait = base::kAliasReservationWait + kReservationMargin;
     return config;
 }
 

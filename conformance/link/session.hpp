@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "conformance/link/link.hpp"
 #include "conformance/link/write_ledger.hpp"
 #include "memory/memory_config_codec.hpp"
@@ -69,7 +70,7 @@ struct StreamReadOptions {
     /// and data arriving meanwhile is counted (a source must wait for Proceed).
     Duration hold{};
     memory::SpaceForm form = memory::SpaceForm::kAuto;
-    Duration idle_timeout = std::chrono::seconds(3);  ///< no progress this long: timed out
+    Duration idle_timeout = base::kRequesterTimeout;  ///< no progress this long: timed out
 };
 
 /// Outcome of one memory-config stream read.
@@ -285,7 +286,7 @@ private:
     std::map<NodeId, TimePoint>
         excused_until_;  // restarts allowed after an Update Complete  // when the frames we sent
                          // are through the link's bus
-    Duration reply_timeout_ = std::chrono::milliseconds(3000);
+    Duration reply_timeout_ = base::kRequesterTimeout;
     Duration answer_timeout_ = std::chrono::seconds(1);
 };
 

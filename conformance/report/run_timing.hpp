@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "base/timings.hpp"
 #include "openlcb/clock.hpp"
 
 namespace olcb::conform {
@@ -18,7 +19,7 @@ struct RunTiming {
     double scale = 1.0;                                 ///< --timeout-scale
     Duration silence = std::chrono::milliseconds(250);  ///< silence awaited this long
     Duration answer = std::chrono::seconds(1);          ///< longest wait for an owed answer
-    Duration reply = std::chrono::seconds(3);           ///< reply datagram after its OK
+    Duration reply = base::kRequesterTimeout;           ///< reply datagram after its OK
     Duration quiet = std::chrono::milliseconds(1200);   ///< span of message.no-unsolicited
 
     /// "latency 2 ms (worst 3 ms); windows: silence 250 ms, answers 1000 ms, ..." for the report.

@@ -5,18 +5,18 @@
 #include <chrono>
 #include <cstddef>
 
+#include "base/timings.hpp"
 #include "openlcb/clock.hpp"
-#include "openlcb/datagram_defs.hpp"
 
 namespace olcb::simnode::audit {
 
 /// The shortest timeout a requester may use (MessageNetworkS §3.7, DatagramTransportS §6.1):
 /// an exchange unanswered this long is over, and the client may go on.
-inline constexpr Duration kRequesterTimeout = datagram::kAckTimeout;
+inline constexpr Duration kRequesterTimeout = base::kRequesterTimeout;
 /// Messages a protocol requires are due within this (MessageNetworkS §3.7).
-inline constexpr Duration kAnswerDue = std::chrono::milliseconds(750);
+inline constexpr Duration kAnswerDue = base::kReplyDue;
 /// The least wait between the last CID frame and RID (CanFrameTransferS §6.2.1).
-inline constexpr Duration kReservationWait = std::chrono::milliseconds(200);
+inline constexpr Duration kReservationWait = base::kAliasReservationWait;
 /// A retry storm: more than kStormResends resends of one datagram within kStormWindow. The
 /// standards set no bound; a client that pauses for a busy node never comes close (this
 /// project's own sender resends at most 3 times, 100 ms apart).

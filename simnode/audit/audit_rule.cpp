@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+
+#include "simnode/audit/audit_limits.hpp"
 
 namespace olcb::simnode::audit {
 namespace {
@@ -85,6 +88,11 @@ constexpr std::array kRules = {
 };
 
 static_assert(kRules.size() == static_cast<std::size_t>(RuleId::kMemoryNoUpdateComplete) + 1);
+// The descriptions are compile-time text and name the limits in words; these keep the words true
+// to the limits the watches judge by.
+static_assert(kAnswerDue == std::chrono::milliseconds(750), "descriptions say 750 ms");
+static_assert(kReservationWait == std::chrono::milliseconds(200), "descriptions say 200 ms");
+static_assert(kRequesterTimeout == std::chrono::seconds(3), "descriptions say 3 s");
 
 }  // namespace
 

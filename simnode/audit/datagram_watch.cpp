@@ -186,7 +186,7 @@ void DatagramWatch::on_client_ack(Pair& p, const CanFrame& frame, std::uint16_t 
     if (took > kAnswerDue) {
         ctx_.report(RuleId::kDatagramReplyAckLate, client, node,
                     "answered the node's datagram " + ms(took) +
-                        " after its last frame (due within 750 ms)",
+                        " after its last frame (due within " + ms(kAnswerDue) + ")",
                     joined(p.unacknowledged->frames, std::span(&frame, 1)), "", now);
     }
     p.unacknowledged.reset();
