@@ -86,10 +86,6 @@ std::string event_text(std::uint64_t id) {
     return EventId(id).to_string();
 }
 
-std::string ms(Duration d) {
-    return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count()) + " ms";
-}
-
 // What a node identified: exact events and ranges, per role.
 struct EventAnswers {
     std::set<std::uint64_t> produced, consumed, produced_ranges, consumed_ranges;
