@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cdi/validator.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -221,12 +222,7 @@ TEST(AcdiSpacesRule, VariablesAcrossAnAcdiFieldWarn) {
     EXPECT_NE(f.message.find("Speed (space 252 bytes 0..3)"), std::string::npos) << f.message;
 }
 
-std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test_support::read_text;
 
 // The project's own sample CDIs are what it tells CDI authors to write.
 TEST(CheckRules, EveryScenarioCdiHasNoFinding) {

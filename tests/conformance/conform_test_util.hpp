@@ -14,6 +14,7 @@
 #include "cdi/parser.hpp"
 
 #include "openlcb/node_id.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::conform {
 
@@ -22,13 +23,7 @@ inline constexpr NodeId kDut{0x050101012200ull};
 /// The runner's own node.
 inline constexpr NodeId kTool{0x0501010122FFull};
 
-/// The whole file ("" when it cannot be read).
-inline std::string read_text(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
+using test_support::read_text;
 
 /// Parses and lays out a CDI text into doc and layout (the layout points into doc).
 inline void load_cdi(const char* text, cdi::Document& doc, std::optional<cdi::Layout>& layout) {

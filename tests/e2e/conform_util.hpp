@@ -18,6 +18,7 @@
 
 #include "e2e/e2e_util.hpp"
 #include "support/report_schema.hpp"
+#include "support/temp_files.hpp"
 
 #if defined(LCC_CONFORM_PATH)
 
@@ -25,13 +26,7 @@ namespace olcb::e2e {
 
 namespace fs = std::filesystem;
 
-/// The whole file as bytes ("" when it cannot be read).
-inline std::string read_text(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test_support::read_text;
 
 /// The JSON report at p, parsed (discarded when it is not JSON); a test failure when it breaks
 /// docs/report.schema.json, so every report a suite reads is validated.

@@ -31,6 +31,7 @@
 #include "openlcb/node_stack.hpp"
 #include "openlcb/stack_driver.hpp"
 #include "openlcb/tcp_client.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::e2e {
 
@@ -190,31 +191,7 @@ inline std::uint16_t closed_port() {
     return bound ? ntohs(addr.sin_port) : 1;  // port 1: nothing listens there either
 }
 
-/// A fresh empty directory under the system temp directory, removed when destroyed.
-class TempDir {
-public:
-    /// Creates <base>/<prefix>-<random>; base defaults to $TMPDIR.
-    explicit TempDir(std::string_view prefix, std::filesystem::path base = {}) {
-        std::random_device rd;
-        if (base.empty()) base = std::filesystem::temp_directory_path();
-        path_ = base / (std::string(prefix) + "-" + std::to_string(::getpid()) + "-" +
-                        std::to_string(rd()));
-        std::filesystem::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    /// The directory.
-    const std::filesystem::path& path() const { return path_; }
-    /// The directory as a string.
-    std::string str() const { return path_.string(); }
-
-private:
-    std::filesystem::path path_;
-};
+using test_support::TempDir;
 
 /// Node ID of the tool side (the fact sheet's runner).
 inline constexpr NodeId kToolId{0x02'01'0D'00'00'01ull};

@@ -19,6 +19,7 @@
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::simnode::test {
 
@@ -44,25 +45,7 @@ inline const std::string& default_cdi() {
     return text;
 }
 
-/// A fresh empty directory, removed at destruction.
-class TempDir {
-public:
-    TempDir() {
-        static int counter = 0;
-        path_ = std::filesystem::temp_directory_path() /
-                ("simnode-test-" + std::to_string(::getpid()) + "-" + std::to_string(++counter));
-        std::filesystem::remove_all(path_);
-        std::filesystem::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        std::filesystem::remove_all(path_, ec);
-    }
-    const std::filesystem::path& path() const { return path_; }
-
-private:
-    std::filesystem::path path_;
-};
+using test_support::TempDir;
 
 /// What the node answered to one datagram.
 struct Answer {

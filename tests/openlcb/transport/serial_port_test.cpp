@@ -13,6 +13,7 @@
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/transport/tcp_test_util.hpp"
 #include "support/pty_relay.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb {
 namespace {
@@ -31,26 +32,7 @@ std::string line(const CanFrame& f) {
 }
 
 // A private directory for device symlinks, removed afterwards.
-class TempDir {
-public:
-    TempDir() {
-        static std::atomic<unsigned> counter{0};
-        path_ = fs::temp_directory_path() /
-                ("olcb_serial_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path_, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
+using test_support::TempDir;
 
 // Points `link` at `target` atomically.
 void point(const fs::path& link, const fs::path& target) {

@@ -1,7 +1,8 @@
-// Issue 12: the good node follows the rules OlcbChecker's cd40, mc10, fr40/fr50/fr60, me50 and
-// the event checks test (ACDI version byte, writes crossing an end, the highest address, Write
-// Under Mask, Update Complete, event identification after a write, duplicate node ID, frame
-// format edge cases, alias collision), and the faults of issue 12 break each of them.
+// SimNode against the rules: the good node follows the rules OlcbChecker's cd40, mc10,
+// fr40/fr50/fr60, me50 and the event checks test (ACDI version byte, writes crossing an end, the
+// highest address, Write Under Mask, Update Complete, event identification after a write, duplicate
+// node ID, frame format edge cases, alias collision), and the faults of issue 12 break each of
+// them.
 #include <gtest/gtest.h>
 
 #include "sim_node_test_util.hpp"
@@ -20,7 +21,7 @@ std::vector<std::uint8_t> default_event(std::uint8_t ordinal) {
 
 const std::vector<std::uint8_t> kNewEvent{1, 2, 3, 4, 5, 6, 7, 8};
 
-class Issue12Test : public SimNodeTest {
+class SimNodeRulesTest : public SimNodeTest {
 protected:
     std::uint32_t highest(std::uint8_t space) {
         const auto r = exchange({0x20, 0x84, space}).reply;
@@ -74,7 +75,7 @@ protected:
 
 // ConfigurationDescriptionInformationS §5.1.2 lists 251, its version byte included, as read and
 // write, and MemoryConfigurationS §4.1 makes no space partly read-only: the byte is written.
-TEST_F(Issue12Test, AcdiVersionByteIsWritableLikeTheRestOf251) {
+TEST_F(SimNodeRulesTest, AcdiVersionByteIsWritableLikeTheRestOf251) {
     start(default_config());
     ASSERT_EQ(read(0xFB, 0, 4), (std::vector<std::uint8_t>{2, 'T', 'e', 's'}));
     write_ok(0xFB, 0, {2, 'R'});
@@ -86,7 +87,7 @@ TEST_F(Issue12Test, AcdiVersionByteIsWritableLikeTheRestOf251) {
 
 // A CDI laying a variable over 251 byte 0 (a CDI bug of some real devices, which the cdi checks
 // report) makes that byte the variable's: written as the CDI says.
-TEST_F(Issue12Test, AcdiVersionByteWritableWhenTheCdiLaysAVariableOverIt) {
+TEST_F(SimNodeRulesTest, AcdiVersionByteWritableWhenTheCdiLaysAVariableOverIt) {
     NodeConfig c = default_config();
     const auto at = c.cdi.find("<segment space=\"251\" origin=\"1\">");
     ASSERT_NE(at, std::string::npos);
@@ -96,7 +97,7 @@ TEST_F(Issue12Test, AcdiVersionByteWritableWhenTheCdiLaysAVariableOverIt) {
     EXPECT_EQ(read(0xFB, 0, 3), bytes_of("Zed"));
 }
 
-TEST_F(Issue12Test, AnyWriteOfSpace252Rejected1083) {
+TEST_F(SimNodeRulesTest, AnyWriteOfSpace252Rejected1083) {
     start(default_config());
     const auto before = read(0xFC, 0, 8);
     for (const std::uint32_t at : {0u, 1u, 124u}) {
@@ -109,7 +110,7 @@ TEST_F(Issue12Test, AnyWriteOfSpace252Rejected1083) {
 
 // ---- A2: writes crossing the end ----
 
-TEST_F(Issue12Test, WriteCrossingTheEndFails1082AndStoresNothing) {
+TEST_F(SimNodeRulesTest, WriteCrossingTheEndFails1082AndStoresNothing) {
     start(default_config());
     const auto tail = read(0xFD, kConfigSize - 4, 4);
     Answer a = exchange(write_cmd(0xFD, kConfigSize - 4, {9, 9, 9, 9, 9}));
@@ -134,7 +135,7 @@ TEST_F(Issue12Test, WriteCrossingTheEndFails1082AndStoresNothing) {
 
 // ---- A3: the highest address is readable, the next one is not ----
 
-TEST_F(Issue12Test, ReadAtHighestSucceedsAndPastItFails1082InEverySpace) {
+TEST_F(SimNodeRulesTest, ReadAtHighestSucceedsAndPastItFails1082InEverySpace) {
     start(default_config());
     const std::vector<std::pair<std::uint8_t, std::uint32_t>> spaces = {
         {0xFF, static_cast<std::uint32_t>(default_cdi().size())},
@@ -158,7 +159,7 @@ TEST_F(Issue12Test, ReadAtHighestSucceedsAndPastItFails1082InEverySpace) {
 
 // ---- A4: Write Under Mask ----
 
-TEST_F(Issue12Test, WriteUnderMaskAdvertisedAndServed) {
+TEST_F(SimNodeRulesTest, WriteUnderMaskAdvertisedAndServed) {
     start(default_config());
     const Answer options = exchange({0x20, 0x80});
     ASSERT_TRUE(options.reply);
@@ -184,7 +185,7 @@ TEST_F(Issue12Test, WriteUnderMaskAdvertisedAndServed) {
 
 // ---- A5 + A6: events follow the memory ----
 
-TEST_F(Issue12Test, IdentifyAnswersEveryEventIdOfTheCdi) {
+TEST_F(SimNodeRulesTest, IdentifyAnswersEveryEventIdOfTheCdi) {
     start(default_config());
     auto frames = identify_events_global();
     ASSERT_EQ(frames.size(), 8u);
@@ -200,7 +201,7 @@ TEST_F(Issue12Test, IdentifyAnswersEveryEventIdOfTheCdi) {
     EXPECT_TRUE(identify(default_event(9)).empty()) << "not ours";
 }
 
-TEST_F(Issue12Test, WrittenEventIdIsIdentifiedAndTheOldOneNoLonger) {
+TEST_F(SimNodeRulesTest, WrittenEventIdIsIdentifiedAndTheOldOneNoLonger) {
     start(default_config());
     take();
     write_ok(0xFD, kPort0On, kNewEvent);
@@ -223,7 +224,7 @@ TEST_F(Issue12Test, WrittenEventIdIsIdentifiedAndTheOldOneNoLonger) {
 
 // ---- A7: duplicate node ID (me50) ----
 
-TEST_F(Issue12Test, DuplicateNodeIdSendsOnePcerPerSecondAndKeepsWorking) {
+TEST_F(SimNodeRulesTest, DuplicateNodeIdSendsOnePcerPerSecondAndKeepsWorking) {
     start(default_config());
     const std::string pcer = ":X195B4343N0101000000000201;";
     take();
@@ -247,7 +248,7 @@ TEST_F(Issue12Test, DuplicateNodeIdSendsOnePcerPerSecondAndKeepsWorking) {
     EXPECT_TRUE(take().empty());
 }
 
-TEST_F(Issue12Test, DuplicateIdSilentSendsNoPcer) {
+TEST_F(SimNodeRulesTest, DuplicateIdSilentSendsNoPcer) {
     start_with({"duplicate-id-silent"});
     take();
     send_text(":X19170456N050101012200;");
@@ -263,7 +264,7 @@ TEST_F(Issue12Test, DuplicateIdSilentSendsNoPcer) {
 
 // ---- A8: frame format (fr40, fr50, fr60) ----
 
-TEST_F(Issue12Test, FramesWithBit28ClearAreTakenAsIfItWereSet) {
+TEST_F(SimNodeRulesTest, FramesWithBit28ClearAreTakenAsIfItWereSet) {
     start(default_config());
     take();
     send_text(":X0070212CN;");  // AME, bit 28 clear
@@ -274,7 +275,7 @@ TEST_F(Issue12Test, FramesWithBit28ClearAreTakenAsIfItWereSet) {
     EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
 }
 
-TEST_F(Issue12Test, StandardFramesAreIgnored) {
+TEST_F(SimNodeRulesTest, StandardFramesAreIgnored) {
     start(default_config());
     take();
     for (std::uint32_t id = 0; id < 0x800; ++id) {
@@ -291,7 +292,7 @@ TEST_F(Issue12Test, StandardFramesAreIgnored) {
     EXPECT_TRUE(node_->stack().initialized());
 }
 
-TEST_F(Issue12Test, AnswersStandardFramesWithVerifiedNodeId) {
+TEST_F(SimNodeRulesTest, AnswersStandardFramesWithVerifiedNodeId) {
     start_with({"answers-standard-frames"});
     take();
     send_text(":S123N0102;");
@@ -299,7 +300,7 @@ TEST_F(Issue12Test, AnswersStandardFramesWithVerifiedNodeId) {
     EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
 }
 
-TEST_F(Issue12Test, BurstsOfFramesDoNotHideAnAddressedVerify) {
+TEST_F(SimNodeRulesTest, BurstsOfFramesDoNotHideAnAddressedVerify) {
     start(default_config());
     take();
     // Identify Consumer for events of nobody.
@@ -321,7 +322,7 @@ TEST_F(Issue12Test, BurstsOfFramesDoNotHideAnAddressedVerify) {
     EXPECT_EQ(count_prefix(take(), ":X19170343N050101012200"), 301u);
 }
 
-TEST_F(Issue12Test, BurstDropsLosesAddressedMessagesInABurst) {
+TEST_F(SimNodeRulesTest, BurstDropsLosesAddressedMessagesInABurst) {
     start_with({"burst-drops"});
     take();
     // Frames from a third party (another alias than the Verify's): what fills a receive buffer.
@@ -355,7 +356,7 @@ TEST_F(Issue12Test, BurstDropsLosesAddressedMessagesInABurst) {
 
 // ---- A9: alias collision ----
 
-TEST_F(Issue12Test, AliasCollisionSendsAmrAndMovesToANewAlias) {
+TEST_F(SimNodeRulesTest, AliasCollisionSendsAmrAndMovesToANewAlias) {
     start(default_config());
     take();
     send_text(":X10701343N020304050607;");  // another node's AMD with our alias
@@ -388,7 +389,7 @@ TEST_F(Issue12Test, AliasCollisionSendsAmrAndMovesToANewAlias) {
 
 // ---- the faults of issue 12 ----
 
-TEST_F(Issue12Test, ReadPastEndGarbage) {
+TEST_F(SimNodeRulesTest, ReadPastEndGarbage) {
     start_with({"read-past-end-garbage"});
     const Answer a = exchange(read_cmd(0xFD, kConfigSize, 8));
     ASSERT_TRUE(a.reply);
@@ -399,7 +400,7 @@ TEST_F(Issue12Test, ReadPastEndGarbage) {
     EXPECT_EQ(fail_code(exchange(read_cmd(0xFB, kUserSize, 1))), 0x1082) << "0xFD only";
 }
 
-TEST_F(Issue12Test, WritePastEndSpills) {
+TEST_F(SimNodeRulesTest, WritePastEndSpills) {
     start_with({"write-past-end-spills"});
     const auto start_of_253 = read(0xFD, 0, 3);
     const Answer a = exchange(write_cmd(0xFB, kUserSize - 2, {'a', 'b', 'c', 'd', 'e'}));
@@ -415,7 +416,7 @@ TEST_F(Issue12Test, WritePastEndSpills) {
         << "a write starting at the end still fails";
 }
 
-TEST_F(Issue12Test, HighestUnreadable) {
+TEST_F(SimNodeRulesTest, HighestUnreadable) {
     start_with({"highest-unreadable"});
     EXPECT_EQ(highest(0xFB), kUserSize);
     EXPECT_EQ(highest(0xFD), kConfigSize);
@@ -425,7 +426,7 @@ TEST_F(Issue12Test, HighestUnreadable) {
     EXPECT_EQ(highest(0xFC), 124u);
 }
 
-TEST_F(Issue12Test, WritePastEndGrowsKeepsTheBytesWhereNoReadReaches) {
+TEST_F(SimNodeRulesTest, WritePastEndGrowsKeepsTheBytesWhereNoReadReaches) {
     start_with({"write-past-end-grows"});
     const Answer a = exchange(write_cmd(0xFD, kConfigSize - 1, {9, 8, 7}));
     ASSERT_TRUE(a.ok || a.reply) << "accepted";
@@ -437,7 +438,7 @@ TEST_F(Issue12Test, WritePastEndGrowsKeepsTheBytesWhereNoReadReaches) {
     EXPECT_EQ(highest(0xFD), kConfigSize - 1) << "Space Info unchanged";
 }
 
-TEST_F(Issue12Test, MaskIgnoredStoresTheDataWholeThenGoesSilentAndRestarts) {
+TEST_F(SimNodeRulesTest, MaskIgnoredStoresTheDataWholeThenGoesSilentAndRestarts) {
     start_with({"mask-ignored=5000"});
     const auto before = read(0xFD, 0, 1);
     const std::uint8_t data = static_cast<std::uint8_t>(~before[0]);
@@ -450,7 +451,7 @@ TEST_F(Issue12Test, MaskIgnoredStoresTheDataWholeThenGoesSilentAndRestarts) {
     EXPECT_EQ(read(0xFD, 0, 1), std::vector<std::uint8_t>{data}) << "the mask was ignored";
 }
 
-TEST_F(Issue12Test, EventsStaleAfterWrite) {
+TEST_F(SimNodeRulesTest, EventsStaleAfterWrite) {
     start_with({"events-stale-after-write"});
     take();
     write_ok(0xFD, kPort0On, kNewEvent);
@@ -467,7 +468,7 @@ TEST_F(Issue12Test, EventsStaleAfterWrite) {
     EXPECT_TRUE(identify(default_event(0)).empty());
 }
 
-TEST_F(Issue12Test, EventsMissing) {
+TEST_F(SimNodeRulesTest, EventsMissing) {
     start_with({"events-missing"});
     auto frames = identify_events_global();
     EXPECT_EQ(frames, (std::vector<std::string>{
