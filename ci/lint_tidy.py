@@ -37,6 +37,10 @@ def load_entries(root, build, tracked):
         f = os.path.normpath(os.path.join(e["directory"], e["file"]))
         if f.startswith(root + "/") and not f.startswith(build + "/"):
             args = shlex.split(e["command"]) if "command" in e else list(e["arguments"])
+            # The compiler enforces -Werror on the strict targets (cmake/warnings.cmake); under
+            # it clang-tidy's newer clang would fail a TU on libstdc++ 12's own deprecated
+            # internals (get_temporary_buffer inside std::stable_sort), no finding of ours.
+            args = [a for a in args if a != "-Werror"]
             entries.setdefault(f, {"directory": e["directory"], "file": f, "arguments": args})
     # A TU missing from the build (the fuzz targets) is parsed with a test TU's flags.
     template = next((e for f, e in sorted(entries.items()) if "/tests/" in f), None)
