@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cdi/cdi_test_util.hpp"
 #include "cdi/schema_validator.hpp"
 #include "cdi/validator.hpp"
 
@@ -21,6 +22,7 @@ namespace olcb::cdi {
 namespace {
 
 namespace fs = std::filesystem;
+using test::listing;
 
 const fs::path kCorpus = fs::path(OLCB_SHARED_DIR) / "corpus";
 
@@ -174,12 +176,6 @@ long count_of(const Diagnostics& d, Severity severity) {
                          [severity](const Diagnostic& x) { return x.severity == severity; });
 }
 
-std::string listing(const Diagnostics& d) {
-    std::string out;
-    for (const Diagnostic& x : d) out += format_diagnostic("cdi", x) + "\n";
-    return out;
-}
-
 TEST(CorpusSynthetic, CombinedValidatorMeetsEachTestChecksBlock) {
     SKIP_WITHOUT_CORPUS();
     int files = 0;
@@ -241,70 +237,6 @@ TEST(CorpusValidate, ReportsAreSortedAndCarrySchemaErrors) {
             return choice.version;
         }());
     }
-}
-
-// The combined validator on small inputs (no corpus needed).
-
-const char* const kHeader =
-    "<?xml version=\"1.0\"?>\n"
-    "<cdi xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
-    "xsi:noNamespaceSchemaLocation=\"http://openlcb.org/schema/cdi/1/4/cdi.xsd\">\n";
-
-TEST(CombinedValidator, CleanCdiHasNoFindings) {
-    const std::string text = std::string(kHeader) +
-                             "<segment space=\"253\"><int size=\"2\"><name>A</name><min>1</min>"
-                             "<max>9</max><default>3</default></int></segment>\n</cdi>\n";
-    const ValidationReport report = validate(text + '\0');
-    EXPECT_THAT(report.diagnostics, ::testing::IsEmpty()) << listing(report.diagnostics);
-    EXPECT_TRUE(report.ok());
-    EXPECT_TRUE(report.parsed);
-    EXPECT_EQ(report.schema.version, SchemaVersion::kV1_4);
-    EXPECT_TRUE(report.schema.declared);
-}
-
-TEST(CombinedValidator, MergesSchemaAndSemanticFindingsByLine) {
-    const std::string text = std::string(kHeader) +
-                             "<segment space=\"253\">\n"                           // 3
-                             "<int size=\"1\"><default>300</default></int>\n"      // 4
-                             "<int size=\"3\"/>\n"                                 // 5
-                             "<int size=\"1\"><hints><checkbox/></hints></int>\n"  // 6
-                             "</segment>\n</cdi>\n";
-    const ValidationReport report = validate(text);
-    ASSERT_TRUE(report.parsed) << listing(report.diagnostics);
-    std::vector<std::uint32_t> lines;
-    for (const Diagnostic& d : report.diagnostics) lines.push_back(d.line);
-    EXPECT_TRUE(std::is_sorted(lines.begin(), lines.end()));
-    const auto has = [&](std::uint32_t line, const char* text) {
-        return std::any_of(report.diagnostics.begin(), report.diagnostics.end(),
-                           [&](const Diagnostic& d) {
-                               return d.line == line && d.severity == Severity::kError &&
-                                      d.message.find(text) != std::string::npos;
-                           });
-    };
-    EXPECT_TRUE(has(4, "default 300 does not fit")) << listing(report.diagnostics);
-    EXPECT_TRUE(has(5, "CDI 1.4 schema:")) << listing(report.diagnostics);
-    EXPECT_TRUE(has(5, "int size must be 1, 2, 4, or 8")) << listing(report.diagnostics);
-    EXPECT_TRUE(has(6, "checkbox")) << listing(report.diagnostics);
-}
-
-TEST(CombinedValidator, MalformedXmlIsReportedOnceByLibxml2) {
-    const ValidationReport report =
-        validate(std::string(kHeader) + "<segment space=\"1\">\n</cdi>");
-    EXPECT_FALSE(report.parsed);
-    EXPECT_FALSE(report.schema.well_formed);
-    ASSERT_FALSE(report.diagnostics.empty());
-    for (const Diagnostic& d : report.diagnostics) {
-        EXPECT_EQ(d.message.rfind("XML parse error: ", 0), 0u) << d.message;
-    }
-}
-
-TEST(CombinedValidator, DoctypeIsRefused) {
-    const ValidationReport report =
-        validate("<?xml version=\"1.0\"?>\n<!DOCTYPE cdi [<!ENTITY a \"b\">]>\n<cdi/>\n");
-    EXPECT_FALSE(report.ok());
-    EXPECT_TRUE(std::any_of(
-        report.diagnostics.begin(), report.diagnostics.end(),
-        [](const Diagnostic& d) { return d.message.find("DOCTYPE") != std::string::npos; }));
 }
 
 }  // namespace

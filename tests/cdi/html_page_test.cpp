@@ -1,17 +1,11 @@
-// The HTML pages' shell and the CDI page's data: self-contained (nothing to fetch), node and CDI
-// text unable to escape the data element, and the CDI's structure as the page script needs it.
+// The HTML pages' shell: self-contained (nothing to fetch), and node and CDI text unable to escape
+// the data element (the CDI page's data: render_html_test.cpp).
 #include "cdi/html_page.hpp"
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
-
-#include "cdi/parser.hpp"
-#include "cdi/render_html.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -65,46 +59,6 @@ TEST(HtmlPage, DataCannotCloseItsElement) {
     const auto end = page.find("</script>", begin);
     const auto parsed = nlohmann::json::parse(page.substr(begin, end - begin));
     EXPECT_EQ(parsed["name"], data["name"]);
-}
-
-TEST(RenderHtml, CdiPageDataCarriesStructureHintsAndReplicas) {
-    std::ifstream in(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios" / "default.xml");
-    std::stringstream text;
-    text << in.rdbuf();
-    ParseResult parsed = parse(text.str());
-    ASSERT_TRUE(parsed.document);
-    auto laid = build_layout(*parsed.document);
-    ASSERT_TRUE(laid.layout);
-    const nlohmann::json j = cdi_page_json(*laid.layout, "default.xml");
-    EXPECT_EQ(j["source"], "default.xml");
-    EXPECT_EQ(j["identification"]["model"], "simnode default");
-    ASSERT_EQ(j["segments"].size(), 2u);
-    const nlohmann::json& settings = j["segments"][1];
-    EXPECT_EQ(settings["space"], 253);
-    const nlohmann::json& children = settings["children"];
-    EXPECT_TRUE(children[0]["hints"]["checkbox"].get<bool>());
-    EXPECT_EQ(children[0]["map"][1]["value"], "On");
-    EXPECT_EQ(children[1]["hints"]["slider"]["tick_spacing"], 100);
-    EXPECT_EQ(children[1]["min"], "-1000");
-    EXPECT_TRUE(children[4]["hints"]["radiobutton"].get<bool>());
-    const nlohmann::json* port = nullptr;
-    for (const auto& c : children) {
-        if (c["kind"] == "group") port = &c;
-    }
-    ASSERT_NE(port, nullptr);
-    EXPECT_EQ((*port)["replication"], 4);
-    EXPECT_EQ((*port)["stride"], 33);
-    EXPECT_EQ((*port)["replica_names"],
-              nlohmann::json::array({"Port 1", "Port 2", "Port 3", "Port 4"}));
-    // The memory map's variables point back at the form's elements and replicas.
-    const nlohmann::json& map = j["memory_map"];
-    ASSERT_EQ(map.size(), 2u);
-    const nlohmann::json& last = map[1]["variables"][map[1]["variables"].size() - 2];
-    EXPECT_EQ(last["path"], "Settings/Port[4](Port 4)/Output");
-    EXPECT_EQ(last["replicas"], nlohmann::json::array({3}));
-    EXPECT_EQ(last["element"], (*port)["children"][3]["id"]);
-    const std::string page = render_html(*laid.layout, "default.xml");
-    EXPECT_NE(page.find("\"Port 4\""), std::string::npos);
 }
 
 }  // namespace

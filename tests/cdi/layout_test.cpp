@@ -6,86 +6,22 @@
 #include <string>
 #include <vector>
 
+#include "cdi/cdi_test_util.hpp"
 #include "cdi/parser.hpp"
 
 namespace olcb::cdi {
 namespace {
 
-struct Placed {
-    std::string path;
-    std::uint32_t space;
-    std::uint64_t address;
-    std::uint64_t size;
-    bool operator==(const Placed&) const = default;
-};
-
-std::ostream& operator<<(std::ostream& os, const Placed& p) {
-    return os << p.path << " @" << p.space << ":" << p.address << "+" << p.size;
-}
-
-// Parses and lays out; keeps the Document alive next to the Layout.
-struct Laid {
-    Document doc;
-    LayoutResult result;
-    const Layout& layout() const { return *result.layout; }
-};
-
-std::unique_ptr<Laid> lay(const std::string& xml, const LayoutOptions& options = {}) {
-    auto out = std::make_unique<Laid>();
-    ParseResult parsed = parse(xml);
-    EXPECT_TRUE(parsed.document) << (parsed.diagnostics.empty() ? ""
-                                                                : parsed.diagnostics[0].message);
-    if (parsed.document) out->doc = std::move(*parsed.document);
-    out->result = build_layout(out->doc, options);
-    return out;
-}
-
-std::vector<Placed> all(const Layout& layout, std::size_t limit = 1000) {
-    std::vector<Placed> out;
-    layout.visit([&](const Cursor& c) {
-        out.push_back({c.path(), c.space(), c.address(), c.size()});
-        return out.size() < limit;
-    });
-    return out;
-}
-
-std::size_t count_severity(const Diagnostics& d, Severity s) {
-    std::size_t n = 0;
-    for (const Diagnostic& x : d) n += x.severity == s;
-    return n;
-}
-
-const Diagnostic* first_error(const Diagnostics& d) {
-    for (const Diagnostic& x : d) {
-        if (x.severity == Severity::kError) return &x;
-    }
-    return nullptr;
-}
+using test::all;
+using test::first_error;
+using test::first_error_text;
+using test::kPanelTest;
+using test::lay;
+using test::Placed;
 
 std::size_t heap_in_use() {
     return mallinfo2().uordblks;
 }
-
-// The annotated CDI of OpenLCB_Java's CdiPanelTest.testOffsets (addresses in its comments).
-const char* const kPanelTest = R"(<cdi>
-  <segment space="13" origin="132">
-    <int size="2" offset="21" />
-    <eventid offset="3" />
-    <group offset="1" />
-    <int size="1" />
-    <group replication="2" offset="11">
-      <int size="2" offset="3" />
-      <group offset="-5" />
-      <group replication="3">
-        <string size="9" />
-      </group>
-    </group>
-    <int size="2" offset="21" />
-  </segment>
-  <segment space="14" origin="0">
-    <int size="2" />
-  </segment>
-</cdi>)";
 
 TEST(Layout, OffsetsOriginAndNegativeOffsets) {
     auto l = lay(R"(<cdi><segment space="7" origin="100"><name>S</name>
@@ -123,106 +59,6 @@ TEST(Layout, PanelTestAddressesAndOrder) {
     EXPECT_EQ(extents[0].end, 256u);
     EXPECT_EQ(extents[1].space, 14u);
     EXPECT_EQ(extents[1].end, 2u);
-}
-
-TEST(Layout, CursorReportsGroupsAndReplicas) {
-    auto l = lay(kPanelTest);
-    ASSERT_TRUE(l->result.layout);
-    Cursor c = l->layout().at(8);  // second outer replica, first inner replica
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.address(), 206u);
-    EXPECT_EQ(c.segment_index(), 0u);
-    EXPECT_EQ(c.ordinal(), 8u);
-    EXPECT_EQ(c.element().kind, ElementKind::kString);
-    ASSERT_EQ(c.group_depth(), 2u);
-    EXPECT_EQ(c.group(0).replication, 2u);
-    EXPECT_EQ(c.group(1).replication, 3u);
-    EXPECT_EQ(c.replica(0), 1u);
-    EXPECT_EQ(c.replica(1), 0u);
-    c.next();
-    EXPECT_EQ(c.address(), 215u);
-    EXPECT_EQ(c.ordinal(), 9u);
-    EXPECT_FALSE(l->layout().at(13).valid());
-}
-
-TEST(Layout, AtAgreesWithIteration) {
-    auto l = lay(kPanelTest);
-    ASSERT_TRUE(l->result.layout);
-    std::uint64_t expected = 0;
-    l->layout().visit([&](const Cursor& c) {
-        EXPECT_EQ(c.ordinal(), expected);
-        Cursor a = l->layout().at(expected);
-        EXPECT_EQ(a.address(), c.address());
-        EXPECT_EQ(a.path(), c.path());
-        ++expected;
-    });
-    EXPECT_EQ(expected, 13u);
-}
-
-TEST(Layout, FindHitsAndMisses) {
-    auto l = lay(kPanelTest);
-    ASSERT_TRUE(l->result.layout);
-    const Layout& layout = l->layout();
-    Cursor c = layout.find(13, 154);
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.address(), 153u);
-    EXPECT_EQ(c.size(), 2u);
-    EXPECT_EQ(c.ordinal(), 0u);
-    EXPECT_FALSE(layout.find(13, 155).valid());  // gap before the eventid at 158
-    EXPECT_FALSE(layout.find(13, 152).valid());
-    c = layout.find(13, 165);
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.address(), 158u);
-    // 182 holds the int of replica 1 and the string at 179: the int comes first in the document.
-    c = layout.find(13, 182);
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.element().kind, ElementKind::kInt);
-    EXPECT_EQ(c.address(), 182u);
-    EXPECT_EQ(c.ordinal(), 3u);
-    c = layout.find(13, 180);
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.address(), 179u);
-    EXPECT_EQ(c.path(), "(space 13)/[1]/[1]/(string)");
-    c = layout.find(13, 230);
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.address(), 224u);
-    EXPECT_EQ(c.replica(0), 1u);
-    EXPECT_EQ(c.replica(1), 2u);
-    EXPECT_EQ(c.ordinal(), 10u);
-    c.next();  // a found cursor continues in document order
-    EXPECT_EQ(c.address(), 254u);
-    EXPECT_EQ(layout.find(13, 255).address(), 254u);
-    EXPECT_FALSE(layout.find(13, 256).valid());
-    EXPECT_TRUE(layout.find(14, 1).valid());
-    EXPECT_FALSE(layout.find(14, 2).valid());
-    EXPECT_FALSE(layout.find(15, 0).valid());
-    EXPECT_FALSE(layout.find(13, std::uint64_t{1} << 40).valid());
-}
-
-TEST(Layout, FindEveryByteOfANonOverlappingLayout) {
-    auto l = lay(R"(<cdi><segment space="253" origin="128">
-<group replication="4"><int size="2"/><group replication="3" offset="1"><eventid/><string size="5" offset="2"/></group></group>
-<group replication="2" offset="3"><int size="1"/></group>
-</segment></cdi>)");
-    ASSERT_TRUE(l->result.layout);
-    EXPECT_EQ(count_severity(l->result.diagnostics, Severity::kWarning), 0u);
-    const Layout& layout = l->layout();
-    std::vector<std::int64_t> owner(400, -1);
-    layout.visit([&](const Cursor& c) {
-        for (std::uint64_t a = c.address(); a < c.address() + c.size(); ++a) {
-            owner[a] = static_cast<std::int64_t>(c.ordinal());
-        }
-    });
-    for (std::uint64_t a = 0; a < owner.size(); ++a) {
-        Cursor c = layout.find(253, a);
-        if (owner[a] < 0) {
-            EXPECT_FALSE(c.valid()) << a;
-        } else {
-            ASSERT_TRUE(c.valid()) << a;
-            EXPECT_EQ(static_cast<std::int64_t>(c.ordinal()), owner[a]) << a;
-            EXPECT_EQ(c.address(), layout.at(c.ordinal()).address());
-        }
-    }
 }
 
 TEST(Layout, NegativeStrideReplication) {
@@ -344,45 +180,6 @@ TEST(Layout, VariableCountBeyond63BitsIsRefused) {
     EXPECT_NE(first_error(l->result.diagnostics)->message.find("2^63"), std::string::npos);
 }
 
-TEST(Layout, ZeroStrideReplicasAreBoundedAndWarned) {
-    auto l = lay(
-        R"(<cdi><segment space="1" origin="10"><group replication="2147483647"><int offset="-1"/></group></segment></cdi>)");
-    ASSERT_TRUE(l->result.layout);
-    EXPECT_EQ(l->layout().variable_count(), 2147483647u);
-    Cursor c = l->layout().find(1, 9);
-    ASSERT_TRUE(c.valid());
-    EXPECT_EQ(c.replica(0), 0u);
-    bool replica_warning = false;
-    for (const Diagnostic& d : l->result.diagnostics) {
-        replica_warning |= d.message.find("replicas of <group> overlap") != std::string::npos;
-    }
-    EXPECT_TRUE(replica_warning);
-}
-
-TEST(Layout, OverlapWarningNamesBothVariables) {
-    auto l = lay(R"(<cdi><segment space="1"><name>S</name>
-<int size="2"><name>word</name></int>
-<int offset="-2"><name>high</name></int>
-<int><name>low</name></int>
-</segment></cdi>)");
-    ASSERT_TRUE(l->result.layout);
-    ASSERT_EQ(l->result.diagnostics.size(), 1u);
-    const Diagnostic& d = l->result.diagnostics[0];
-    EXPECT_EQ(d.severity, Severity::kWarning);
-    EXPECT_EQ(d.line, 3u);
-    EXPECT_NE(d.message.find("2 variable(s) overlap"), std::string::npos) << d.message;
-    EXPECT_NE(d.message.find("'S/high' at 0 overlaps 'S/word' at 0..2"), std::string::npos)
-        << d.message;
-}
-
-TEST(Layout, OverlapAcrossSegmentsOfOneSpace) {
-    auto l = lay(R"(<cdi><segment space="253" origin="1"><int/></segment>
-<segment space="253"><int size="2"/></segment><segment space="2"><int/></segment></cdi>)");
-    ASSERT_TRUE(l->result.layout);
-    ASSERT_EQ(count_severity(l->result.diagnostics, Severity::kWarning), 1u);
-    EXPECT_NE(l->result.diagnostics[0].message.find("space 253"), std::string::npos);
-}
-
 TEST(Layout, UnsignedOffsetRule) {
     const std::string xml = R"(<cdi><segment space="1" origin="200"><int size="4"/>
 <group offset="4294967292"/><int><name>after</name></int></segment></cdi>)";
@@ -398,22 +195,6 @@ TEST(Layout, UnsignedOffsetRule) {
     ASSERT_TRUE(wrap->result.layout);
     EXPECT_EQ(all(wrap->layout())[1].address, 200u);
     EXPECT_NE(wrap->result.diagnostics[0].message.find("wrap-around"), std::string::npos);
-}
-
-TEST(Layout, RepnamePaths) {
-    auto l = lay(R"(<cdi><segment space="1"><name>Seg</name>
-<group replication="3"><name>G</name><repname>A</repname><repname>B</repname><int><name>v</name></int></group>
-<group replication="2"><repname>Input</repname><int/></group>
-<group><name>Plain</name><group><string size="1"/></group></group>
-</segment></cdi>)");
-    ASSERT_TRUE(l->result.layout);
-    std::vector<std::string> paths;
-    for (const Placed& p : all(l->layout())) paths.push_back(p.path);
-    EXPECT_EQ(paths, (std::vector<std::string>{"Seg/G[1](A)/v", "Seg/G[2](B)/v", "Seg/G[3](B 3)/v",
-                                               "Seg/[1](Input 1)/(int)", "Seg/[2](Input 2)/(int)",
-                                               "Seg/Plain/(group)/(string)"}));
-    Element g;
-    EXPECT_EQ(replica_name(g, 0), "");
 }
 
 TEST(Layout, Placement) {
@@ -461,6 +242,28 @@ TEST(Layout, HandBuiltDocumentTooDeepIsRefused) {
     ASSERT_NE(first_error(r.diagnostics), nullptr);
     EXPECT_NE(first_error(r.diagnostics)->message.find("nested deeper"), std::string::npos);
 }
+
+// A valid CDI of deeply nested groups lays out like any other: one variable under every level,
+// reached by the cursor without recursion (deep nesting, the parser's limit: parser_test.cpp).
+class LayoutDeepNesting : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(LayoutDeepNesting, LaysOutTheLeafUnderEveryGroup) {
+    const std::size_t depth = GetParam();
+    ParseResult parsed = parse(test::nested_cdi(depth));
+    ASSERT_TRUE(parsed.document) << first_error_text(parsed.diagnostics);
+    LayoutResult laid = build_layout(*parsed.document);
+    ASSERT_TRUE(laid.layout) << first_error_text(laid.diagnostics);
+    EXPECT_EQ(laid.layout->variable_count(), 1u);
+    const Cursor c = laid.layout->begin();
+    ASSERT_TRUE(c.valid());
+    EXPECT_EQ(c.group_depth(), depth);
+    EXPECT_EQ(c.element().name, "Leaf");
+    EXPECT_EQ(c.address(), 0u);
+    EXPECT_EQ(laid.layout->find(253, 1).ordinal(), 0u);
+    EXPECT_NE(c.path().find("L" + std::to_string(depth) + "/Leaf"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(Depths, LayoutDeepNesting, ::testing::ValuesIn(test::kValidNestingDepths));
 
 }  // namespace
 }  // namespace olcb::cdi

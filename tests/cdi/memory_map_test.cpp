@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "cdi/cdi_test_util.hpp"
 #include "cdi/parser.hpp"
 
 namespace olcb::cdi {
@@ -222,6 +223,19 @@ TEST(MemoryMap, CorpusMapsAgreeWithTheLayout) {
     }
     EXPECT_GT(files, 10u);
 }
+
+// A variable under 200 or 1,000 nested groups is mapped like any other (deep nesting:
+// parser_test.cpp).
+class MemoryMapDeepNesting : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(MemoryMapDeepNesting, MapsTheLeaf) {
+    auto laid = test::lay(test::nested_cdi(GetParam()));
+    ASSERT_TRUE(laid->result.layout) << test::first_error_text(laid->result.diagnostics);
+    EXPECT_EQ(build_memory_map(laid->layout()).at(0).variable_count, 1u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Depths, MemoryMapDeepNesting,
+                         ::testing::ValuesIn(test::kValidNestingDepths));
 
 }  // namespace
 }  // namespace olcb::cdi

@@ -5,6 +5,9 @@
 #include <chrono>
 #include <string>
 
+#include "cdi/cdi_test_util.hpp"
+#include "cdi/schema_validator.hpp"
+
 namespace olcb::cdi {
 namespace {
 
@@ -40,41 +43,6 @@ bool has_warning_containing(const Diagnostics& diagnostics, std::string_view tex
 std::string in_segment(const std::string& body) {
     return "<?xml version=\"1.0\"?>\n<cdi>\n<segment space=\"253\">\n" + body +
            "\n</segment>\n</cdi>\n";
-}
-
-TEST(Decimal, IntegersAreStrictDecimal) {
-    EXPECT_EQ(parse_decimal_int("42"), WideInt{42});
-    EXPECT_EQ(parse_decimal_int(" \t-17\r\n"), WideInt{-17});
-    EXPECT_EQ(parse_decimal_int("+8"), WideInt{8});
-    EXPECT_EQ(parse_decimal_int("007"), WideInt{7});
-    EXPECT_EQ(parse_decimal_int("18446744073709551615"),
-              static_cast<WideInt>(18446744073709551615ULL));
-    EXPECT_EQ(parse_decimal_int("-9223372036854775808"), -(WideInt{1} << 63));
-    for (const char* bad : {"", " ", "-", "+", "0x10", "1e3", "1.0", "12a", "--1", "1 2", "٣",
-                            "123456789012345678901234567890123456789"}) {
-        EXPECT_FALSE(parse_decimal_int(bad).has_value()) << bad;
-    }
-}
-
-TEST(Decimal, FloatsAreDecimal) {
-    EXPECT_EQ(parse_decimal_float("1.5"), 1.5);
-    EXPECT_EQ(parse_decimal_float(" -0.25 "), -0.25);
-    EXPECT_EQ(parse_decimal_float("+3"), 3.0);
-    EXPECT_EQ(parse_decimal_float("1e3"), 1000.0);
-    EXPECT_EQ(parse_decimal_float(".5"), 0.5);
-    for (const char* bad : {"", "0x1p3", "inf", "nan", "1e", "1.2.3", "e5", "1e400", "--1"}) {
-        EXPECT_FALSE(parse_decimal_float(bad).has_value()) << bad;
-    }
-}
-
-TEST(DocumentText, WideIntToString) {
-    EXPECT_EQ(to_string(WideInt{0}), "0");
-    EXPECT_EQ(to_string(WideInt{-123}), "-123");
-    EXPECT_EQ(to_string(static_cast<WideInt>(18446744073709551615ULL)), "18446744073709551615");
-    const WideInt min = -(static_cast<WideInt>(1) << 126) * 2;  // -2^127
-    EXPECT_EQ(to_string(min), "-170141183460469231731687303715884105728");
-    EXPECT_STREQ(kind_name(ElementKind::kEventId), "eventid");
-    EXPECT_STREQ(kind_name(ElementKind::kUnknown), "unknown");
 }
 
 TEST(Parser, IdentificationAcdiAndHeader) {
@@ -518,6 +486,51 @@ TEST(ParserRejects, ErrorsCarryTheElementLine) {
     EXPECT_EQ(r.diagnostics[0].line, 4u);
     EXPECT_EQ(r.diagnostics[1].line, 5u);
 }
+
+// Deep nesting: a valid CDI of 200 or 1,000 nested groups is parsed like any other; nesting
+// beyond kMaxGroupDepth, hostile (100,000 and 1,000,000 levels) or not, is refused with a
+// diagnostic, quickly and without exhausting the stack (run under the ASan build too). The other
+// units' side: layout_test.cpp, render_test.cpp, memory_map_test.cpp, validator_test.cpp,
+// rule_finding_test.cpp.
+class ParserDeepNesting : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(ParserDeepNesting, ParsesEveryLevel) {
+    const std::size_t depth = GetParam();
+    ParseResult parsed = parse(test::nested_cdi(depth));
+    ASSERT_TRUE(parsed.document) << test::first_error_text(parsed.diagnostics);
+    const Element* e = &parsed.document->segments.at(0).children.at(0);
+    for (std::size_t level = 1; level < depth; ++level) {
+        ASSERT_EQ(e->kind, ElementKind::kGroup);
+        ASSERT_EQ(e->children.size(), 1u);
+        e = &e->children[0];
+    }
+    ASSERT_EQ(e->children.size(), 1u);
+    EXPECT_EQ(e->children[0].name, "Leaf");
+}
+
+INSTANTIATE_TEST_SUITE_P(Depths, ParserDeepNesting, ::testing::ValuesIn(test::kValidNestingDepths));
+
+TEST(ParserRejects, GroupsBeyondTheDepthLimit) {
+    const ParseResult parsed = parse(test::nested_cdi(kMaxGroupDepth + 1));
+    EXPECT_FALSE(parsed.document);
+    EXPECT_NE(test::first_error_text(parsed.diagnostics).find("nested deeper"), std::string::npos);
+}
+
+class ParserHostileNesting : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(ParserHostileNesting, IsRefusedQuicklyWithADiagnostic) {
+    const std::string text = test::hostile_cdi(GetParam());
+    ASSERT_LE(text.size(), kMaxCdiBytes);
+    const auto start = std::chrono::steady_clock::now();
+    const ParseResult parsed = parse(text);
+    EXPECT_FALSE(parsed.document);
+    EXPECT_NE(test::first_error_text(parsed.diagnostics).find("nested deeper"), std::string::npos);
+    // Generous for sanitizer builds on a loaded machine; linear work takes well under a second.
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(30));
+}
+
+INSTANTIATE_TEST_SUITE_P(Depths, ParserHostileNesting,
+                         ::testing::ValuesIn(test::kHostileNestingDepths));
 
 }  // namespace
 }  // namespace olcb::cdi

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "cdi/cdi_test_util.hpp"
 #include "cdi/validator.hpp"
 #include "support/temp_files.hpp"
 
@@ -238,6 +239,22 @@ TEST(CheckRules, EveryScenarioCdiHasNoFinding) {
     }
     EXPECT_GE(files, 3);
 }
+
+// A valid CDI of 200 or 1,000 nested groups passes the well-formedness and validity rules (deep
+// nesting: parser_test.cpp).
+class RuleFindingDeepNesting : public ::testing::TestWithParam<std::size_t> {};
+
+TEST_P(RuleFindingDeepNesting, WellFormedAndValidDoNotFail) {
+    const std::string text = test::nested_cdi(GetParam());
+    for (const RuleFinding& f : check_rules(text)) {
+        if (f.check_id == "cdi.valid" || f.check_id == "cdi.well-formed") {
+            EXPECT_NE(f.status, RuleStatus::kFail) << f.check_id << ": " << f.message;
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Depths, RuleFindingDeepNesting,
+                         ::testing::ValuesIn(test::kValidNestingDepths));
 
 }  // namespace
 }  // namespace olcb::cdi

@@ -57,20 +57,6 @@ Value decoded(const Element& e, const Bytes& bytes, CodecMode mode = CodecMode::
 
 // ---- Value -----------------------------------------------------------------------------------
 
-TEST(Value, FactoriesAndAccessors) {
-    const Value i = Value::integer(-3);
-    EXPECT_EQ(i.kind(), ValueKind::kInt);
-    ASSERT_NE(i.as_int(), nullptr);
-    EXPECT_EQ(*i.as_int(), -3);
-    EXPECT_EQ(i.as_float(), nullptr);
-    EXPECT_EQ(Value::real(1.5).kind(), ValueKind::kFloat);
-    EXPECT_EQ(*Value::text("a").as_string(), "a");
-    EXPECT_EQ(*Value::event_id(7).as_event_id(), 7u);
-    EXPECT_EQ(Value::integer(7), Value::integer(7));
-    EXPECT_NE(Value::integer(7), Value::event_id(7));
-    EXPECT_STREQ(value_kind_name(ValueKind::kEventId), "eventid");
-}
-
 // ---- sizes and kinds -------------------------------------------------------------------------
 
 TEST(ValueCodec, ValueSizePerKind) {
