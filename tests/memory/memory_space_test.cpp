@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <array>
 #include <filesystem>
@@ -8,6 +7,7 @@
 #include <vector>
 
 #include "memory/memory_space.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::memory {
 namespace {
@@ -72,6 +72,20 @@ TEST(Fits, HandlesOverflow) {
     EXPECT_TRUE(fits(0x100000000ULL, 0xFFFFFFFF, 1));
 }
 
+TEST(ReadClamped, CopiesWhatLiesInsideTheBytes) {
+    const std::vector<std::uint8_t> bytes = bytes_of("0123");
+    std::array<std::uint8_t, 3> out{'-', '-', '-'};
+    EXPECT_EQ(read_clamped(bytes, 0, out), 3u);
+    EXPECT_EQ(out, (std::array<std::uint8_t, 3>{'0', '1', '2'}));
+    out.fill('-');
+    EXPECT_EQ(read_clamped(bytes, 2, out), 2u);
+    EXPECT_EQ(out, (std::array<std::uint8_t, 3>{'2', '3', '-'}));  // the rest untouched
+    EXPECT_EQ(read_clamped(bytes, 4, out), 0u);
+    EXPECT_EQ(read_clamped(bytes, std::numeric_limits<std::uint32_t>::max(), out), 0u);
+    EXPECT_EQ(read_clamped(bytes, 1, std::span<std::uint8_t>()), 0u);
+    EXPECT_EQ(read_clamped({}, 0, out), 0u);
+}
+
 TEST(WriteStatus, Names) {
     EXPECT_EQ(to_string(WriteStatus::kOk), "ok");
     EXPECT_EQ(to_string(WriteStatus::kReadOnly), "read-only");
@@ -97,21 +111,14 @@ TEST(ForwardingSpace, ForwardsUnlessOverridden) {
 
 class ImageSpaceTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        std::string pattern = ::testing::TempDir() + "olcb_space_XXXXXX";
-        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-        dir_ = pattern;
-    }
-    void TearDown() override { std::filesystem::remove_all(dir_); }
-
     std::unique_ptr<ImageFile> open_image() {
         ImageOpenResult result =
-            ImageFile::open(dir_ / "fd.img", 64, [](auto image) { image[0] = 0x42; });
+            ImageFile::open(dir_.path() / "fd.img", 64, [](auto image) { image[0] = 0x42; });
         EXPECT_TRUE(result.ok()) << result.error;
         return std::move(result.image);
     }
 
-    std::filesystem::path dir_;
+    test_support::TempDir dir_{"olcb_space"};
 };
 
 TEST_F(ImageSpaceTest, WritesPersistAcrossReopen) {
