@@ -264,19 +264,5 @@ TEST(AliasAllocator, ReleaseSendsAmrWhenPermitted) {
     EXPECT_TRUE(drain(a).empty());
 }
 
-TEST(AliasCache, ReplacesStaleMappings) {
-    AliasCache c;
-    c.add(0x100, NodeId(1));
-    c.add(0x200, NodeId(1));  // node moved to a new alias
-    EXPECT_FALSE(c.node_of(0x100));
-    EXPECT_EQ(c.alias_of(NodeId(1)), 0x200);
-    c.add(0x200, NodeId(2));  // alias reused by another node
-    EXPECT_FALSE(c.alias_of(NodeId(1)));
-    EXPECT_EQ(c.size(), 1u);
-    c.add(0, NodeId(3));
-    c.add(0x300, NodeId(0));
-    EXPECT_EQ(c.size(), 1u);
-}
-
 }  // namespace
 }  // namespace olcb

@@ -64,34 +64,6 @@ protected:
     std::vector<StreamEvent> events_;
 };
 
-TEST(StreamDefsTest, CodecsRoundTripAndRejectShortPayloads) {
-    stream::InitiateRequest req{0x0100, 0, 0, 0x05, 0xFF, std::nullopt};
-    EXPECT_EQ(stream::encode(req), (std::vector<std::uint8_t>{0x01, 0x00, 0, 0, 0x05, 0xFF}));
-    EXPECT_EQ(stream::decode_initiate_request(stream::encode(req)), req);
-    req.content_uid = std::array<std::uint8_t, 6>{1, 2, 3, 4, 5, 6};
-    EXPECT_EQ(stream::encode(req).size(), 12u);
-    EXPECT_EQ(stream::encode(req)[2], stream::kFlagCarriesContentUid);
-    EXPECT_FALSE(stream::decode_initiate_request(std::vector<std::uint8_t>{0, 1, 1, 0, 5, 0xFF}));
-    EXPECT_FALSE(stream::decode_initiate_request(std::vector<std::uint8_t>{0, 1, 0, 0}));
-    // Five bytes: no suggested DID, read as "none".
-    EXPECT_EQ(stream::decode_initiate_request(std::vector<std::uint8_t>{0, 1, 0, 0, 5})
-                  ->suggested_dest_id,
-              stream::kInvalidStreamId);
-    const stream::InitiateReply rep{0x40, stream::kAccept, 5, 9};
-    EXPECT_EQ(stream::decode_initiate_reply(stream::encode(rep)), rep);
-    EXPECT_FALSE(stream::decode_initiate_reply(std::vector<std::uint8_t>{0, 1, 0, 0, 5}));
-    const stream::DataComplete with{1, 2, 0x01020304};
-    EXPECT_EQ(stream::encode(with), (std::vector<std::uint8_t>{1, 2, 1, 2, 3, 4}));
-    EXPECT_EQ(stream::decode_data_complete(stream::encode(with)), with);
-    EXPECT_EQ(stream::decode_data_complete(std::vector<std::uint8_t>{1, 2})->total_bytes,
-              std::nullopt);
-    EXPECT_EQ(stream::negotiate_buffer(1024, 256), 256);
-    EXPECT_EQ(stream::negotiate_buffer(64, 256), 64);
-    EXPECT_EQ(stream::data_frames(16, 16), 3u);  // 7 + 7 + 2
-    EXPECT_EQ(stream::data_frames(20, 16), 4u);
-    EXPECT_EQ(stream::data_frames(14, 0xFFFF), 2u);
-}
-
 class StreamSinkTest : public StreamFixture {};
 
 TEST_F(StreamSinkTest, AcceptsNegotiatesReassemblesProceedsAndCompletes) {
