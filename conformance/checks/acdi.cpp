@@ -6,23 +6,24 @@ namespace olcb::conform::checks {
 namespace {
 
 // The ACDI checks apply to a CDI with <acdi/>; the others SKIP saying why.
-bool has_acdi(CheckRun& run) {
+bool has_acdi(CheckRun& run, const CheckSpec& spec) {
     if (!run.cdi().read_ok) {
-        run.out().skip("depends on cdi.read: the CDI could not be read");
+        run.out(spec).skip("depends on cdi.read: the CDI could not be read");
         return false;
     }
     if (!run.ctx().document || !run.ctx().document->acdi) {
-        run.out().skip("the CDI has no <acdi/>");
+        run.out(spec).skip("the CDI has no <acdi/>");
         return false;
     }
     run.acdi_blocks();
     return true;
 }
 
-void version_byte(CheckRun& run, const MemResult& r, unsigned want, const char* what) {
+void version_byte(CheckRun& run, const CheckSpec& spec, const MemResult& r, unsigned want,
+                  const char* what) {
     const bool readable = r.ok && !r.data.empty();
-    run.out().judge(readable && r.data[0] == want, what, std::to_string(want),
-                    readable ? std::to_string(r.data[0]) : "unreadable: " + describe(r));
+    run.out(spec).judge(readable && r.data[0] == want, what, std::to_string(want),
+                        readable ? std::to_string(r.data[0]) : "unreadable: " + describe(r));
 }
 
 // A string slot of an ACDI block: its bytes up to the NUL (all of them when there is none).
@@ -34,22 +35,22 @@ std::string_view slot(const std::vector<std::uint8_t>& block, std::size_t offset
     return field.substr(0, field.find('\0'));
 }
 
-void acdi_manufacturer_version(CheckRun& run) {
-    if (!has_acdi(run)) return;
-    version_byte(run, run.acdi_manufacturer_result(), run.ctx().document->acdi->fixed,
+void acdi_manufacturer_version(CheckRun& run, const CheckSpec& spec) {
+    if (!has_acdi(run, spec)) return;
+    version_byte(run, spec, run.acdi_manufacturer_result(), run.ctx().document->acdi->fixed,
                  "space 252 byte 0 equals <acdi fixed>");
 }
 
-void acdi_user_version(CheckRun& run) {
-    if (!has_acdi(run)) return;
-    version_byte(run, run.acdi_user_result(), run.ctx().document->acdi->var,
+void acdi_user_version(CheckRun& run, const CheckSpec& spec) {
+    if (!has_acdi(run, spec)) return;
+    version_byte(run, spec, run.acdi_user_result(), run.ctx().document->acdi->var,
                  "space 251 byte 0 equals <acdi var>");
 }
 
-void acdi_space_info(CheckRun& run) {
-    if (!has_acdi(run)) return;
+void acdi_space_info(CheckRun& run, const CheckSpec& spec) {
+    if (!has_acdi(run, spec)) return;
     if (!acdi_conflict(run.ctx()).empty())
-        return run.out().skip(
+        return run.out(spec).skip(
             "depends on cdi.acdi-spaces: the CDI's own segments overlap the ACDI blocks");
     const SpaceInfo fc = run.space_info(0xFC);
     const SpaceInfo fb = run.space_info(0xFB);
@@ -59,7 +60,7 @@ void acdi_space_info(CheckRun& run) {
     };
     const std::string got = seen(fc) + " / " + seen(fb);
     if (!fc.answered || !fb.answered)
-        return run.out().skip(
+        return run.out(spec).skip(
             "Get Address Space Information not answered (an optional "
             "command): " +
             got);
@@ -68,29 +69,29 @@ void acdi_space_info(CheckRun& run) {
     const bool room = fc.present && fc.highest_address >= 124 && fb.present &&
                       fb.highest_address >= 127 && !fb.read_only;
     if (!room)
-        return run.out().fail("Space Info: 252 and 251 too small, absent or 251 read-only",
-                              ">= 124 / >= 127 RW", got);
+        return run.out(spec).fail("Space Info: 252 and 251 too small, absent or 251 read-only",
+                                  ">= 124 / >= 127 RW", got);
     const bool exact = fc.read_only && fc.highest_address == 124 && fb.highest_address == 127;
-    if (exact) return run.out().pass("Space Info: 252 read-only highest 124, 251 highest 127");
-    run.out().warn("Space Info: " + got +
-                   " (the ACDI blocks end at 124 and 127, 252 is read-only)");
+    if (exact) return run.out(spec).pass("Space Info: 252 read-only highest 124, 251 highest 127");
+    run.out(spec).warn("Space Info: " + got +
+                       " (the ACDI blocks end at 124 and 127, 252 is read-only)");
 }
 
-void acdi_utf8(CheckRun& run) {
-    if (!has_acdi(run)) return;
+void acdi_utf8(CheckRun& run, const CheckSpec& spec) {
+    if (!has_acdi(run, spec)) return;
     const CheckContext& ctx = run.ctx();
     if (!ctx.acdi_manufacturer)
-        return run.out().skip(
+        return run.out(spec).skip(
             "depends on acdi.manufacturer-version: space 252 could not be read (" +
             describe(run.acdi_manufacturer_result()) + ")");
     if (!ctx.acdi_user)
-        return run.out().skip("depends on acdi.user-version: space 251 could not be read (" +
-                              describe(run.acdi_user_result()) + ")");
+        return run.out(spec).skip("depends on acdi.user-version: space 251 could not be read (" +
+                                  describe(run.acdi_user_result()) + ")");
     using namespace memory::acdi;
     const auto& m = *ctx.acdi_manufacturer;
     const auto& u = *ctx.acdi_user;
     judge_utf8(
-        run,
+        run, spec,
         {{"space 252 @1 manufacturer", slot(m, kManufacturerOffset, kManufacturerSize)},
          {"space 252 @42 model", slot(m, kModelOffset, kModelSize)},
          {"space 252 @83 hardware version", slot(m, kHardwareVersionOffset, kHardwareVersionSize)},

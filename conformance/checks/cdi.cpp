@@ -7,9 +7,9 @@ namespace olcb::conform::checks {
 namespace {
 
 // The download's checks judge nothing when it failed: say what they depend on instead.
-bool downloaded(CheckRun& run) {
+bool downloaded(CheckRun& run, const CheckSpec& spec) {
     if (run.cdi().read_ok) return true;
-    run.out().skip("depends on cdi.read: space 0xFF returned no data");
+    run.out(spec).skip("depends on cdi.read: space 0xFF returned no data");
     return false;
 }
 
@@ -27,92 +27,67 @@ Status status_of(cdi::RuleStatus status) {
     return Status::kFail;
 }
 
-// Reports check_rules()' finding for `id` as it stands; the details are cdi.valid's diagnostics.
-void text_rule(CheckRun& run, std::string_view id) {
-    if (!downloaded(run)) return;
+// The text-only checks: each reports cdi::check_rules()' finding for its own ID as it stands (the
+// details are cdi.valid's diagnostics), so `lcc-cdi validate` on a file reports what these report
+// for the same text served by a node.
+void text_rule(CheckRun& run, const CheckSpec& spec) {
+    if (!downloaded(run, spec)) return;
     for (const cdi::RuleFinding& f : run.rules()) {
-        if (f.check_id != id) continue;
+        if (f.check_id != spec.id) continue;
         std::vector<std::string> details;
         details.reserve(f.diagnostics.size());
         for (const cdi::Diagnostic& d : f.diagnostics) details.push_back(cdi::located(d));
-        return run.out().add(status_of(f.status), f.message, f.expected, f.seen,
-                             std::move(details));
+        return run.out(spec).add(status_of(f.status), f.message, f.expected, f.seen,
+                                 std::move(details));
     }
-    run.out().fail("cdi::check_rules() has no rule for this check", std::string(id), "none");
+    run.out(spec).fail("cdi::check_rules() has no rule for this check", std::string(spec.id),
+                       "none");
 }
 
-void cdi_space_info(CheckRun& run) {
+void cdi_space_info(CheckRun& run, const CheckSpec& spec) {
     const SpaceInfo& ff = run.space_info(0xFF);
     // Get Address Space Information is not mandatory: unanswered says nothing about 0xFF.
-    if (!ff.answered) return run.out().skip("Get Address Space Information not answered");
+    if (!ff.answered) return run.out(spec).skip("Get Address Space Information not answered");
     if (!ff.present && !run.cdi().read_ok)
-        return run.out().skip("space 0xFF not present and no CDI read: the node has no CDI");
-    run.out().judge(ff.present && ff.read_only, "Space Info for 0xFF: present and read-only",
-                    "present, read-only", ff.present ? "writable" : "not present");
+        return run.out(spec).skip("space 0xFF not present and no CDI read: the node has no CDI");
+    run.out(spec).judge(ff.present && ff.read_only, "Space Info for 0xFF: present and read-only",
+                        "present, read-only", ff.present ? "writable" : "not present");
 }
 
-void cdi_read(CheckRun& run) {
+void cdi_read(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& d = run.cdi();
-    if (d.read_ok) return run.out().pass("space 0xFF read in 64-byte reads");
+    if (d.read_ok) return run.out(spec).pass("space 0xFF read in 64-byte reads");
     // §4.2 asks only a node that has a CDI to serve it; one that claims none owes nothing.
     const auto& pip = run.pip();
     if (pip && !pip->has(Protocol::kCdi) && d.result.rejected)
-        return run.out().skip("the node claims no CDI (PIP) and rejects reads of 0xFF");
-    run.out().fail("space 0xFF returned no data", "data",
-                   d.result.ok ? "no data" : describe(d.result));
+        return run.out(spec).skip("the node claims no CDI (PIP) and rejects reads of 0xFF");
+    run.out(spec).fail("space 0xFF returned no data", "data",
+                       d.result.ok ? "no data" : describe(d.result));
 }
 
-void cdi_nul_terminated(CheckRun& run) {
-    if (!downloaded(run)) return;
-    run.out().judge(run.ctx().cdi_nul_found, "space 0xFF holds a NUL-terminated string", "a NUL",
-                    "no NUL in " + std::to_string(run.ctx().cdi_bytes.size()) + " bytes");
+void cdi_nul_terminated(CheckRun& run, const CheckSpec& spec) {
+    if (!downloaded(run, spec)) return;
+    run.out(spec).judge(run.ctx().cdi_nul_found, "space 0xFF holds a NUL-terminated string",
+                        "a NUL",
+                        "no NUL in " + std::to_string(run.ctx().cdi_bytes.size()) + " bytes");
 }
 
-void cdi_nul_at_highest(CheckRun& run) {
-    if (!downloaded(run)) return;
+void cdi_nul_at_highest(CheckRun& run, const CheckSpec& spec) {
+    if (!downloaded(run, spec)) return;
     const SpaceInfo& ff = run.space_info(0xFF);
     if (!run.ctx().cdi_nul_found || !ff.present)
-        return run.out().skip(
+        return run.out(spec).skip(
             "depends on cdi.nul-terminated and cdi.space-info: no NUL or no Space Info");
     const auto size = static_cast<unsigned>(run.ctx().cdi_bytes.size());
     if (ff.highest_address == size)
-        return run.out().pass("the NUL is at the highest address Space Info gives");
+        return run.out(spec).pass("the NUL is at the highest address Space Info gives");
     // Padding after the NUL is legal; a space that ends before the text does is a note.
     if (ff.highest_address > size)
-        return run.out().pass("the NUL (at " + hex(size, 8) + ") lies within space 0xFF (highest " +
-                              hex(ff.highest_address, 8) + ")");
-    run.out().warn("Space Info's highest address " + hex(ff.highest_address, 8) +
-                   " lies before the CDI's NUL at " + hex(size, 8));
-}
-
-// The text-only checks: their verdicts are cdi::check_rules()', so `lcc-cdi validate` on a file
-// reports what these report for the same text served by a node.
-void cdi_no_bom(CheckRun& run) {
-    text_rule(run, "cdi.no-bom");
-}
-
-void cdi_utf8(CheckRun& run) {
-    text_rule(run, "cdi.utf8");
-}
-
-void cdi_xml_declaration(CheckRun& run) {
-    text_rule(run, "cdi.xml-declaration");
-}
-
-void cdi_well_formed(CheckRun& run) {
-    text_rule(run, "cdi.well-formed");
-}
-
-void cdi_valid(CheckRun& run) {
-    text_rule(run, "cdi.valid");
-}
-
-void cdi_schema_location(CheckRun& run) {
-    text_rule(run, "cdi.schema-location");
-}
-
-void cdi_acdi_spaces(CheckRun& run) {
-    text_rule(run, "cdi.acdi-spaces");
+        return run.out(spec).pass("the NUL (at " + hex(size, 8) +
+                                  ") lies within space 0xFF (highest " +
+                                  hex(ff.highest_address, 8) + ")");
+    run.out(spec).warn("Space Info's highest address " + hex(ff.highest_address, 8) +
+                       " lies before the CDI's NUL at " + hex(size, 8));
 }
 
 }  // namespace
@@ -147,37 +122,37 @@ std::vector<CheckSpec> cdi_checks() {
          "", "(CDI download) offset of the NUL == Space Info highest address", cdi_nul_at_highest},
         {"cdi.no-bom", 180, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kShall, "the CDI string carries no byte-order mark", "",
-         "no UTF-8 byte-order mark", cdi_no_bom},
+         "no UTF-8 byte-order mark", text_rule},
         {"cdi.utf8", 190, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kShall, "the CDI string is UTF-8", "",
          "the CDI is valid UTF-8 (FAIL: offset, line and bytes of the first invalid sequence)",
-         cdi_utf8},
+         text_rule},
         {"cdi.xml-declaration", 200, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kShall, "the first line is the XML 1.0 declaration", "cd10",
          "the first line (after a BOM, which is cdi.no-bom's) starts with exactly <?xml "
          "version=\"1.0\"?> (another declaration of XML 1.0 in UTF-8, e.g. encoding=\"utf-8\": "
          "WARN quoting it; another version or encoding, or none: FAIL quoting at most 80 bytes)",
-         cdi_xml_declaration},
+         text_rule},
         {"cdi.well-formed", 210, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kShall, "the CDI is XML 1.0", "cd10",
          "pugixml's parse where the screen settles it, else libxml2's (FAIL quotes libxml2's first "
          "parse error and lists all; stopped at the "
          "invalid UTF-8: SKIP depends on cdi.utf8)",
-         cdi_well_formed},
+         text_rule},
         {"cdi.valid", 220, Category::kCdi, "ConfigurationDescriptionInformationS §5, §5.1.4",
          Strength::kShall,
          "the CDI validates against the schema it names and follows the element rules of §5.1.4",
          "cd10",
          "cdi::validate: FAIL with every error (details), WARN with every warning, PASS when "
          "none (not well-formed: SKIP depends on cdi.well-formed)",
-         cdi_valid},
+         text_rule},
         {"cdi.schema-location", 230, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kNone,
          "the standard shows the root naming the schema URL but sets no rule for other spellings",
          "",
          "xsi:noNamespaceSchemaLocation names http(s)://openlcb.org/schema/cdi/...xsd (absent: "
          "WARN)",
-         cdi_schema_location},
+         text_rule},
         {"cdi.acdi-spaces", 270, Category::kCdi,
          "ConfigurationDescriptionInformationS §5.1.2; ConfigurationDescriptionInformationTN "
          "§2.5.1.2",
@@ -185,7 +160,7 @@ std::vector<CheckSpec> cdi_checks() {
          "a node may also describe spaces 252/251 as segments; variables that contradict the ACDI "
          "layout WARN",
          "", "with <acdi/>: no CDI variable in 252, space-251 variables within bytes 1..127",
-         cdi_acdi_spaces},
+         text_rule},
     };
 }
 

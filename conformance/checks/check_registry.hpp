@@ -13,9 +13,11 @@
 namespace olcb::conform {
 
 class CheckRun;
+struct CheckSpec;
 
-/// Runs one protocol check; its results go into the run.
-using CheckFn = void (*)(CheckRun&);
+/// Runs one protocol check, given its own entry: its results go into the run under the entry's
+/// ID (CheckRun::out(spec)).
+using CheckFn = void (*)(CheckRun&, const CheckSpec&);
 
 /// Suffix of a per-space check's ID: each result carries the space in two lower-case hex digits
 /// in its place ("memory.read-past-end.<sp>" gives "memory.read-past-end.fd").

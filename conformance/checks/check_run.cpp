@@ -146,38 +146,37 @@ bool CheckRun::from_node(const CanFrame& f) const {
     return f.extended && can::source_alias(f.id) == alias();
 }
 
-Verdict CheckRun::out() {
-    return Verdict(*this, current_ ? std::string(current_->id) : std::string());
+Verdict CheckRun::out(const CheckSpec& spec) {
+    return Verdict(*this, std::string(spec.id));
 }
 
-Verdict CheckRun::out(std::uint8_t space) {
-    std::string id = current_ ? std::string(current_->id) : std::string();
+Verdict CheckRun::out(const CheckSpec& spec, std::uint8_t space) {
+    std::string id(spec.id);
     if (id.ends_with(kPerSpace)) id.resize(id.size() - kPerSpace.size());
     return Verdict(*this, id + "." + space_suffix(space));
 }
 
-bool CheckRun::space_selected(std::uint8_t space) const {
-    if (current_ == nullptr || !current_->id.ends_with(kPerSpace)) return true;
-    std::string id(current_->id.substr(0, current_->id.size() - kPerSpace.size()));
+bool CheckRun::space_selected(const CheckSpec& spec, std::uint8_t space) const {
+    if (!spec.id.ends_with(kPerSpace)) return true;
+    std::string id(spec.id.substr(0, spec.id.size() - kPerSpace.size()));
     return o_.selection.wants_id(id + "." + space_suffix(space));
 }
 
-std::vector<std::uint8_t> CheckRun::selected_spaces(const std::vector<std::uint8_t>& spaces) const {
+std::vector<std::uint8_t> CheckRun::selected_spaces(const CheckSpec& spec,
+                                                    const std::vector<std::uint8_t>& spaces) const {
     std::vector<std::uint8_t> out;
     for (std::uint8_t sp : spaces)
-        if (space_selected(sp)) out.push_back(sp);
+        if (space_selected(spec, sp)) out.push_back(sp);
     return out;
 }
 
 void CheckRun::run(const CheckSpec& spec) {
-    current_ = &spec;
     const std::size_t first = out_.size();
     const std::size_t planned = s_.ledger().entries().size();
     {
         WriteLedger::Origin origin(s_.ledger(), std::string(spec.id));
-        if (spec.run) spec.run(*this);
+        if (spec.run) spec.run(*this, spec);
     }
-    current_ = nullptr;
     // A write our own gate kept back proves nothing about the node: the check is not judged.
     const auto& entries = s_.ledger().entries();
     for (std::size_t i = planned; i < entries.size(); ++i) {

@@ -121,16 +121,17 @@ public:
     /// True when the frame is an extended frame from the node's current alias.
     bool from_node(const CanFrame& frame) const;
 
-    /// Results of the check being run.
-    Verdict out();
-    /// Results of the per-space check being run for one space.
-    Verdict out(std::uint8_t space);
-    /// True when the per-space check being run is selected for space (--only/--skip name
-    /// per-space results exactly: `--only memory.write-past-end.fd` probes 0xFD alone).
-    bool space_selected(std::uint8_t space) const;
+    /// Results of the entry spec (the one a check function is given).
+    Verdict out(const CheckSpec& spec);
+    /// Results of the per-space entry spec for one space (ID.<sp>).
+    Verdict out(const CheckSpec& spec, std::uint8_t space);
+    /// True when the per-space entry spec is selected for space (--only/--skip name per-space
+    /// results exactly: `--only memory.write-past-end.fd` probes 0xFD alone).
+    bool space_selected(const CheckSpec& spec, std::uint8_t space) const;
     /// The spaces of `spaces` space_selected() keeps, in order.
-    std::vector<std::uint8_t> selected_spaces(const std::vector<std::uint8_t>& spaces) const;
-    /// Runs one entry (sets it current, then calls its function).
+    std::vector<std::uint8_t> selected_spaces(const CheckSpec& spec,
+                                              const std::vector<std::uint8_t>& spaces) const;
+    /// Runs one entry: calls its function with it.
     void run(const CheckSpec& spec);
     /// Adds a finished result (Verdict uses it).
     void add(CheckResult result);
@@ -214,7 +215,6 @@ private:
     ProtocolOptions o_;
     CheckContext& ctx_;
     std::vector<CheckResult> out_;
-    const CheckSpec* current_ = nullptr;
     std::size_t start_frame_ = 0;
     TimePoint started_{};
     bool memory_works_ = false;

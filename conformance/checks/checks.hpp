@@ -23,8 +23,8 @@ struct NamedText {
 };
 /// PASS when every text is UTF-8, else `bad` (FAIL where the standard asks for UTF-8, WARN where
 /// only a technical note does) naming each invalid one with its bytes in hex (snip.cpp).
-void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what,
-                Status bad);
+void judge_utf8(CheckRun& run, const CheckSpec& spec, const std::vector<NamedText>& texts,
+                const std::string& what, Status bad);
 
 /// What the node sent in one silence window after four probes that must go unanswered: an
 /// unknown global MTI, and Verify Node ID, Protocol Support Inquiry and an unknown MTI addressed

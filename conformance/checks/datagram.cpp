@@ -4,35 +4,35 @@
 namespace olcb::conform::checks {
 namespace {
 
-void datagram_ok_before_reply(CheckRun& run) {
+void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& d = run.cdi();
-    if (!d.read_ok) return run.out().skip("depends on cdi.read: no read reply to judge");
+    if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to judge");
     if (d.result.datagram_ok_seen)
-        return run.out().pass("Datagram Received OK precedes every read reply");
+        return run.out(spec).pass("Datagram Received OK precedes every read reply");
     // Only MemoryConfigurationTN §2.4.5 orders them; a missing OK shows as a timeout elsewhere.
-    run.out().warn(
+    run.out(spec).warn(
         "a read reply came before its Datagram Received OK (the technical note orders "
         "the OK first; tools that wait for it stall)");
 }
 
-void datagram_reply_pending(CheckRun& run) {
+void datagram_reply_pending(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& d = run.cdi();
-    if (!d.read_ok) return run.out().skip("depends on cdi.read: no read reply to judge");
+    if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to judge");
     // An OK that came after its reply was not seen when the read ended: its flags are unknown.
     if (!d.result.datagram_ok_seen)
-        return run.out().skip(
+        return run.out(spec).skip(
             "depends on datagram.ok-before-reply: the Datagram Received OK "
             "came after the reply");
-    run.out().judge(d.result.reply_pending, "Datagram Received OK of a read has Reply Pending",
-                    "flag 0x80", "flags without 0x80");
+    run.out(spec).judge(d.result.reply_pending, "Datagram Received OK of a read has Reply Pending",
+                        "flag 0x80", "flags without 0x80");
 }
 
-void datagram_temporary_rejects(CheckRun& run) {
+void datagram_temporary_rejects(CheckRun& run, const CheckSpec& spec) {
     // Temporary rejects are legal (the retried request succeeded, or another check failed), but
     // a node that needs them on an idle bus is worth a look: warn, never fail.
     const unsigned n = run.ctx().temporary_rejects;
-    if (n == 0) return run.out().pass("no datagram was rejected temporarily");
-    run.out().warn(std::to_string(n) + " datagrams rejected temporarily (0x2xxx) and retried");
+    if (n == 0) return run.out(spec).pass("no datagram was rejected temporarily");
+    run.out(spec).warn(std::to_string(n) + " datagrams rejected temporarily (0x2xxx) and retried");
 }
 
 }  // namespace

@@ -144,9 +144,9 @@ std::string join(const std::vector<std::string>& parts) {
 
 // da30, da40: every complete datagram is answered (DatagramTransportS 6); one of no known
 // content type with Datagram Rejected 0x1042.
-void unknown_protocol(CheckRun& run) {
+void unknown_protocol(CheckRun& run, const CheckSpec& spec) {
     if (!claims_datagrams(run))
-        return run.out().skip("the node's PIP does not claim the datagram protocol");
+        return run.out(spec).skip("the node's PIP does not claim the datagram protocol");
     Status worst = Status::kPass;
     std::vector<std::string> notes;
     for (std::size_t size : kSizes) {
@@ -164,11 +164,11 @@ void unknown_protocol(CheckRun& run) {
                              hex(kUnknownType, 2) + " (no known protocol)";
     const std::string list = join(notes);
     if (worst == Status::kFail)
-        return run.out().fail(head + ": " + list, "Datagram Rejected 0x1042 to each", list);
+        return run.out(spec).fail(head + ": " + list, "Datagram Rejected 0x1042 to each", list);
     if (worst == Status::kWarn)
-        return run.out().warn(head + ": " + list +
-                              " (0x1042 is the recommended answer, DatagramTransportTN)");
-    run.out().pass(
+        return run.out(spec).warn(head + ": " + list +
+                                  " (0x1042 is the recommended answer, DatagramTransportTN)");
+    run.out(spec).pass(
         head + " rejected with " +
         (list.empty() ? "0x1042" : "a permanent error (" + list + "; the standard gives 0x1042)"));
 }
@@ -213,9 +213,9 @@ std::pair<Status, std::string> overlap_answer(CheckRun& run) {
 
 // DatagramTransportS 7.3.2: a frame sequence that is not a datagram gets a temporary reject
 // (0x2041: middle or last without first; 0x2042: first before the previous one finished).
-void out_of_order(CheckRun& run) {
+void out_of_order(CheckRun& run, const CheckSpec& spec) {
     if (!claims_datagrams(run))
-        return run.out().skip("the node's PIP does not claim the datagram protocol");
+        return run.out(spec).skip("the node's PIP does not claim the datagram protocol");
     // The last frame first: after a lone middle frame a node may rightly take a last frame as
     // the end of the datagram it is discarding.
     const std::array<std::pair<Status, std::string>, 3> v = {
@@ -230,14 +230,14 @@ void out_of_order(CheckRun& run) {
     }
     const std::string list = join(notes);
     if (worst == Status::kFail)
-        return run.out().fail("frames that are no datagram: " + list,
-                              "one temporary reject 0x2040-0x204F each", list);
+        return run.out(spec).fail("frames that are no datagram: " + list,
+                                  "one temporary reject 0x2040-0x204F each", list);
     if (worst == Status::kWarn)
-        return run.out().warn(
+        return run.out(spec).warn(
             "frames that are no datagram rejected temporarily, not with the "
             "out-of-order codes: " +
             list);
-    run.out().pass(
+    run.out(spec).pass(
         "a lone last frame, a lone middle frame and an overlapping first frame: one "
         "temporary reject 0x2040-0x204F each" +
         (list.empty() ? "" : " (" + list + ")"));

@@ -22,7 +22,8 @@ std::array<std::uint8_t, 8> tool_event(Session& s, std::uint8_t tag) {
 
 // After the frames went out: no restart (a new alias reservation or Initialization Complete)
 // within the silence window, and the node still answers Verify Node ID.
-void judge_unharmed(CheckRun& run, const NodeTrack& before, const std::string& what) {
+void judge_unharmed(CheckRun& run, const CheckSpec& spec, const NodeTrack& before,
+                    const std::string& what) {
     Session& s = run.session();
     s.wait(run.options().window);
     const NodeTrack now = s.track(run.node().id);
@@ -31,18 +32,18 @@ void judge_unharmed(CheckRun& run, const NodeTrack& before, const std::string& w
     const bool answers = s.ping(run.node(), run.options().answer_window);
     // A node that stops answering breaks MessageNetworkS §3.4.2; a restart breaks no clause.
     if (!answers)
-        return run.out().fail(what + ": the node no longer answers Verify Node ID",
-                              "still answering", "no answer");
+        return run.out(spec).fail(what + ": the node no longer answers Verify Node ID",
+                                  "still answering", "no answer");
     if (restarted)
-        return run.out().warn(what +
-                              ": the node restarted (Initialization Complete), then "
-                              "answered again");
-    run.out().pass(what);
+        return run.out(spec).warn(what +
+                                  ": the node restarted (Initialization Complete), then "
+                                  "answered again");
+    run.out(spec).pass(what);
 }
 
 }  // namespace
 
-void pcer_payload_tolerated(CheckRun& run) {
+void pcer_payload_tolerated(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const NodeTrack before = s.track(run.node().id);
     const std::uint16_t me = s.tool_alias();
@@ -57,15 +58,16 @@ void pcer_payload_tolerated(CheckRun& run) {
         s.inject(can::make_frame(can::message_header(can::kCanMtiPcerPayloadLast, me),
                                  std::span(payload).first(middles == 0 ? 4 : 8)));
     }
-    judge_unharmed(run, before, "PCERs with payloads of 4 to 2,044 bytes leave the node running");
+    judge_unharmed(run, spec, before,
+                   "PCERs with payloads of 4 to 2,044 bytes leave the node running");
 }
 
-void learn_tolerated(CheckRun& run) {
+void learn_tolerated(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const NodeTrack before = s.track(run.node().id);
     s.inject(can::make_frame(can::message_header(to_u16(Mti::kLearnEvent) & 0x0FFF, s.tool_alias()),
                              tool_event(s, 0x70)));
-    judge_unharmed(run, before, "Learn Event leaves the node running");
+    judge_unharmed(run, spec, before, "Learn Event leaves the node running");
 }
 
 std::vector<CheckSpec> event_robustness_checks() {

@@ -319,8 +319,8 @@ EventAnswers reference_answers(CheckRun& run) {
     return answers_of(run, crowd(run) == 0 ? false : true);
 }
 
-void identify_global(CheckRun& run) {
-    Verdict out = run.out();
+void identify_global(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     if (const std::size_t n = crowd(run))
         return out.skip(std::to_string(n) +
                         " nodes on the segment: Identify Events global would make every one "
@@ -367,8 +367,8 @@ std::vector<std::string> differences(const EventAnswers& global, const EventAnsw
     return out;
 }
 
-void identify_addressed(CheckRun& run) {
-    Verdict out = run.out();
+void identify_addressed(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     const EventAnswers a = answers_of(run, true);
     if (has_event_bit(run) && a.empty())
         return out.warn(
@@ -420,8 +420,8 @@ void follow_up(CheckRun& run, std::map<std::uint64_t, std::string>& missing) {
         if (answered[i]) missing.erase(asks[i].id);
 }
 
-void cdi_events_identified(CheckRun& run) {
-    Verdict out = run.out();
+void cdi_events_identified(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     run.cdi();
     if (!run.ctx().layout) return out.skip("depends on cdi.valid: no layout");
     EventVars ev = event_vars(*run.ctx().layout);
@@ -480,8 +480,8 @@ void judge_identify_answers(Verdict& out, const std::vector<std::string>& wrong,
             std::move(parts));
 }
 
-void identify_producer_consumer(CheckRun& run) {
-    Verdict out = run.out();
+void identify_producer_consumer(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     const EventAnswers a = reference_answers(run);
     const std::optional<std::uint64_t> unknown = unknown_event(a);
     std::vector<Ask> asks;

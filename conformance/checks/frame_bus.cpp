@@ -123,18 +123,18 @@ std::vector<std::uint16_t> unused_aliases(CheckRun& run, std::size_t count) {
 // Runs a check that makes the node reserve an alias again (a staged collision, a Reset): those
 // reservations are the check's doing, so the node watch must not report a restart for them.
 template <typename F>
-void provoking_reservations(CheckRun& run, F&& check) {
+void provoking_reservations(CheckRun& run, const CheckSpec& spec, F&& check) {
     Session& s = run.session();
     const NodeId id = run.node().id;
     const std::uint32_t before = s.track(id).reservations;
-    check(run);
+    check(run, spec);
     const std::uint32_t after = s.track(id).reservations;
     if (after > before) s.excuse_reservations(id, after - before);
 }
 
 // fr30: an AMD from the node's alias with another node ID means another node took the alias;
 // the node must give it up (AMR with its node ID) and come back on a new one.
-void stage_collision(CheckRun& run) {
+void stage_collision(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const NodeId id = run.node().id;
     const std::uint16_t old_alias = run.alias();
@@ -146,12 +146,12 @@ void stage_collision(CheckRun& run) {
     s.run_until([&] { return scan.any(amr); }, run.options().answer_window);
     const std::string alias_text = "alias " + hex(old_alias, 3);
     if (!scan.found())
-        return run.out().fail(
+        return run.out(spec).fail(
             "no AMR after an AMD from the node's " + alias_text + " carrying another node ID",
             "AMR from " + alias_text + ", then a new alias", "no AMR within the answer window");
     if (!carries(*scan.found(), id))
-        return run.out().fail("the AMR giving up " + alias_text + " does not carry the node ID",
-                              "AMR with " + id.to_string(), "AMR without it");
+        return run.out(spec).fail("the AMR giving up " + alias_text + " does not carry the node ID",
+                                  "AMR with " + id.to_string(), "AMR without it");
     // A node may reserve its new alias at once (and miss a Verify meanwhile) or only when it
     // next has to send (OpenMRN): one Verify global makes the lazy one reserve, the eager one's
     // AMD is awaited, then the node is asked again.
@@ -169,19 +169,19 @@ void stage_collision(CheckRun& run) {
     auto found = s.find_node(id, run.options().answer_window);
     // §6.2.5 asks for the AMR and giving the alias up; taking a new one is not required.
     if (!found)
-        return run.out().warn(
+        return run.out(spec).warn(
             "AMR sent, but no Verified Node ID to a Verify global afterwards: "
             "the node did not come back on a new alias");
     if (found->alias == old_alias)
-        return run.out().fail(
+        return run.out(spec).fail(
             "AMR sent, but the node still answers from the " + alias_text + " it gave up",
             "a new alias", alias_text);
-    run.out().pass("AMR with the node ID from " + alias_text +
-                   ", then Verified Node ID from the new alias " + hex(found->alias, 3));
+    run.out(spec).pass("AMR with the node ID from " + alias_text +
+                       ", then Verified Node ID from the new alias " + hex(found->alias, 3));
 }
 
 // fr40: bit 28 is sent as 1 but must be ignored on receipt.
-void ame_bit28(CheckRun& run) {
+void ame_bit28(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const NodeId id = run.node().id;
     // The AME carries the node ID so only the node answers, not every node of a big segment.
@@ -193,7 +193,7 @@ void ame_bit28(CheckRun& run) {
         return run.from_node(f) && is_control(f, can::ControlFrame::kAmd) && carries(f, id);
     };
     s.run_until([&] { return scan.any(amd); }, run.options().answer_window);
-    run.out().judge(
+    run.out(spec).judge(
         scan.found().has_value(),
         "AME with the node ID and header bit 28 clear (" + hex(ame.id, 8) + ") answered with AMD",
         "AMD with the node ID", "no AMD within the answer window");
@@ -250,23 +250,25 @@ bool burst_answered(CheckRun& run, const Burst& burst) {
 }
 
 // fr50: a node must keep up with a fully loaded bus.
-void capacity(CheckRun& run) {
+void capacity(CheckRun& run, const CheckSpec& spec) {
     const std::vector<std::uint16_t> aliases = unused_aliases(run, 4);
-    if (aliases.size() < 4) return run.out().skip("no 4 unused aliases for the made-up senders");
+    if (aliases.size() < 4)
+        return run.out(spec).skip("no 4 unused aliases for the made-up senders");
     std::vector<std::string> failed;
     for (const Burst& b : capacity_bursts(aliases))
         if (!burst_answered(run, b)) failed.push_back(b.name);
     if (failed.empty())
-        return run.out().pass("Verify Node ID addressed answered within 0.8 s inside bursts of " +
-                              std::to_string(kBurstFrames) +
-                              " frames (global Verify, 2-frame messages to another node, "
-                              "Identify Consumer)");
+        return run.out(spec).pass(
+            "Verify Node ID addressed answered within 0.8 s inside bursts of " +
+            std::to_string(kBurstFrames) +
+            " frames (global Verify, 2-frame messages to another node, "
+            "Identify Consumer)");
     std::string names;
     for (const std::string& n : failed) names += (names.empty() ? "" : ", ") + n;
-    run.out().fail("no Verified Node ID within 0.8 s after a burst of " +
-                       std::to_string(kBurstFrames) + " frames of: " + names,
-                   "Verified Node ID after every burst",
-                   std::to_string(failed.size()) + " of 3 bursts unanswered");
+    run.out(spec).fail("no Verified Node ID within 0.8 s after a burst of " +
+                           std::to_string(kBurstFrames) + " frames of: " + names,
+                       "Verified Node ID after every burst",
+                       std::to_string(failed.size()) + " of 3 bursts unanswered");
 }
 
 // A frame's kind: its header without the source alias.
@@ -289,12 +291,12 @@ std::set<std::uint32_t> unprompted_kinds(CheckRun& run) {
 // fr60: OpenLCB uses extended frames only; standard frames on the bus are someone else's.
 // What the node sent after the standard frames, but for what it also sends unprompted: nothing
 // passes.
-void judge_standard_frames(CheckRun& run, std::size_t mark, unsigned count) {
+void judge_standard_frames(CheckRun& run, const CheckSpec& spec, std::size_t mark, unsigned count) {
     const std::string what = std::to_string(count) + " standard (11-bit) frames";
     const std::vector<CanFrame> window = run.session().frames_since(mark);
     if (std::none_of(window.begin(), window.end(),
                      [&](const CanFrame& f) { return run.from_node(f); }))
-        return run.out().pass(what + " ignored: nothing sent in the silence window");
+        return run.out(spec).pass(what + " ignored: nothing sent in the silence window");
     const std::set<std::uint32_t> chatter = unprompted_kinds(run);
     std::optional<CanFrame> answer;
     for (const CanFrame& f : window) {
@@ -304,12 +306,13 @@ void judge_standard_frames(CheckRun& run, std::size_t mark, unsigned count) {
         }
     }
     if (!answer)
-        return run.out().pass(what + " ignored: the node sent only what it sends unprompted too");
+        return run.out(spec).pass(what +
+                                  " ignored: the node sent only what it sends unprompted too");
     const std::string name = frame_name(*answer) + " (" + hex(answer->id, 8) + ")";
-    run.out().fail(what + " answered: the node sent " + name, "silence", name);
+    run.out(spec).fail(what + " answered: the node sent " + name, "silence", name);
 }
 
-void standard_frames_ignored(CheckRun& run) {
+void standard_frames_ignored(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const bool all = run.options().selection.thorough;
     const unsigned count = all ? kStandardIdsAll : kStandardIdsQuick;
@@ -327,9 +330,9 @@ void standard_frames_ignored(CheckRun& run) {
         }
         s.wait(run.options().window);
         if (run.others_spoke(mark)) continue;
-        return judge_standard_frames(run, mark, count);
+        return judge_standard_frames(run, spec, mark, count);
     }
-    run.out().skip("other sources spoke in every silence window: fr60 not judged");
+    run.out(spec).skip("other sources spoke in every silence window: fr60 not judged");
 }
 
 // The start-up sequence (CanFrameTransferS 6.2.1, 6.2.2, MessageNetworkS 3.4.1): steps 0..6.
@@ -389,8 +392,8 @@ struct StartupTrace {
 };
 
 // fr10, me10: after Reset/Reboot the node goes through alias reservation and announces itself.
-void watch_startup(CheckRun& run) {
-    if (!run.options().reboot) return run.out().skip("needs --reboot (sends Reset/Reboot)");
+void watch_startup(CheckRun& run, const CheckSpec& spec) {
+    if (!run.options().reboot) return run.out(spec).skip("needs --reboot (sends Reset/Reboot)");
     Session& s = run.session();
     const NodeId id = run.node().id;
     const std::uint32_t inits = s.track(id).initializations;
@@ -409,12 +412,12 @@ void watch_startup(CheckRun& run) {
     const MemResult r = s.command(run.node(), kReset);
     if (r.rejected && !r.timed_out && r.error != 0 && !complete() &&
         s.track(id).initializations == inits)
-        return run.out().skip("Reset/Reboot rejected with " + hex(r.error) +
-                              ": the start-up sequence was not observed");
+        return run.out(spec).skip("Reset/Reboot rejected with " + hex(r.error) +
+                                  ": the start-up sequence was not observed");
     const Duration left = kStartupWindow - (s.link().now() - sent);
     s.run_until(complete, std::max(left, Duration::zero()));
     if (trace.complete)
-        return run.out().pass(
+        return run.out(spec).pass(
             "after Reset/Reboot: CID7, CID6, CID5, CID4, RID, AMD, "
             "Initialization Complete from alias " +
             hex(*trace.complete, 3) + ", in order");
@@ -422,16 +425,16 @@ void watch_startup(CheckRun& run) {
                            ? "no CID7 with the node's ID bits"
                            : "nothing after " + std::string(kStartupSteps[trace.best - 1]);
     if (!trace.broken.empty()) seen += "; " + trace.broken;
-    run.out().fail("start-up sequence after Reset/Reboot incomplete within 10 s: " + seen,
-                   "CID7, CID6, CID5, CID4, RID, AMD, Initialization Complete", seen);
+    run.out(spec).fail("start-up sequence after Reset/Reboot incomplete within 10 s: " + seen,
+                       "CID7, CID6, CID5, CID4, RID, AMD, Initialization Complete", seen);
 }
 
-void collision(CheckRun& run) {
-    provoking_reservations(run, stage_collision);
+void collision(CheckRun& run, const CheckSpec& spec) {
+    provoking_reservations(run, spec, stage_collision);
 }
 
-void startup_sequence(CheckRun& run) {
-    provoking_reservations(run, watch_startup);
+void startup_sequence(CheckRun& run, const CheckSpec& spec) {
+    provoking_reservations(run, spec, watch_startup);
 }
 
 std::vector<CheckSpec> frame_bus_checks() {

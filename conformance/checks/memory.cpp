@@ -36,20 +36,20 @@ std::string form_seen(std::uint8_t sp, bool asked_short, const MemResult& r) {
            (got_short ? "short form" : "byte-6 form") + ")";
 }
 
-void memory_config_options(CheckRun& run) {
+void memory_config_options(CheckRun& run, const CheckSpec& spec) {
     const MemResult& r = run.config_options();
-    if (run.ctx().options) return run.out().pass("Get Configuration Options answered");
+    if (run.ctx().options) return run.out(spec).pass("Get Configuration Options answered");
     // The command is not mandatory: a rejection says the node does not implement it.
     if (r.rejected && !r.timed_out)
-        return run.out().skip("Get Configuration Options rejected with " + hex(r.error) +
-                              " (not implemented)");
-    run.out().fail("Get Configuration Options not answered", "reply 20 82 or Datagram Rejected",
-                   r.ok ? run.config_options_reply() : describe(r));
+        return run.out(spec).skip("Get Configuration Options rejected with " + hex(r.error) +
+                                  " (not implemented)");
+    run.out(spec).fail("Get Configuration Options not answered", "reply 20 82 or Datagram Rejected",
+                       r.ok ? run.config_options_reply() : describe(r));
 }
 
-void memory_reply_latency(CheckRun& run) {
+void memory_reply_latency(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& d = run.cdi();
-    if (!d.read_ok) return run.out().skip("depends on cdi.read: no read reply to time");
+    if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to time");
     const auto ms =
         std::chrono::duration_cast<std::chrono::milliseconds>(d.result.reply_latency).count();
     // MessageNetworkS §3.7: 750 ms "unless otherwise indicated": a Datagram Received OK with
@@ -60,18 +60,19 @@ void memory_reply_latency(CheckRun& run) {
     const auto limit_ms = std::chrono::duration_cast<std::chrono::milliseconds>(limit).count();
     const std::string bound =
         n == 0 ? std::to_string(limit_ms) + " ms" : std::to_string(1u << n) + " s (announced)";
-    run.out().judge(d.result.reply_latency <= limit, "read replies within " + bound, "<= " + bound,
-                    std::to_string(ms) + " ms");
+    run.out(spec).judge(d.result.reply_latency <= limit, "read replies within " + bound,
+                        "<= " + bound, std::to_string(ms) + " ms");
 }
 
-void memory_options_acdi_flags(CheckRun& run) {
+void memory_options_acdi_flags(CheckRun& run, const CheckSpec& spec) {
     run.config_options();
     run.acdi_blocks();
     const CheckContext& ctx = run.ctx();
-    if (!ctx.options) return run.out().skip("depends on memory.config-options: no Options reply");
+    if (!ctx.options)
+        return run.out(spec).skip("depends on memory.config-options: no Options reply");
     // Readability is known from the ACDI reads, made only with <acdi/>.
     if (!ctx.document || !ctx.document->acdi)
-        return run.out().skip("the CDI has no <acdi/>: spaces 252/251 are not read");
+        return run.out(spec).skip("the CDI has no <acdi/>: spaces 252/251 are not read");
     const std::uint16_t c = ctx.options->available_commands;
     const bool r252 = ctx.acdi_manufacturer.has_value();
     const bool r251 = ctx.acdi_user.has_value();
@@ -81,48 +82,48 @@ void memory_options_acdi_flags(CheckRun& run) {
     std::string want = std::string(r252 ? "0x0800 set" : "0x0800 clear") +
                        (r251 ? ", 0x0400 set" : ", 0x0400 clear") +
                        (w251 ? ", 0x0200 set" : ", 0x0200 clear");
-    run.out().judge(ok, "Options flags 0x0800/0x0400/0x0200 agree with spaces 252/251",
-                    std::move(want), "available commands " + hex(c));
+    run.out(spec).judge(ok, "Options flags 0x0800/0x0400/0x0200 agree with spaces 252/251",
+                        std::move(want), "available commands " + hex(c));
 }
 
-void memory_space_info_layout(CheckRun& run) {
+void memory_space_info_layout(CheckRun& run, const CheckSpec& spec) {
     run.cdi();
-    if (!run.ctx().layout) return run.out(0xFD).skip("depends on cdi.valid: no layout");
+    if (!run.ctx().layout) return run.out(spec, 0xFD).skip("depends on cdi.valid: no layout");
     for (const auto& e : run.ctx().layout->extents()) {
         const auto sp = static_cast<std::uint8_t>(e.space);
-        if (!run.space_selected(sp)) continue;
+        if (!run.space_selected(spec, sp)) continue;
         const SpaceInfo& info = run.space_info(sp);
         if (!info.answered) {
-            run.out(sp).skip("Get Address Space Information of " + hex(sp, 2) +
-                             " not answered (an optional command)");
+            run.out(spec, sp).skip("Get Address Space Information of " + hex(sp, 2) +
+                                   " not answered (an optional command)");
             continue;
         }
         const bool big = info.present && e.end > 0 && info.highest_address + 1 >= e.end;
-        run.out(sp).judge(
+        run.out(spec, sp).judge(
             big, "Space Info of space " + hex(sp, 2) + " covers the CDI layout",
             "highest >= " + std::to_string(e.end - 1),
             info.present ? "highest " + std::to_string(info.highest_address) : "not present");
     }
 }
 
-void memory_read_byte6_form(CheckRun& run) {
+void memory_read_byte6_form(CheckRun& run, const CheckSpec& spec) {
     const FormProbe& p = run.form_probe();
-    run.out().judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form",
-                    "Read Reply OK with 8 bytes", describe(p.byte6));
+    run.out(spec).judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form",
+                        "Read Reply OK with 8 bytes", describe(p.byte6));
 }
 
-void memory_read_short_form(CheckRun& run) {
+void memory_read_short_form(CheckRun& run, const CheckSpec& spec) {
     const FormProbe& p = run.form_probe();
     if (!p.short_form)
-        return run.out().skip("space " + hex(p.space, 2) + " has only the byte-6 form");
-    run.out().judge(p.short_form->ok, "read of space " + hex(p.space, 2) + " in the short form",
-                    "Read Reply OK with 8 bytes", describe(*p.short_form));
+        return run.out(spec).skip("space " + hex(p.space, 2) + " has only the byte-6 form");
+    run.out(spec).judge(p.short_form->ok, "read of space " + hex(p.space, 2) + " in the short form",
+                        "Read Reply OK with 8 bytes", describe(*p.short_form));
 }
 
-void memory_reply_form(CheckRun& run) {
+void memory_reply_form(CheckRun& run, const CheckSpec& spec) {
     const FormProbe& p = run.form_probe();
     if (!p.byte6.ok)
-        return run.out().skip("depends on memory.read-byte6-form: " + describe(p.byte6));
+        return run.out(spec).skip("depends on memory.read-byte6-form: " + describe(p.byte6));
     // The first read whose reply came in the other form, with both forms as on the wire.
     std::string expected, seen;
     const auto judge = [&](const std::string& what, std::uint8_t sp, bool asked_short,
@@ -134,27 +135,27 @@ void memory_reply_form(CheckRun& run) {
     judge("byte-6 read of " + hex(p.space, 2), p.space, false, p.byte6);
     if (p.short_form) judge("short-form read of " + hex(p.space, 2), p.space, true, *p.short_form);
     judge("CDI read of 0xFF", 0xFF, true, run.cdi().result);
-    run.out().judge(seen.empty(), "replies use the form of the request", expected, seen);
+    run.out(spec).judge(seen.empty(), "replies use the form of the request", expected, seen);
 }
 
-void memory_read_short_at_end(CheckRun& run) {
+void memory_read_short_at_end(CheckRun& run, const CheckSpec& spec) {
     const SpaceInfo ff = run.space_info(0xFF);
     if (!ff.present || ff.highest_address < 3)
-        return run.out().skip("depends on cdi.space-info: 0xFF not present or too small");
+        return run.out(spec).skip("depends on cdi.space-info: 0xFF not present or too small");
     if (std::string doubt = run.highest_too_small(0xFF); !doubt.empty())
-        return run.out().skip(doubt);
+        return run.out(spec).skip(doubt);
     const MemResult& e =
         run.note(run.session().read(run.node(), Space::kCdi, ff.highest_address - 3, 8));
     // MemoryConfigurationS §4.5: a reply may be shorter (at least one byte); the end is no error.
     const bool ok = e.ok && !e.data.empty() && e.data.size() <= 4;
-    run.out().judge(
+    run.out(spec).judge(
         ok,
         "read of 8 across the end of 0xFF returns " +
             (e.ok ? std::to_string(e.data.size()) + " of the 4 bytes left" : describe(e)),
         "1 to 4 bytes", describe(e));
 }
 
-void memory_unknown_space(CheckRun& run) {
+void memory_unknown_space(CheckRun& run, const CheckSpec& spec) {
     std::set<std::uint8_t> used = {0xFF, 0xFE, 0xFD, 0xFC, 0xFB, 0xFA, 0xF9, 0xF8, 0xEF};
     for (std::uint8_t sp : run.layout_spaces()) used.insert(sp);
     std::uint8_t unknown = 0x50;
@@ -163,10 +164,10 @@ void memory_unknown_space(CheckRun& run) {
         run.note(run.session().read(run.node(), static_cast<Space>(unknown), 0, 8));
     const Refusal refused = judge_refusal(u, "read of unknown space " + std::to_string(unknown),
                                           base::to_u16(base::ErrorCode::kSpaceUnknown));
-    run.out().refusal(refused, "a failure with an error code (0x1081)");
+    run.out(spec).refusal(refused, "a failure with an error code (0x1081)");
 }
 
-void memory_lock(CheckRun& run) {
+void memory_lock(CheckRun& run, const CheckSpec& spec) {
     MemResult last;
     const std::uint64_t me = run.session().tool_id().value();
     auto first = lock_cmd(run, me, last);
@@ -174,16 +175,16 @@ void memory_lock(CheckRun& run) {
         // Refusing an optional command is allowed; the code it gave is still worth a look.
         // An optional command (MemoryConfigurationTN §2.4.17): not implemented is no finding.
         if (last.error == base::to_u16(base::ErrorCode::kSubcommandUnknown))
-            return run.out().skip("not implemented (0x1041): Lock/Reserve is optional");
+            return run.out(spec).skip("not implemented (0x1041): Lock/Reserve is optional");
         const std::string code = last.error ? hex(last.error) : "no error code";
-        return run.out().warn("Lock/Reserve rejected with " + code +
-                              " (optional command; not implemented would be 0x1041)");
+        return run.out(spec).warn("Lock/Reserve rejected with " + code +
+                                  " (optional command; not implemented would be 0x1041)");
     }
-    if (!first) return run.out().skip("Lock/Reserve not answered (optional)");
+    if (!first) return run.out(spec).skip("Lock/Reserve not answered (optional)");
     if (*first != me && *first != 0) {
         // Another tool holds the lock: zeros would release it behind that tool's back.
-        return run.out().skip("the node is locked by " + NodeId(*first).to_string() +
-                              ": lock check not run");
+        return run.out(spec).skip("the node is locked by " + NodeId(*first).to_string() +
+                                  ": lock check not run");
     }
     auto second = lock_cmd(run, kOtherNodeId, last);
     auto released = lock_cmd(run, 0, last);
@@ -195,23 +196,23 @@ void memory_lock(CheckRun& run) {
         return v && *v != me && *v != kOtherNodeId && *v != 0;
     };
     if (foreign(second) || foreign(released))
-        return run.out().skip("another tool took the lock meanwhile (" + id(second) + ", " +
-                              id(released) + "): lock check not judged");
+        return run.out(spec).skip("another tool took the lock meanwhile (" + id(second) + ", " +
+                                  id(released) + "): lock check not judged");
     const bool ok = *first == me && second && *second == me && released && *released == 0;
-    run.out().judge(ok, "reserve holds our ID, another ID does not take it, zeros release it",
-                    "ours, ours, 0", id(first) + ", " + id(second) + ", " + id(released));
+    run.out(spec).judge(ok, "reserve holds our ID, another ID does not take it, zeros release it",
+                        "ours, ours, 0", id(first) + ", " + id(second) + ", " + id(released));
     if (released && *released != 0) lock_cmd(run, 0, last);
 }
 
-void memory_readonly_refused(CheckRun& run) {
-    if (run.options().read_only) return run.out(0xFF).skip("--read-only");
-    for (std::uint8_t sp : run.selected_spaces({0xFF, 0xFC})) {
+void memory_readonly_refused(CheckRun& run, const CheckSpec& spec) {
+    if (run.options().read_only) return run.out(spec, 0xFF).skip("--read-only");
+    for (std::uint8_t sp : run.selected_spaces(spec, {0xFF, 0xFC})) {
         const SpaceInfo& info = run.space_info(sp);
         if (!info.present) continue;
         // Rewrite the byte already there: nothing changes even on a faulty node.
         const MemResult& r = run.note(run.session().read(run.node(), static_cast<Space>(sp), 0, 1));
         if (!r.ok || r.data.empty()) {
-            run.out(sp).skip("byte 0 of space " + hex(sp, 2) + " unreadable: " + describe(r));
+            run.out(spec, sp).skip("byte 0 of space " + hex(sp, 2) + " unreadable: " + describe(r));
             continue;
         }
         const std::vector<std::uint8_t> byte = r.data;
@@ -226,7 +227,7 @@ void memory_readonly_refused(CheckRun& run) {
                 " (252 is read-only only by implication: Space Info does not "
                 "flag it read-only)";
         }
-        run.out(sp).refusal(refused, "a failure with an error code (0x1083)");
+        run.out(spec, sp).refusal(refused, "a failure with an error code (0x1083)");
     }
 }
 

@@ -122,14 +122,14 @@ std::string restore(CheckRun& run, std::uint8_t sp, std::uint32_t address,
 
 // ---- memory.read-at-highest.<sp> ----
 
-void read_at_highest(CheckRun& run) {
-    for (std::uint8_t sp : run.selected_spaces(bounded_spaces(run))) {
+void read_at_highest(CheckRun& run, const CheckSpec& spec) {
+    for (std::uint8_t sp : run.selected_spaces(spec, bounded_spaces(run))) {
         const std::uint32_t highest = run.space_info(sp).highest_address;
         const MemResult r = read(run, sp, highest, 1);
         const std::string what = "1-byte read at " + hex(highest, 8) + " of " + space_name(sp) +
                                  " (Space Info's highest address)";
         if (r.ok && !r.data.empty()) {
-            run.out(sp).pass(what + " returned data");
+            run.out(spec, sp).pass(what + " returned data");
             continue;
         }
         std::string message =
@@ -141,22 +141,22 @@ void read_at_highest(CheckRun& run) {
                 message += "; " + hex(highest - 1, 8) +
                            " reads: Space Info gives the size, not the highest address";
         }
-        run.out(sp).fail(message, "1 byte", describe(r));
+        run.out(spec, sp).fail(message, "1 byte", describe(r));
     }
 }
 
 // ---- memory.read-past-end.<sp> ----
 
-void read_past_end(CheckRun& run) {
-    for (std::uint8_t sp : run.selected_spaces(bounded_spaces(run))) {
+void read_past_end(CheckRun& run, const CheckSpec& spec) {
+    for (std::uint8_t sp : run.selected_spaces(spec, bounded_spaces(run))) {
         // Past a highest address that is too small lies data: that is the other check's finding.
         if (std::string doubt = run.highest_too_small(sp); !doubt.empty()) {
-            run.out(sp).skip(doubt);
+            run.out(spec, sp).skip(doubt);
             continue;
         }
         const std::uint32_t highest = run.space_info(sp).highest_address;
         if (highest == 0xFFFFFFFFu) {
-            run.out(sp).skip(space_name(sp) + " ends at 0xFFFFFFFF: no address past it");
+            run.out(spec, sp).skip(space_name(sp) + " ends at 0xFFFFFFFF: no address past it");
             continue;
         }
         const MemResult next = read(run, sp, highest + 1, 8);
@@ -180,10 +180,10 @@ void read_past_end(CheckRun& run) {
             also = " and at " + hex(far, 8);
         }
         if (verdict.status == Status::kPass)
-            run.out(sp).pass("reads past the end of " + space_name(sp) + " (at " +
-                             hex(highest + 1, 8) + also + ") refused with 0x1082");
+            run.out(spec, sp).pass("reads past the end of " + space_name(sp) + " (at " +
+                                   hex(highest + 1, 8) + also + ") refused with 0x1082");
         else
-            run.out(sp).refusal(verdict, "a failure with an error code (0x1082)");
+            run.out(spec, sp).refusal(verdict, "a failure with an error code (0x1082)");
     }
 }
 
@@ -303,8 +303,8 @@ std::string stored_past_end(std::uint8_t sp, const LastByte& last) {
 // No "shall" of MemoryConfigurationS makes a node refuse a write crossing the end of a space
 // (§4.3 defines 0x1082 for use; the TN says "should"), so an accepted one is a WARN; an unanswered
 // write breaks DatagramTransportS §6 (every datagram answered) and FAILs.
-void judge_crossing(CheckRun& run, std::uint8_t sp, const LastByte& last, const MemResult& w,
-                    const std::string& past_end, const std::string& changed) {
+void judge_crossing(CheckRun& run, const CheckSpec& spec, std::uint8_t sp, const LastByte& last,
+                    const MemResult& w, const std::string& past_end, const std::string& changed) {
     std::string what =
         "2-byte write at " + hex(last.address, 8) + " crossing the end of " + space_name(sp);
     if (last.below_highest)
@@ -315,36 +315,37 @@ void judge_crossing(CheckRun& run, std::uint8_t sp, const LastByte& last, const 
                                  : "; the node may have stored " + past_end +
                                        ", where no tool can read it back or restore it";
     if (w.ok) {
-        run.out(sp).warn(what + " was accepted" + kept +
-                         (changed.empty() ? "; no byte a tool can read changed" : after) +
-                         " (0x1082 is the code MemoryConfigurationS §4.3 defines for it)");
+        run.out(spec, sp).warn(what + " was accepted" + kept +
+                               (changed.empty() ? "; no byte a tool can read changed" : after) +
+                               " (0x1082 is the code MemoryConfigurationS §4.3 defines for it)");
     } else if (w.timed_out) {
-        run.out(sp).fail(what + ": no answer" + kept + after +
-                             " (DatagramTransportS §6: every datagram is answered)",
-                         "Datagram Rejected or a Write Reply", "no answer");
+        run.out(spec, sp).fail(what + ": no answer" + kept + after +
+                                   " (DatagramTransportS §6: every datagram is answered)",
+                               "Datagram Rejected or a Write Reply", "no answer");
     } else if (!changed.empty()) {
-        run.out(sp).warn(what + " was refused with " + hex(w.error) + after);
+        run.out(spec, sp).warn(what + " was refused with " + hex(w.error) + after);
     } else {
         const std::string code = w.error ? hex(w.error) : "no error code";
-        run.out(sp).pass(what + " refused with " + code +
-                         (w.error == kOutOfBounds ? "" : " (0x1082 is the code defined for it)"));
+        run.out(spec, sp).pass(
+            what + " refused with " + code +
+            (w.error == kOutOfBounds ? "" : " (0x1082 is the code defined for it)"));
     }
 }
 
-void write_past_end_space(CheckRun& run, std::uint8_t sp) {
+void write_past_end_space(CheckRun& run, const CheckSpec& spec, std::uint8_t sp) {
     // Below the real end a 2-byte write at "the last byte" crosses nothing.
     if (std::string doubt = run.highest_too_small(sp); !doubt.empty())
-        return run.out(sp).skip(doubt);
+        return run.out(spec, sp).skip(doubt);
     std::string why;
     const std::optional<LastByte> last = last_byte(run, sp, why);
-    if (!last) return run.out(sp).skip(why);
+    if (!last) return run.out(spec, sp).skip(why);
     if (std::string p = protected_at(run, sp, last->address); !p.empty())
-        return run.out(sp).skip("the last byte of " + space_name(sp) + " belongs to " + p);
+        return run.out(spec, sp).skip("the last byte of " + space_name(sp) + " belongs to " + p);
     // Where a spilling node puts the extra byte is its own business (OpenMRN's 251: onto 253's
     // internal data): everything a tool can read is saved and put back at once when it changed.
     std::string unsafe;
     const std::optional<Snapshot> before = snapshot(run, unsafe);
-    if (!before) return run.out(sp).skip(unsafe);
+    if (!before) return run.out(spec, sp).skip(unsafe);
     const std::array<std::uint8_t, 2> data{last->value, last->value};
     MemResult w;
     {
@@ -352,17 +353,17 @@ void write_past_end_space(CheckRun& run, std::uint8_t sp) {
         WriteLedger::PastEndPermit permit(run.session().ledger(), sp);
         w = write(run, sp, last->address, data);
     }
-    if (!w.not_sent.empty()) return run.out(sp).skip("not sent: " + w.not_sent);
-    judge_crossing(run, sp, *last, w, stored_past_end(sp, *last),
+    if (!w.not_sent.empty()) return run.out(spec, sp).skip("not sent: " + w.not_sent);
+    judge_crossing(run, spec, sp, *last, w, stored_past_end(sp, *last),
                    undo_changes(run, sp, *last, *before));
 }
 
-void write_past_end(CheckRun& run) {
-    for (std::uint8_t sp : run.selected_spaces(writable_spaces(run))) {
+void write_past_end(CheckRun& run, const CheckSpec& spec) {
+    for (std::uint8_t sp : run.selected_spaces(spec, writable_spaces(run))) {
         if (run.options().read_only)
-            run.out(sp).skip("--read-only");
+            run.out(spec, sp).skip("--read-only");
         else
-            write_past_end_space(run, sp);
+            write_past_end_space(run, spec, sp);
     }
 }
 
@@ -422,8 +423,8 @@ std::string masked_step(CheckRun& run, const MaskTarget& t, std::uint8_t v, std:
     return problem;
 }
 
-void write_under_mask(CheckRun& run) {
-    Verdict out = run.out();
+void write_under_mask(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     if (run.options().read_only) return out.skip("--read-only");
     run.config_options();
     const auto& options = run.ctx().options;
@@ -450,8 +451,8 @@ void write_under_mask(CheckRun& run) {
 
 // ---- memory.update-complete ----
 
-void update_complete(CheckRun& run) {
-    Verdict out = run.out();
+void update_complete(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     // It writes nothing, but tells the node its configuration changed: not under --read-only.
     if (run.options().read_only) return out.skip("--read-only");
     Session& s = run.session();
@@ -476,8 +477,8 @@ void update_complete(CheckRun& run) {
 
 // ---- memory.options-write-lengths ----
 
-void options_write_lengths(CheckRun& run) {
-    Verdict out = run.out();
+void options_write_lengths(CheckRun& run, const CheckSpec& spec) {
+    Verdict out = run.out(spec);
     run.config_options();
     const auto& options = run.ctx().options;
     if (!options) return out.skip("no Get Configuration Options reply");

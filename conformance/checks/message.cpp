@@ -4,46 +4,48 @@
 
 namespace olcb::conform::checks {
 namespace {
-void oir_unknown_mti(CheckRun& run) {
+void oir_unknown_mti(CheckRun& run, const CheckSpec& spec) {
     const std::optional<std::uint16_t> code = run.frame_probe().oir;
     if (!code)
-        return run.out().fail("unknown addressed MTI 0x04F9 not answered with an OIR echoing it",
-                              "OIR echoing 04F9", "no such OIR");
+        return run.out(spec).fail(
+            "unknown addressed MTI 0x04F9 not answered with an OIR echoing it", "OIR echoing 04F9",
+            "no such OIR");
     const std::string what = "unknown addressed MTI 0x04F9 answered with OIR " + hex(*code);
     // MessageNetworkS §3.5.5 lets the code be 0; a temporary one says "try again", which an
     // unknown MTI never deserves.
-    if (*code == 0 || (*code & 0xF000) == 0x1000) return run.out().pass(what);
-    run.out().warn(what + ": not a permanent error code (0x1xxx), yet retrying cannot help");
+    if (*code == 0 || (*code & 0xF000) == 0x1000) return run.out(spec).pass(what);
+    run.out(spec).warn(what + ": not a permanent error code (0x1xxx), yet retrying cannot help");
 }
 
-void verify_addressed(CheckRun& run) {
-    run.out().judge(run.frame_probe().verified,
-                    "Verify Node ID addressed answered with Verified Node ID", "Verified Node ID",
-                    "no answer");
+void verify_addressed(CheckRun& run, const CheckSpec& spec) {
+    run.out(spec).judge(run.frame_probe().verified,
+                        "Verify Node ID addressed answered with Verified Node ID",
+                        "Verified Node ID", "no answer");
 }
 
-void verify_global(CheckRun& run) {
+void verify_global(CheckRun& run, const CheckSpec& spec) {
     auto found = run.session().find_node(run.node().id, run.options().answer_window);
-    run.out().judge(found.has_value(), "Verify Node ID global with the node ID answered",
-                    "Verified Node ID", "no answer");
+    run.out(spec).judge(found.has_value(), "Verify Node ID global with the node ID answered",
+                        "Verified Node ID", "no answer");
 }
 
-void unknown_global_ignored(CheckRun& run) {
+void unknown_global_ignored(CheckRun& run, const CheckSpec& spec) {
     // An answer is a message to us (OIR, anything addressed): a global message from the node in
     // the window may answer another tool on the segment.
     // MessageNetworkS §3.5.2: the node may drop it; an answer is allowed, only noted.
     const SilenceAnswers& a = silence_probe(run);
-    if (a.to_us.empty()) return run.out().pass("unknown global MTI 0x0930 ignored silently");
-    run.out().warn("unknown global MTI 0x0930 answered with " + a.to_us +
-                   " addressed to lcc-conform (allowed; dropping it silently is the usual way)");
+    if (a.to_us.empty()) return run.out(spec).pass("unknown global MTI 0x0930 ignored silently");
+    run.out(spec).warn(
+        "unknown global MTI 0x0930 answered with " + a.to_us +
+        " addressed to lcc-conform (allowed; dropping it silently is the usual way)");
 }
 
-void pip_answered(CheckRun& run) {
-    run.out().judge(run.pip().has_value(), "Protocol Support Inquiry answered",
-                    "Protocol Support Reply", "no reply");
+void pip_answered(CheckRun& run, const CheckSpec& spec) {
+    run.out(spec).judge(run.pip().has_value(), "Protocol Support Inquiry answered",
+                        "Protocol Support Reply", "no reply");
 }
 
-void no_unsolicited(CheckRun& run) {
+void no_unsolicited(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     // The run itself is the quiet window; top it up so periodic chatter cannot slip through.
     const Duration elapsed = s.link().now() - run.started();
@@ -66,10 +68,11 @@ void no_unsolicited(CheckRun& run) {
         }
     }
     // No clause forbids it (a producer sends PCERs as it likes): a note for the developer.
-    if (seen.empty()) return run.out().pass("no unsolicited traffic from the node during the run");
-    run.out().warn("the node sent " + seen +
-                   " unasked during the run (allowed; noted because a "
-                   "busy node slows every tool on the segment)");
+    if (seen.empty())
+        return run.out(spec).pass("no unsolicited traffic from the node during the run");
+    run.out(spec).warn("the node sent " + seen +
+                       " unasked during the run (allowed; noted because a "
+                       "busy node slows every tool on the segment)");
 }
 
 }  // namespace

@@ -123,35 +123,37 @@ const SilenceAnswers& silence_probe(CheckRun& run) {
 namespace {
 
 // One "addressed to another node: silence" check, from the shared probe.
-void silent_to_other(CheckRun& run, std::string SilenceAnswers::*seen_of, const std::string& what) {
+void silent_to_other(CheckRun& run, const CheckSpec& spec, std::string SilenceAnswers::*seen_of,
+                     const std::string& what) {
     const SilenceAnswers& a = silence_probe(run);
-    if (!a.has_other) return run.out().skip("no unused alias to address");
-    if (!a.judged) return run.out().skip("other sources spoke in every silence window: not judged");
+    if (!a.has_other) return run.out(spec).skip("no unused alias to address");
+    if (!a.judged)
+        return run.out(spec).skip("other sources spoke in every silence window: not judged");
     const std::string& seen = a.*seen_of;
-    run.out().judge(seen.empty(),
-                    what + " addressed to alias " + hex(a.other, 3) + " (no node's) ignored",
-                    "silence", seen.empty() ? "" : seen + " from the node");
+    run.out(spec).judge(seen.empty(),
+                        what + " addressed to alias " + hex(a.other, 3) + " (no node's) ignored",
+                        "silence", seen.empty() ? "" : seen + " from the node");
 }
 
 }  // namespace
 
 // me20: a Verify addressed elsewhere is not the node's to answer, even carrying its node ID.
-void verify_other_silent(CheckRun& run) {
-    silent_to_other(run, &SilenceAnswers::verified, "Verify Node ID with the node's ID");
+void verify_other_silent(CheckRun& run, const CheckSpec& spec) {
+    silent_to_other(run, spec, &SilenceAnswers::verified, "Verify Node ID with the node's ID");
 }
 
 // me30: a Protocol Support Inquiry addressed elsewhere gets no reply from this node.
-void pip_other_silent(CheckRun& run) {
-    silent_to_other(run, &SilenceAnswers::psr, "Protocol Support Inquiry");
+void pip_other_silent(CheckRun& run, const CheckSpec& spec) {
+    silent_to_other(run, spec, &SilenceAnswers::psr, "Protocol Support Inquiry");
 }
 
 // me40: only the addressee rejects an MTI it does not know.
-void oir_other_silent(CheckRun& run) {
-    silent_to_other(run, &SilenceAnswers::oir, "unknown MTI 0x04F9");
+void oir_other_silent(CheckRun& run, const CheckSpec& spec) {
+    silent_to_other(run, spec, &SilenceAnswers::oir, "unknown MTI 0x04F9");
 }
 
 // me30: bytes 3-5 of the reply carry no protocol yet ("send as 0").
-void pip_fourth_byte(CheckRun& run) {
+void pip_fourth_byte(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const std::uint16_t alias = run.alias();
     Message psi;
@@ -164,36 +166,36 @@ void pip_fourth_byte(CheckRun& run) {
             return m.mti == Mti::kProtocolSupportReply && m.source.alias == alias;
         },
         run.options().answer_window);
-    if (!reply) return run.out().skip("no Protocol Support Reply (see message.pip-answered)");
+    if (!reply) return run.out(spec).skip("no Protocol Support Reply (see message.pip-answered)");
     const std::vector<std::uint8_t>& p = reply->payload;
     std::string bad;
     for (std::size_t i = 3; i < p.size(); ++i)
         if (p[i] != 0 && bad.empty()) bad = "byte " + std::to_string(i + 1) + " is " + hex(p[i], 2);
     if (bad.empty())
-        return run.out().pass("Protocol Support Reply of " + std::to_string(p.size()) +
-                              " bytes: the reserved bytes from the 4th on are 0");
-    run.out().fail("Protocol Support Reply: " + bad + "; bytes 4-6 are reserved (send as 0)", "0",
-                   bad);
+        return run.out(spec).pass("Protocol Support Reply of " + std::to_string(p.size()) +
+                                  " bytes: the reserved bytes from the 4th on are 0");
+    run.out(spec).fail("Protocol Support Reply: " + bad + "; bytes 4-6 are reserved (send as 0)",
+                       "0", bad);
 }
 
 // me60: the simple bit and the Verified Node ID MTI both say whether the node is simple.
-void pip_simple_bit(CheckRun& run) {
+void pip_simple_bit(CheckRun& run, const CheckSpec& spec) {
     const auto& pip = run.pip();
-    if (!pip) return run.out().skip("no Protocol Support Reply (see message.pip-answered)");
+    if (!pip) return run.out(spec).skip("no Protocol Support Reply (see message.pip-answered)");
     const auto& mti = run.frame_probe().verified_mti;
-    if (!mti) return run.out().skip("no Verified Node ID (see message.verify-addressed)");
+    if (!mti) return run.out(spec).skip("no Verified Node ID (see message.verify-addressed)");
     const bool bit = pip->has(Protocol::kSimpleProtocol);
     const bool simple_mti = *mti == Mti::kVerifiedNodeIdSimple;
     const std::string used = std::string(mti_name(*mti)) + " (" + hex(to_u16(*mti)) + ")";
     const std::string state = bit ? "set" : "clear";
-    run.out().judge(
+    run.out(spec).judge(
         bit == simple_mti,
         "PIP Simple Protocol bit " + state + ", and the node answers Verify with " + used,
         bit ? "Verified Node ID Simple (0x0171)" : "Verified Node ID (0x0170)", used);
 }
 
 // me50: a Verified Node ID carrying the node's own ID says another node claims it.
-void duplicate_node_id(CheckRun& run) {
+void duplicate_node_id(CheckRun& run, const CheckSpec& spec) {
     Session& s = run.session();
     const std::size_t mark = s.frame_mark();
     // From our alias, injected: our own stack and the session's tracking never see it, so the
@@ -214,17 +216,18 @@ void duplicate_node_id(CheckRun& run) {
     s.run_until(reported, run.options().answer_window);
     const bool answers = s.ping(run.node(), run.options().answer_window);
     const std::string event = "duplicate-node-ID PCER 01.01.00.00.00.00.02.01";
-    if (pcer && answers) return run.out().pass(event + " sent; the node still answers Verify");
+    if (pcer && answers) return run.out(spec).pass(event + " sent; the node still answers Verify");
     if (pcer)
-        return run.out().warn(event +
-                              " sent, then no answer to Verify Node ID: "
-                              "CanFrameTransferS 6.2.6 has a node stay silent after that report "
-                              "until reset; the rest of the run cannot reach it");
+        return run.out(spec).warn(
+            event +
+            " sent, then no answer to Verify Node ID: "
+            "CanFrameTransferS 6.2.6 has a node stay silent after that report "
+            "until reset; the rest of the run cannot reach it");
     if (answers)
-        return run.out().warn("no " + event +
-                              " (optional indication; OlcbChecker treats it as "
-                              "a partial pass); the node still answers Verify");
-    run.out().fail(
+        return run.out(spec).warn("no " + event +
+                                  " (optional indication; OlcbChecker treats it as "
+                                  "a partial pass); the node still answers Verify");
+    run.out(spec).fail(
         "after a Verified Node ID carrying its node ID the node no longer answers "
         "Verify Node ID, and sent no duplicate-node-ID report",
         "an answer to Verify Node ID (and optionally the PCER)", "no answer");

@@ -32,31 +32,33 @@ std::string first_difference(std::span<const Field> fields, const std::string& s
     return {};
 }
 
-void snip_version_bytes(CheckRun& run) {
+void snip_version_bytes(CheckRun& run, const CheckSpec& spec) {
     const auto& raw = run.snip_raw();
-    if (!raw || raw->empty() || !run.ctx().snip) return run.out().skip("no SNIP reply");
+    if (!raw || raw->empty() || !run.ctx().snip) return run.out(spec).skip("no SNIP reply");
     // SimpleNodeInformationS §5.1: 0x01 counts as the current version; §5.2: higher ones are
     // later versions with more strings.
     const unsigned fixed = (*raw)[0];
     const unsigned user = run.ctx().snip->user_version;
     const std::string seen = std::to_string(fixed) + ", " + std::to_string(user);
     if ((fixed == 1 || fixed == 4) && (user == 1 || user == 2))
-        return run.out().pass("SNIP version bytes " + seen);
+        return run.out(spec).pass("SNIP version bytes " + seen);
     if (fixed >= 4 && user >= 2)
-        return run.out().warn("SNIP version bytes " + seen +
-                              ": a later version than the standard knows (tools ignore the extra "
-                              "strings)");
-    run.out().fail("SNIP version bytes " + seen + ": not a valid version", "1 or 4, 1 or 2", seen);
+        return run.out(spec).warn(
+            "SNIP version bytes " + seen +
+            ": a later version than the standard knows (tools ignore the extra "
+            "strings)");
+    run.out(spec).fail("SNIP version bytes " + seen + ": not a valid version", "1 or 4, 1 or 2",
+                       seen);
 }
 
 }  // namespace
 
-void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::string& what,
-                Status bad_status) {
+void judge_utf8(CheckRun& run, const CheckSpec& spec, const std::vector<NamedText>& texts,
+                const std::string& what, Status bad_status) {
     std::vector<const NamedText*> bad;
     for (const NamedText& t : texts)
         if (!base::is_valid_utf8(t.text)) bad.push_back(&t);
-    if (bad.empty()) return run.out().pass(what);
+    if (bad.empty()) return run.out(spec).pass(what);
     // The bytes themselves, in hex: what U+FFFD stands for is what the firmware author needs.
     const auto shown = [](const NamedText& t) {
         return t.name + " " + show_node_text(t.text, true, t.text.size());
@@ -67,17 +69,17 @@ void judge_utf8(CheckRun& run, const std::vector<NamedText>& texts, const std::s
         message += " (and " + std::to_string(bad.size() - 1) + " more: see the details)";
         for (const NamedText* t : bad) details.push_back(shown(*t));
     }
-    run.out().add(bad_status, std::move(message), "valid UTF-8", shown(*bad.front()),
-                  std::move(details));
+    run.out(spec).add(bad_status, std::move(message), "valid UTF-8", shown(*bad.front()),
+                      std::move(details));
 }
 
 namespace {
 
-void snip_utf8(CheckRun& run) {
+void snip_utf8(CheckRun& run, const CheckSpec& spec) {
     run.snip_raw();
-    if (!run.ctx().snip) return run.out().skip("depends on snip.version-bytes: no SNIP reply");
+    if (!run.ctx().snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
     const memory::Snip& sn = *run.ctx().snip;
-    judge_utf8(run,
+    judge_utf8(run, spec,
                {{"manufacturer", sn.manufacturer},
                 {"model", sn.model},
                 {"hardware version", sn.hardware_version},
@@ -88,13 +90,13 @@ void snip_utf8(CheckRun& run) {
                Status::kWarn);  // only CommonInformationTN §2.5 says SNIP text is UTF-8
 }
 
-void snip_matches_acdi(CheckRun& run) {
+void snip_matches_acdi(CheckRun& run, const CheckSpec& spec) {
     run.snip_raw();
     run.acdi_blocks();
     CheckContext& ctx = run.ctx();
-    if (!ctx.snip) return run.out().skip("depends on snip.version-bytes: no SNIP reply");
+    if (!ctx.snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
     if (!ctx.acdi_manufacturer || !ctx.acdi_user)
-        return run.out().skip("spaces 252/251 not read (no <acdi/> in the CDI, or unreadable)");
+        return run.out(spec).skip("spaces 252/251 not read (no <acdi/> in the CDI, or unreadable)");
     const memory::Snip from = memory::snip_from_acdi(*ctx.acdi_manufacturer, *ctx.acdi_user);
     const memory::Snip& sn = *ctx.snip;
     std::string want, got;
@@ -106,17 +108,18 @@ void snip_matches_acdi(CheckRun& run) {
                           {"user description", &from.user_description, &sn.user_description}};
     std::string diff = first_difference(fixed, "ACDI 252", want, got);
     if (diff.empty()) diff = first_difference(user, "ACDI 251", want, got);
-    run.out().judge(diff.empty(),
-                    diff.empty() ? "SNIP strings equal the ACDI 252/251 strings" : diff, want, got);
+    run.out(spec).judge(diff.empty(),
+                        diff.empty() ? "SNIP strings equal the ACDI 252/251 strings" : diff, want,
+                        got);
 }
 
-void snip_matches_cdi(CheckRun& run) {
+void snip_matches_cdi(CheckRun& run, const CheckSpec& spec) {
     run.snip_raw();
     run.cdi();
     CheckContext& ctx = run.ctx();
-    if (!ctx.snip) return run.out().skip("depends on snip.version-bytes: no SNIP reply");
+    if (!ctx.snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
     if (!ctx.document || !ctx.document->identification)
-        return run.out().skip("the CDI has no <identification> (or did not parse)");
+        return run.out(spec).skip("the CDI has no <identification> (or did not parse)");
     const auto& id = *ctx.document->identification;
     const memory::Snip& sn = *ctx.snip;
     // §5.1.1 compares the tags the CDI has: all four are optional in the schema.
@@ -127,11 +130,12 @@ void snip_matches_cdi(CheckRun& run) {
                            Field{"software version", &id.software_version, &sn.software_version}})
         if (!f.want->empty()) present.push_back(f);
     if (present.empty())
-        return run.out().skip("the CDI's <identification> names none of the four strings");
+        return run.out(spec).skip("the CDI's <identification> names none of the four strings");
     std::string want, got;
     const std::string diff = first_difference(present, "CDI <identification>", want, got);
-    run.out().judge(diff.empty(),
-                    diff.empty() ? "SNIP strings equal the CDI <identification>" : diff, want, got);
+    run.out(spec).judge(diff.empty(),
+                        diff.empty() ? "SNIP strings equal the CDI <identification>" : diff, want,
+                        got);
 }
 
 }  // namespace

@@ -87,8 +87,8 @@ bool runnable(CheckRun& run, Verdict& v) {
     return true;
 }
 
-void stream_advertised(CheckRun& run) {
-    Verdict v = run.out();
+void stream_advertised(CheckRun& run, const CheckSpec& spec) {
+    Verdict v = run.out(spec);
     const StreamSupport& s = support(run);
     if (run.options().no_stream) return v.skip("--no-stream");
     if (!s.pip && !s.options) return v.skip("node does not advertise streams");
@@ -106,8 +106,8 @@ void stream_advertised(CheckRun& run) {
                      : "PIP Stream bit; Options offers no stream reads (streams for other uses)");
 }
 
-void stream_cdi_read(CheckRun& run) {
-    Verdict v = run.out();
+void stream_cdi_read(CheckRun& run, const CheckSpec& spec) {
+    Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
     const StreamReadResult& r = cdi_stream(run);
     const std::vector<std::uint8_t>& dg = run.cdi().result.data;
@@ -126,8 +126,8 @@ void stream_cdi_read(CheckRun& run) {
            "), the " + std::to_string(dg.size()) + " of the datagram download first");
 }
 
-void stream_complete(CheckRun& run) {
-    Verdict v = run.out();
+void stream_complete(CheckRun& run, const CheckSpec& spec) {
+    Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
     const StreamReadResult& r = cdi_stream(run);
     if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
@@ -146,8 +146,8 @@ void stream_complete(CheckRun& run) {
            (r.complete_count ? ", count " + std::to_string(*r.complete_count) : ", no count"));
 }
 
-void stream_buffer_negotiation(CheckRun& run) {
-    Verdict v = run.out();
+void stream_buffer_negotiation(CheckRun& run, const CheckSpec& spec) {
+    Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
     const StreamReadResult& r = windowed(run);
     if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
@@ -162,8 +162,8 @@ void stream_buffer_negotiation(CheckRun& run) {
            ", at most " + std::to_string(r.max_in_window) + " bytes per Proceed");
 }
 
-void stream_proceed(CheckRun& run) {
-    Verdict v = run.out();
+void stream_proceed(CheckRun& run, const CheckSpec& spec) {
+    Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
     const StreamReadResult& r = windowed(run);
     if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
@@ -186,8 +186,8 @@ void stream_proceed(CheckRun& run) {
            " ms: nothing came before our Proceed");
 }
 
-void stream_read_past_end(CheckRun& run) {
-    Verdict v = run.out();
+void stream_read_past_end(CheckRun& run, const CheckSpec& spec) {
+    Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
     const SpaceInfo& info = run.space_info(0xFF);
     if (!info.present) return v.skip("space 0xFF has no Space Info");
