@@ -226,7 +226,7 @@ std::string read_journal(const Opening& o, std::vector<std::uint8_t>& raw) {
     }
     // Read no more than the largest record an image of this size can have.
     const std::uint64_t limit = journal::kHeaderSize + o.bytes.size() + journal::kTrailerSize;
-    raw.resize(static_cast<std::size_t>(std::min<std::uint64_t>(jst.st_size, limit)));
+    raw.resize(static_cast<std::size_t>(std::min(static_cast<std::uint64_t>(jst.st_size), limit)));
     const ssize_t got = pread_all(o.journal_fd.get(), raw, 0);
     if (got < 0) return errno_text("cannot read journal", o.journal_path);
     raw.resize(static_cast<std::size_t>(got));

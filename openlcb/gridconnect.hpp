@@ -48,14 +48,16 @@ public:
                 feed_char(*p++, on_frame);
                 continue;
             }
-            const auto* colon = static_cast<const char*>(std::memchr(p, ':', end - p));
+            const auto* colon =
+                static_cast<const char*>(std::memchr(p, ':', static_cast<std::size_t>(end - p)));
             if (colon == nullptr) return;  // only garbage or whitespace left
             // Fast path: a whole clean frame inside this chunk is parsed in place, no copy.
-            const char* limit = colon + std::min<std::size_t>(end - colon, kMaxFrameText);
+            const char* limit =
+                colon + std::min(end - colon, static_cast<std::ptrdiff_t>(kMaxFrameText));
             const char* q = colon + 1;
             while (q < limit && !kStopChar[static_cast<unsigned char>(*q)]) ++q;
             if (q < limit && *q == ';') {
-                deliver(parse_frame(std::string_view(colon, q - colon + 1)), on_frame);
+                deliver(parse_frame(std::string_view(colon, q + 1)), on_frame);
                 p = q + 1;
                 continue;
             }
@@ -80,7 +82,9 @@ private:
     // specially (a restarting ':' and skipped whitespace).
     static constexpr auto kStopChar = [] {
         std::array<bool, 256> t{};
-        for (unsigned char c : {':', ';', ' ', '\t', '\r', '\n'}) t[c] = true;
+        for (const char c : {':', ';', ' ', '\t', '\r', '\n'}) {
+            t[static_cast<unsigned char>(c)] = true;
+        }
         return t;
     }();
 

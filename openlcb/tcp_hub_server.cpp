@@ -120,8 +120,8 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         if (on_connect) on_connect(remote);
     }
 
-    void log(const std::string& line) {
-        if (on_log) on_log(line);
+    void log(const std::string& text) {
+        if (on_log) on_log(text);
     }
 
     static std::string remote_of(const tcp::socket& socket) {
@@ -491,7 +491,9 @@ void TcpHubServer::stop() {
 
 std::size_t TcpHubServer::client_count() const {
     std::size_t n = 0;
-    for (const auto& c : impl_->clients) n += c->closed ? 0 : 1;
+    for (const auto& c : impl_->clients) {
+        if (!c->closed) ++n;
+    }
     return n;
 }
 
