@@ -143,7 +143,7 @@ void parse_and_layout(benchmark::State& state, const std::string& text) {
         variables = laid.layout->variable_count();
         benchmark::DoNotOptimize(variables);
     }
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(text.size()));
     state.counters["bytes"] = static_cast<double>(text.size());
     state.counters["variables"] = static_cast<double>(variables);
 }
@@ -174,7 +174,7 @@ void BM_ValidateLargestCorpusFile(benchmark::State& state) {
         }
         benchmark::DoNotOptimize(report.diagnostics.data());
     }
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * text.size()));
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(text.size()));
     state.counters["bytes"] = static_cast<double>(text.size());
 }
 BENCHMARK(BM_ValidateLargestCorpusFile)->Unit(benchmark::kMicrosecond);

@@ -2,6 +2,7 @@
 // Target (brief D): >= 10 M frames/s each way in a Release build.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -12,7 +13,8 @@ namespace {
 // A realistic mix: empty, node-ID, event and full datagram frames.
 std::vector<olcb::CanFrame> sample_frames() {
     std::vector<olcb::CanFrame> frames;
-    for (std::uint8_t len : {0, 6, 8, 8, 2, 7, 8, 3}) {
+    constexpr std::array<std::uint8_t, 8> kLengths{0, 6, 8, 8, 2, 7, 8, 3};
+    for (const std::uint8_t len : kLengths) {
         olcb::CanFrame f;
         f.id = 0x19490343u + len * 0x1000u;
         f.len = len;

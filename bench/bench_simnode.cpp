@@ -140,7 +140,7 @@ void bm_cdi_download_tcp(benchmark::State& state) {
             return;
         }
     }
-    state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * (cdi.size() + 1)));
+    state.SetBytesProcessed(state.iterations() * static_cast<std::int64_t>(cdi.size() + 1));
     state.counters["cdi_bytes"] = static_cast<double>(cdi.size() + 1);
 }
 BENCHMARK(bm_cdi_download_tcp)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -56,7 +56,7 @@ void bm_tcp_hub_three_clients(benchmark::State& state) {
     }
     std::vector<std::unique_ptr<TcpClient>> clients;
     std::vector<std::uint64_t> received(3, 0);
-    for (int i = 0; i < 3; ++i) {
+    for (std::size_t i = 0; i < received.size(); ++i) {
         clients.push_back(std::make_unique<TcpClient>(io, "127.0.0.1", hub.port()));
         clients.back()->set_handler([&received, i](const CanFrame&) { ++received[i]; });
         clients.back()->start();

@@ -105,8 +105,8 @@ private:
 }  // namespace
 
 struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
-    Impl(boost::asio::io_context& io, ControlCommands& commands)
-        : acceptor(io), commands(commands) {}
+    Impl(boost::asio::io_context& io, ControlCommands& answerer)
+        : acceptor(io), commands(answerer) {}
 
     void accept() {
         acceptor.async_accept(

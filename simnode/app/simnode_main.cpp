@@ -419,7 +419,9 @@ private:
         startup_timer_.async_wait([this](const boost::system::error_code& ec) {
             if (ec) return;
             std::size_t ready = 0;
-            for (const auto& node : nodes_) ready += node->stack().initialized() ? 1 : 0;
+            for (const auto& node : nodes_) {
+                if (node->stack().initialized()) ++ready;
+            }
             if (ready < nodes_.size()) {
                 watch_startup();
                 return;
