@@ -12,6 +12,7 @@
 #include "openlcb/bus_pacer.hpp"
 #include "openlcb/flag_guard.hpp"
 #include "openlcb/gridconnect.hpp"
+#include "openlcb/tcp_listener.hpp"
 
 namespace olcb {
 
@@ -429,20 +430,7 @@ TcpHubServer::~TcpHubServer() {
 }
 
 boost::system::error_code TcpHubServer::listen(const std::string& address, std::uint16_t port) {
-    boost::system::error_code ec;
-    const auto ip = boost::asio::ip::make_address(address, ec);
-    if (ec) return ec;
-    const tcp::endpoint endpoint(ip, port);
-    auto& acceptor = impl_->acceptor;
-    if (acceptor.is_open()) return boost::asio::error::already_open;
-    if (acceptor.open(endpoint.protocol(), ec)) return ec;
-    // Lets a restarted hub bind its port again while old connections sit in TIME_WAIT.
-    if (acceptor.set_option(tcp::acceptor::reuse_address(true), ec)) return ec;
-    if (acceptor.bind(endpoint, ec) || acceptor.listen(tcp::socket::max_listen_connections, ec)) {
-        boost::system::error_code ignored;
-        acceptor.close(ignored);
-        return ec;
-    }
+    if (const auto ec = listen_on(impl_->acceptor, address, port)) return ec;
     impl_->stopped = false;
     impl_->accept();
     impl_->housekeeping();
@@ -450,10 +438,7 @@ boost::system::error_code TcpHubServer::listen(const std::string& address, std::
 }
 
 std::uint16_t TcpHubServer::port() const {
-    boost::system::error_code ec;
-    if (!impl_->acceptor.is_open()) return 0;
-    const auto endpoint = impl_->acceptor.local_endpoint(ec);
-    return ec ? 0 : endpoint.port();
+    return listening_port(impl_->acceptor);
 }
 
 Transport& TcpHubServer::add_local_endpoint(FrameHandler handler) {

@@ -285,6 +285,13 @@ TEST(TcpHubServer, ListenReportsBadAddressAndBusyPort) {
     TcpHubServer b(io);
     EXPECT_EQ(b.listen("127.0.0.1", a.port()), boost::asio::error::address_in_use);
     EXPECT_EQ(b.port(), 0);
+    // The failed bind closed b's listener again, so it can listen elsewhere; a listening a says
+    // so rather than opening a second listener.
+    EXPECT_FALSE(b.listen("127.0.0.1", 0));
+    EXPECT_NE(b.port(), 0);
+    EXPECT_EQ(a.listen("127.0.0.1", 0), boost::asio::error::already_open);
+    a.stop();
+    EXPECT_EQ(a.port(), 0);
 }
 
 }  // namespace
