@@ -5,18 +5,19 @@
 namespace olcb::conform::checks {
 namespace {
 
-// The ACDI checks apply to a CDI with <acdi/>; the others SKIP saying why.
-bool has_acdi(CheckRun& run, const CheckSpec& spec) {
-    if (!run.cdi().read_ok) {
+// The ACDI checks apply to a CDI with <acdi/>: the blocks read, else nullptr with the check
+// SKIPped saying why.
+const AcdiProbe* has_acdi(CheckRun& run, const CheckSpec& spec) {
+    const CdiDownload& cdi = run.probe<CdiDownload>();
+    if (!cdi.read_ok) {
         run.out(spec).skip("depends on cdi.read: the CDI could not be read");
-        return false;
+        return nullptr;
     }
-    if (!run.ctx().document || !run.ctx().document->acdi) {
+    if (!cdi.document || !cdi.document->acdi) {
         run.out(spec).skip("the CDI has no <acdi/>");
-        return false;
+        return nullptr;
     }
-    run.acdi_blocks();
-    return true;
+    return &run.probe<AcdiProbe>();
 }
 
 void version_byte(CheckRun& run, const CheckSpec& spec, const MemResult& r, unsigned want,
@@ -36,24 +37,26 @@ std::string_view slot(const std::vector<std::uint8_t>& block, std::size_t offset
 }
 
 void acdi_manufacturer_version(CheckRun& run, const CheckSpec& spec) {
-    if (!has_acdi(run, spec)) return;
-    version_byte(run, spec, run.acdi_manufacturer_result(), run.ctx().document->acdi->fixed,
+    const AcdiProbe* blocks = has_acdi(run, spec);
+    if (!blocks) return;
+    version_byte(run, spec, blocks->manufacturer_result, blocks->acdi->fixed,
                  "space 252 byte 0 equals <acdi fixed>");
 }
 
 void acdi_user_version(CheckRun& run, const CheckSpec& spec) {
-    if (!has_acdi(run, spec)) return;
-    version_byte(run, spec, run.acdi_user_result(), run.ctx().document->acdi->var,
+    const AcdiProbe* blocks = has_acdi(run, spec);
+    if (!blocks) return;
+    version_byte(run, spec, blocks->user_result, blocks->acdi->var,
                  "space 251 byte 0 equals <acdi var>");
 }
 
 void acdi_space_info(CheckRun& run, const CheckSpec& spec) {
     if (!has_acdi(run, spec)) return;
-    if (!acdi_conflict(run.ctx()).empty())
+    if (!acdi_conflict(run.probe<CdiDownload>().layout).empty())
         return run.out(spec).skip(
             "depends on cdi.acdi-spaces: the CDI's own segments overlap the ACDI blocks");
-    const SpaceInfo fc = run.space_info(0xFC);
-    const SpaceInfo fb = run.space_info(0xFB);
+    const SpaceInfo fc = run.probe<SpaceInfoProbe>(0xFC);
+    const SpaceInfo fb = run.probe<SpaceInfoProbe>(0xFB);
     auto seen = [](const SpaceInfo& i) {
         if (!i.present) return std::string(i.answered ? "not present" : "no answer");
         return std::to_string(i.highest_address) + (i.read_only ? " RO" : " RW");
@@ -78,18 +81,18 @@ void acdi_space_info(CheckRun& run, const CheckSpec& spec) {
 }
 
 void acdi_utf8(CheckRun& run, const CheckSpec& spec) {
-    if (!has_acdi(run, spec)) return;
-    const CheckContext& ctx = run.ctx();
-    if (!ctx.acdi_manufacturer)
+    const AcdiProbe* blocks = has_acdi(run, spec);
+    if (!blocks) return;
+    if (!blocks->manufacturer)
         return run.out(spec).skip(
             "depends on acdi.manufacturer-version: space 252 could not be read (" +
-            describe(run.acdi_manufacturer_result()) + ")");
-    if (!ctx.acdi_user)
+            describe(blocks->manufacturer_result) + ")");
+    if (!blocks->user)
         return run.out(spec).skip("depends on acdi.user-version: space 251 could not be read (" +
-                                  describe(run.acdi_user_result()) + ")");
+                                  describe(blocks->user_result) + ")");
     using namespace memory::acdi;
-    const auto& m = *ctx.acdi_manufacturer;
-    const auto& u = *ctx.acdi_user;
+    const auto& m = *blocks->manufacturer;
+    const auto& u = *blocks->user;
     judge_utf8(
         run, spec,
         {{"space 252 @1 manufacturer", slot(m, kManufacturerOffset, kManufacturerSize)},

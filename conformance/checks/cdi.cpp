@@ -8,7 +8,7 @@ namespace {
 
 // The download's checks judge nothing when it failed: say what they depend on instead.
 bool downloaded(CheckRun& run, const CheckSpec& spec) {
-    if (run.cdi().read_ok) return true;
+    if (run.probe<CdiDownload>().read_ok) return true;
     run.out(spec).skip("depends on cdi.read: space 0xFF returned no data");
     return false;
 }
@@ -32,7 +32,7 @@ Status status_of(cdi::RuleStatus status) {
 // for the same text served by a node.
 void text_rule(CheckRun& run, const CheckSpec& spec) {
     if (!downloaded(run, spec)) return;
-    for (const cdi::RuleFinding& f : run.rules()) {
+    for (const cdi::RuleFinding& f : run.probe<CdiDownload>().rules) {
         if (f.check_id != spec.id) continue;
         std::vector<std::string> details;
         details.reserve(f.diagnostics.size());
@@ -45,20 +45,20 @@ void text_rule(CheckRun& run, const CheckSpec& spec) {
 }
 
 void cdi_space_info(CheckRun& run, const CheckSpec& spec) {
-    const SpaceInfo& ff = run.space_info(0xFF);
+    const SpaceInfo& ff = run.probe<SpaceInfoProbe>(0xFF);
     // Get Address Space Information is not mandatory: unanswered says nothing about 0xFF.
     if (!ff.answered) return run.out(spec).skip("Get Address Space Information not answered");
-    if (!ff.present && !run.cdi().read_ok)
+    if (!ff.present && !run.probe<CdiDownload>().read_ok)
         return run.out(spec).skip("space 0xFF not present and no CDI read: the node has no CDI");
     run.out(spec).judge(ff.present && ff.read_only, "Space Info for 0xFF: present and read-only",
                         "present, read-only", ff.present ? "writable" : "not present");
 }
 
 void cdi_read(CheckRun& run, const CheckSpec& spec) {
-    const CdiDownload& d = run.cdi();
+    const CdiDownload& d = run.probe<CdiDownload>();
     if (d.read_ok) return run.out(spec).pass("space 0xFF read in 64-byte reads");
     // §4.2 asks only a node that has a CDI to serve it; one that claims none owes nothing.
-    const auto& pip = run.pip();
+    const auto& pip = run.probe<PipProbe>().reply;
     if (pip && !pip->has(Protocol::kCdi) && d.result.rejected)
         return run.out(spec).skip("the node claims no CDI (PIP) and rejects reads of 0xFF");
     run.out(spec).fail("space 0xFF returned no data", "data",
@@ -67,18 +67,19 @@ void cdi_read(CheckRun& run, const CheckSpec& spec) {
 
 void cdi_nul_terminated(CheckRun& run, const CheckSpec& spec) {
     if (!downloaded(run, spec)) return;
-    run.out(spec).judge(run.ctx().cdi_nul_found, "space 0xFF holds a NUL-terminated string",
-                        "a NUL",
-                        "no NUL in " + std::to_string(run.ctx().cdi_bytes.size()) + " bytes");
+    const CdiDownload& d = run.probe<CdiDownload>();
+    run.out(spec).judge(d.nul_found, "space 0xFF holds a NUL-terminated string", "a NUL",
+                        "no NUL in " + std::to_string(d.text.size()) + " bytes");
 }
 
 void cdi_nul_at_highest(CheckRun& run, const CheckSpec& spec) {
     if (!downloaded(run, spec)) return;
-    const SpaceInfo& ff = run.space_info(0xFF);
-    if (!run.ctx().cdi_nul_found || !ff.present)
+    const SpaceInfo& ff = run.probe<SpaceInfoProbe>(0xFF);
+    const CdiDownload& d = run.probe<CdiDownload>();
+    if (!d.nul_found || !ff.present)
         return run.out(spec).skip(
             "depends on cdi.nul-terminated and cdi.space-info: no NUL or no Space Info");
-    const auto size = static_cast<unsigned>(run.ctx().cdi_bytes.size());
+    const auto size = static_cast<unsigned>(d.text.size());
     if (ff.highest_address == size)
         return run.out(spec).pass("the NUL is at the highest address Space Info gives");
     // Padding after the NUL is legal; a space that ends before the text does is a note.
@@ -92,8 +93,8 @@ void cdi_nul_at_highest(CheckRun& run, const CheckSpec& spec) {
 
 }  // namespace
 
-std::string acdi_conflict(const CheckContext& ctx) {
-    return ctx.layout ? cdi::acdi_block_conflict(*ctx.layout) : std::string();
+std::string acdi_conflict(const std::optional<cdi::Layout>& layout) {
+    return layout ? cdi::acdi_block_conflict(*layout) : std::string();
 }
 
 std::vector<CheckSpec> cdi_checks() {

@@ -1,19 +1,20 @@
-// The state one node's protocol checks share: the session, what earlier checks learned (the
-// CheckContext), and probes that several checks judge (one exchange, asked once, on first use,
-// so any selection of checks works on its own). Check functions live in conformance/checks/.
+// The state one node's protocol checks share: the session, the results, what the node's answers
+// showed so far, and the probes: what several checks judge from one exchange, asked once on first
+// use (so any selection of checks works on its own) and kept in one typed cache, run.probe<P>().
+// A probe type says how it is asked (P::ask); the shared ones are in probes.hpp, the others in
+// the family file that uses them. Check functions live in conformance/checks/.
 #pragma once
 
-#include <any>
+#include <concepts>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
-#include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
-#include "cdi/rule_finding.hpp"
-#include "conformance/checks/check_context.hpp"
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/checks/protocol_checks.hpp"
 #include "conformance/link/session.hpp"
@@ -33,31 +34,6 @@ inline constexpr int kQuietAttempts = 3;
 /// Answer windows the frame probe adds while the segment still answers its global AME (a
 /// 1,000-node segment at 125 kbit/s needs about a second for their AMDs).
 inline constexpr int kSegmentAnswerRounds = 30;
-
-/// Answers to the injected control frames and first messages (AME, CID, unknown MTI, Verify).
-struct FrameProbe {
-    std::size_t amd = 0;               ///< AMD frames from the node with its node ID
-    std::size_t rid = 0;               ///< RID frames from the node
-    std::size_t segment_amd = 0;       ///< AMD frames from every other node (the global AME's)
-    std::optional<std::uint16_t> oir;  ///< the code of an OIR echoing the unknown MTI
-    bool verified = false;             ///< Verified Node ID to the addressed Verify
-    std::optional<Mti> verified_mti;   ///< which Verified MTI (simple or full) it used
-};
-
-/// 8-byte reads of the data space in both forms (the short form only for 0xFD-0xFF).
-struct FormProbe {
-    std::uint8_t space = 0xFF;
-    MemResult byte6;
-    std::optional<MemResult> short_form;
-};
-
-/// The CDI download of space 0xFF.
-struct CdiDownload {
-    MemResult result;      ///< the read_range() outcome
-    bool read_ok = false;  ///< data came
-    /// Bytes that came from past Space Info's highest address (it is too small when not 0).
-    std::uint32_t beyond_highest = 0;
-};
 
 /// Judges one request the standard refuses. MemoryConfigurationS requires a failure with an error
 /// code (§4.5, §4.9); the code itself is only recommended (MemoryConfigurationTN §2.4.3).
@@ -106,16 +82,36 @@ private:
     std::string id_;
 };
 
+/// A probe asked once per run: `static P P::ask(CheckRun&)` makes its exchange and returns what
+/// it learned.
+template <typename P>
+concept CheckProbe = requires(CheckRun& run) {
+    { P::ask(run) } -> std::same_as<P>;
+};
+
+/// A probe asked once per key (one space, one form of a request): `P::Key` (ordered) and
+/// `static P P::ask(CheckRun&, const P::Key&)`. A result whose `settled()` is false (Space Info
+/// that got no answer) is asked again on the next use.
+template <typename P>
+concept KeyedCheckProbe = requires(CheckRun& run, const typename P::Key& key) {
+    { P::ask(run, key) } -> std::same_as<P>;
+};
+
+/// What the node's answers to every exchange of the checks showed so far.
+struct Heard {
+    unsigned temporary_rejects = 0;  ///< temporary rejects retried
+    bool datagrams = false;          ///< a datagram was answered (Datagram Rejected too)
+    bool memory = false;             ///< a memory-config command got a reply (not Rejected)
+};
+
 /// One node's protocol checks in progress.
 class CheckRun {
 public:
-    CheckRun(Session& session, const NodeInfo& node, const ProtocolOptions& options,
-             CheckContext& ctx);
+    CheckRun(Session& session, const NodeInfo& node, const ProtocolOptions& options);
 
     Session& session() { return s_; }
     const NodeInfo& node() const { return node_; }
     const ProtocolOptions& options() const { return o_; }
-    CheckContext& ctx() { return ctx_; }
     /// The node's alias now: a node that re-initialised may have taken another one.
     std::uint16_t alias() const;
     /// True when the frame is an extended frame from the node's current alias.
@@ -154,83 +150,72 @@ public:
     MemResult note(MemResult r);
     /// note() without the copy.
     void tally(const MemResult& r);
+    /// What the exchanges tallied so far showed.
+    const Heard& heard() const { return heard_; }
 
-    // --- probes: asked once, on first use ---
-    const FrameProbe& frame_probe();
-    /// The SNIP reply's payload (nullopt: no reply).
-    const std::optional<std::vector<std::uint8_t>>& snip_raw();
-    /// The Protocol Support Reply (also in ctx().pip).
-    const std::optional<ProtocolSet>& pip();
-    /// Get Configuration Options (also in ctx().options); the exchange's outcome.
-    const MemResult& config_options();
-    /// The reply the Options exchange got, in words ("" before config_options()).
-    const std::string& config_options_reply() const { return options_reply_; }
-    /// Get Address Space Information for space (cached in ctx().spaces).
-    const SpaceInfo& space_info(std::uint8_t space);
-    /// Space 0xFF downloaded, parsed and laid out into ctx().
-    const CdiDownload& cdi();
-    /// cdi::check_rules() of the downloaded CDI text: the verdicts of the text-only cdi.* checks.
-    const std::vector<cdi::RuleFinding>& rules();
-    /// Spaces 252/251 read field by field into ctx() (only with <acdi/>): true when read.
-    bool acdi_blocks();
-    /// The outcome of reading 252 (after acdi_blocks()).
-    const MemResult& acdi_manufacturer_result() const { return acdi_manufacturer_result_; }
-    /// The outcome of reading 251 (after acdi_blocks()).
-    const MemResult& acdi_user_result() const { return acdi_user_result_; }
-    /// "depends on <id>: why" when a check finds Space Info's highest address of space too small
-    /// (the CDI goes on past it, the layout or ACDI needs more), so a check at that address would
-    /// only repeat the finding; "" when nothing says so.
-    std::string highest_too_small(std::uint8_t space);
-    /// True when any memory-config exchange got an answer (asks Options when none was made).
-    bool memory_works();
-    /// True when any datagram got an answer, Datagram Rejected included (asks Options when none
-    /// did).
-    bool datagrams_answered();
-    /// The spaces the CDI's segments use, in ascending order.
-    std::vector<std::uint8_t> layout_spaces();
-    /// The space the form checks read (a CDI space, 0xFD-0xFF preferred; else 0xFF).
-    std::uint8_t data_space();
-    /// The data space read in both forms.
-    const FormProbe& form_probe();
-    /// What a topic file's probe learned this run, by key (nullptr before it is remembered).
-    template <typename T>
-    const T* memo(const std::string& key) const {
-        auto it = memos_.find(key);
-        return it == memos_.end() ? nullptr : std::any_cast<T>(&it->second);
+    /// The probe P: asked on first use, the same result after.
+    template <CheckProbe P>
+    const P& probe() {
+        std::optional<P>& held = slot<P, std::optional<P>>();
+        if (!held) held.emplace(P::ask(*this));
+        return *held;
     }
-    /// Keeps a probe's outcome for the other checks of this run.
-    template <typename T>
-    const T& remember(const std::string& key, T value) {
-        return *std::any_cast<T>(&(memos_[key] = std::move(value)));
+    /// The keyed probe P for key: asked on first use (and again while not settled()).
+    template <KeyedCheckProbe P>
+    const P& probe(const typename P::Key& key) {
+        auto& held = slot<P, std::map<typename P::Key, P>>();
+        auto it = held.find(key);
+        if (it == held.end() || !settled(it->second))
+            it = held.insert_or_assign(key, P::ask(*this, key)).first;
+        return it->second;
+    }
+    /// Takes P's result out of the cache (nullopt when never asked): once the checks are done,
+    /// hand_over() gives it to the later phases this way.
+    template <CheckProbe P>
+    std::optional<P> release() {
+        return std::exchange(slot<P, std::optional<P>>(), std::nullopt);
+    }
+    /// release() of a keyed probe: every key's result.
+    template <KeyedCheckProbe P>
+    std::map<typename P::Key, P> release_each() {
+        return std::exchange(slot<P, std::map<typename P::Key, P>>(), {});
     }
 
 private:
-    /// Reads on past Space Info's highest address when the download ended there without a NUL.
-    void read_past_highest(CdiDownload& d, std::uint32_t len);
-    void count_probe_frames(FrameProbe& p, std::size_t& seen);
-    void count_probe_messages(FrameProbe& p, std::size_t& seen);
+    // One cache entry per probe type, holding T (the result, or the results by key).
+    struct Slot {
+        virtual ~Slot() = default;
+    };
+    template <typename T>
+    struct Held final : Slot {
+        T value;
+    };
+    // A distinct address per probe type: the cache's key, without RTTI.
+    template <typename P>
+    static constexpr char kTag = 0;
+
+    template <typename P, typename T>
+    T& slot() {
+        std::unique_ptr<Slot>& s = probes_[&kTag<P>];
+        if (!s) s = std::make_unique<Held<T>>();
+        return static_cast<Held<T>&>(*s).value;
+    }
+    template <typename P>
+    static bool settled(const P& p) {
+        if constexpr (requires { p.settled(); })
+            return p.settled();
+        else
+            return true;
+    }
 
     Session& s_;
     NodeInfo node_;
     ProtocolOptions o_;
-    CheckContext& ctx_;
     std::vector<CheckResult> out_;
     std::size_t start_frame_ = 0;
     TimePoint started_{};
-    bool memory_works_ = false;
-    bool datagram_answered_ = false;
-    std::optional<FrameProbe> frame_probe_;
-    bool snip_asked_ = false;
-    std::optional<std::vector<std::uint8_t>> snip_raw_;
-    bool pip_asked_ = false;
-    std::optional<MemResult> options_result_;
-    std::string options_reply_;
-    std::optional<CdiDownload> cdi_;
-    std::optional<bool> acdi_read_;
-    std::optional<std::vector<cdi::RuleFinding>> rules_;
-    std::optional<FormProbe> form_probe_;
-    std::map<std::string, std::any> memos_;
-    MemResult acdi_manufacturer_result_, acdi_user_result_;
+    Heard heard_;
+    std::map<const void*, std::unique_ptr<Slot>> probes_;
 };
 
 }  // namespace olcb::conform

@@ -1,7 +1,7 @@
 // The check families: each file of conformance/checks/ owns its registry entries (ID, order,
 // clause, strength, summary, function) and returns them from one list function here;
 // check_registry.cpp joins the lists and sorts them by order. Helpers shared between families
-// are declared below the lists.
+// and the probes only they share are declared below the lists; probes.hpp has the others.
 #pragma once
 
 #include <string>
@@ -9,12 +9,13 @@
 
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/checks/check_run.hpp"
+#include "conformance/checks/probes.hpp"
 
 namespace olcb::conform::checks {
 
-/// The CDI variables that overlap the ACDI blocks ("space 252 bytes 0..3, ..."); "" when none
-/// (cdi.cpp).
-std::string acdi_conflict(const CheckContext& ctx);
+/// The CDI variables of layout that overlap the ACDI blocks ("space 252 bytes 0..3, ..."); ""
+/// when none or without a layout (cdi.cpp).
+std::string acdi_conflict(const std::optional<cdi::Layout>& layout);
 
 /// One string from the node a check judges, named for its messages ("user name").
 struct NamedText {
@@ -28,7 +29,7 @@ void judge_utf8(CheckRun& run, const CheckSpec& spec, const std::vector<NamedTex
 
 /// What the node sent in one silence window after four probes that must go unanswered: an
 /// unknown global MTI, and Verify Node ID, Protocol Support Inquiry and an unknown MTI addressed
-/// to an alias no node uses (message_addressing.cpp; asked once per run).
+/// to an alias no node uses (a probe: message_addressing.cpp).
 struct SilenceAnswers {
     bool judged = false;     ///< a window without other sources' traffic was had
     bool has_other = false;  ///< an unused alias was found to address
@@ -37,9 +38,9 @@ struct SilenceAnswers {
     std::string verified;  ///< a Verified Node ID from the node
     std::string psr;       ///< a Protocol Support Reply (to us, the inquiry's sender)
     std::string oir;       ///< an OIR echoing the unknown addressed MTI (to us)
+
+    static SilenceAnswers ask(CheckRun& run);
 };
-/// The shared silence probe.
-const SilenceAnswers& silence_probe(CheckRun& run);
 
 /// Aliases no frame seen so far used, nor ours or the node's (frame_bus.cpp): sources for
 /// made-up traffic and destinations "another node" has.

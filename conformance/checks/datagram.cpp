@@ -5,7 +5,7 @@ namespace olcb::conform::checks {
 namespace {
 
 void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
-    const CdiDownload& d = run.cdi();
+    const CdiDownload& d = run.probe<CdiDownload>();
     if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to judge");
     if (d.result.datagram_ok_seen)
         return run.out(spec).pass("Datagram Received OK precedes every read reply");
@@ -16,7 +16,7 @@ void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
 }
 
 void datagram_reply_pending(CheckRun& run, const CheckSpec& spec) {
-    const CdiDownload& d = run.cdi();
+    const CdiDownload& d = run.probe<CdiDownload>();
     if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to judge");
     // An OK that came after its reply was not seen when the read ended: its flags are unknown.
     if (!d.result.datagram_ok_seen)
@@ -30,7 +30,7 @@ void datagram_reply_pending(CheckRun& run, const CheckSpec& spec) {
 void datagram_temporary_rejects(CheckRun& run, const CheckSpec& spec) {
     // Temporary rejects are legal (the retried request succeeded, or another check failed), but
     // a node that needs them on an idle bus is worth a look: warn, never fail.
-    const unsigned n = run.ctx().temporary_rejects;
+    const unsigned n = run.heard().temporary_rejects;
     if (n == 0) return run.out(spec).pass("no datagram was rejected temporarily");
     run.out(spec).warn(std::to_string(n) + " datagrams rejected temporarily (0x2xxx) and retried");
 }

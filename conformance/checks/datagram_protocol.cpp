@@ -102,7 +102,7 @@ std::vector<Answer> send_raw(CheckRun& run, const std::vector<CanFrame>& frames,
 
 // A node that does not claim datagrams (PIP) owes these checks nothing (OlcbChecker passes it).
 bool claims_datagrams(CheckRun& run) {
-    const auto& pip = run.pip();
+    const auto& pip = run.probe<PipProbe>().reply;
     return !pip || pip->has(Protocol::kDatagram);
 }
 

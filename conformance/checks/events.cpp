@@ -86,10 +86,19 @@ std::string event_text(std::uint64_t id) {
     return EventId(id).to_string();
 }
 
-// What a node identified: exact events and ranges, per role.
+// Whom Identify Events is sent to: every node (global) or the node (addressed).
+enum class IdentifyTo : std::uint8_t { kEveryNode, kTheNode };
+
+// What a node identified: exact events and ranges, per role. Also the probe of the checks that
+// judge the answer to one Identify Events, asked once per run per form, so the quiet wait is
+// made once.
 struct EventAnswers {
+    using Key = IdentifyTo;
+
     std::set<std::uint64_t> produced, consumed, produced_ranges, consumed_ranges;
     std::size_t messages = 0;
+
+    static EventAnswers ask(CheckRun& run, IdentifyTo to);
 
     bool empty() const { return messages == 0; }
     bool produces(std::uint64_t id) const {
@@ -159,8 +168,9 @@ std::vector<Message> await_answers(Session& s, std::uint16_t alias, std::size_t 
 
 // Identify Events (global or addressed to the node) and every Identified message it brought.
 // first bounds the wait for the first answer.
-EventAnswers identify_events(Session& s, const NodeInfo& node, bool addressed, Duration first,
+EventAnswers identify_events(Session& s, const NodeInfo& node, IdentifyTo to, Duration first,
                              const Windows& w) {
+    const bool addressed = to == IdentifyTo::kTheNode;
     const std::uint16_t alias = s.alias_of(node);
     Message m;
     m.mti = addressed ? Mti::kIdentifyEventsAddressed : Mti::kIdentifyEventsGlobal;
@@ -176,19 +186,15 @@ EventAnswers identify_events(Session& s, const NodeInfo& node, bool addressed, D
 }
 
 bool has_event_bit(CheckRun& run) {
-    const auto& pip = run.pip();
+    const auto& pip = run.probe<PipProbe>().reply;
     return pip && pip->has(Protocol::kEventExchange);
 }
 
-// The answers to one Identify Events, asked once per run and shared by the checks that judge
-// them, so the quiet wait is made once.
-EventAnswers answers_of(CheckRun& run, bool addressed) {
-    const std::string key = addressed ? "events.identify-addressed" : "events.identify-global";
-    if (const EventAnswers* known = run.memo<EventAnswers>(key)) return *known;
+EventAnswers EventAnswers::ask(CheckRun& run, IdentifyTo to) {
     const Windows w = windows_of(run.options());
     // A node without the Event Exchange bit owes no answer: silence is awaited, not an answer.
     const Duration first = has_event_bit(run) ? w.answer : w.quiet;
-    return run.remember(key, identify_events(run.session(), run.node(), addressed, first, w));
+    return identify_events(run.session(), run.node(), to, first, w);
 }
 
 // ---- the CDI's eventid variables ----
@@ -315,8 +321,8 @@ std::size_t crowd(CheckRun& run) {
 }
 
 // The answers the other event checks judge: global, or addressed on a crowded segment.
-EventAnswers reference_answers(CheckRun& run) {
-    return answers_of(run, crowd(run) == 0 ? false : true);
+const EventAnswers& reference_answers(CheckRun& run) {
+    return run.probe<EventAnswers>(crowd(run) == 0 ? IdentifyTo::kEveryNode : IdentifyTo::kTheNode);
 }
 
 void identify_global(CheckRun& run, const CheckSpec& spec) {
@@ -326,8 +332,8 @@ void identify_global(CheckRun& run, const CheckSpec& spec) {
                         " nodes on the segment: Identify Events global would make every one "
                         "answer with all its events; the addressed form is judged (--thorough "
                         "asks it)");
-    const auto& pip = run.pip();
-    const EventAnswers a = answers_of(run, false);
+    const auto& pip = run.probe<PipProbe>().reply;
+    const EventAnswers& a = run.probe<EventAnswers>(IdentifyTo::kEveryNode);
     const std::string got = "Identify Events global answered with " + a.describe();
     if (!pip) {
         if (a.empty())
@@ -369,7 +375,7 @@ std::vector<std::string> differences(const EventAnswers& global, const EventAnsw
 
 void identify_addressed(CheckRun& run, const CheckSpec& spec) {
     Verdict out = run.out(spec);
-    const EventAnswers a = answers_of(run, true);
+    const EventAnswers& a = run.probe<EventAnswers>(IdentifyTo::kTheNode);
     if (has_event_bit(run) && a.empty())
         return out.warn(
             "Identify Events addressed not answered although the PIP has the Event "
@@ -377,7 +383,7 @@ void identify_addressed(CheckRun& run, const CheckSpec& spec) {
     if (crowd(run) != 0)
         return out.pass("Identify Events addressed answered with " + a.describe() +
                         " (not compared with global: see events.identify-global)");
-    const EventAnswers g = answers_of(run, false);
+    const EventAnswers& g = run.probe<EventAnswers>(IdentifyTo::kEveryNode);
     std::vector<std::string> diff = differences(g, a);
     if (diff.empty())
         return out.pass(a.empty() ? "Identify Events addressed and global both unanswered"
@@ -422,9 +428,9 @@ void follow_up(CheckRun& run, std::map<std::uint64_t, std::string>& missing) {
 
 void cdi_events_identified(CheckRun& run, const CheckSpec& spec) {
     Verdict out = run.out(spec);
-    run.cdi();
-    if (!run.ctx().layout) return out.skip("depends on cdi.valid: no layout");
-    EventVars ev = event_vars(*run.ctx().layout);
+    const auto& layout = run.probe<CdiDownload>().layout;
+    if (!layout) return out.skip("depends on cdi.valid: no layout");
+    EventVars ev = event_vars(*layout);
     if (ev.vars.empty()) return out.skip("the CDI has no <eventid>");
     read_values(run.session(), run.node(), ev, [&](const MemResult& r) { run.note(r); });
     const std::map<std::uint64_t, std::string> ids = distinct_ids(ev);
@@ -436,7 +442,7 @@ void cdi_events_identified(CheckRun& run, const CheckSpec& spec) {
     if (ids.empty())
         return out.skip("every eventid variable read holds 00.00.00.00.00.00.00.00 (not set)" +
                         cap + unread);
-    const EventAnswers a = reference_answers(run);
+    const EventAnswers& a = reference_answers(run);
     std::map<std::uint64_t, std::string> missing;
     for (const auto& [id, path] : ids)
         if (!a.produces(id) && !a.consumes(id)) missing.emplace(id, path);
@@ -482,7 +488,7 @@ void judge_identify_answers(Verdict& out, const std::vector<std::string>& wrong,
 
 void identify_producer_consumer(CheckRun& run, const CheckSpec& spec) {
     Verdict out = run.out(spec);
-    const EventAnswers a = reference_answers(run);
+    const EventAnswers& a = reference_answers(run);
     const std::optional<std::uint64_t> unknown = unknown_event(a);
     std::vector<Ask> asks;
     std::vector<bool> expected;
@@ -658,7 +664,7 @@ std::vector<CheckResult> events_follow_write(Session& session, const NodeInfo& n
     EventVars ev = event_vars(*ctx.layout);
     if (ev.vars.empty()) return {follow_result(Status::kSkip, "the CDI has no <eventid>")};
     read_values(session, node, ev, {});
-    const EventAnswers a = identify_events(session, node, true, f.w.answer, f.w);
+    const EventAnswers a = identify_events(session, node, IdentifyTo::kTheNode, f.w.answer, f.w);
     std::string why;
     const EventVar* v = follow_target(ev, a, rules, why);
     if (!v) return {follow_result(Status::kSkip, why + "; nothing written")};

@@ -6,13 +6,13 @@ namespace olcb::conform::checks {
 namespace {
 
 void ame_answered(CheckRun& run, const CheckSpec& spec) {
-    const FrameProbe& p = run.frame_probe();
+    const FrameProbe& p = run.probe<FrameProbe>();
     run.out(spec).judge(p.amd >= 2, "AME (global and with the node ID) answered with AMD",
                         "2 AMD frames", std::to_string(p.amd) + " AMD frame(s)");
 }
 
 void cid_defended(CheckRun& run, const CheckSpec& spec) {
-    const FrameProbe& p = run.frame_probe();
+    const FrameProbe& p = run.probe<FrameProbe>();
     run.out(spec).judge(p.rid >= 1, "CID carrying the node's alias answered with RID", "RID",
                         "no RID within the answer window");
 }

@@ -11,6 +11,36 @@ namespace {
 
 using memory::Space;
 
+// 8-byte reads of the data space in both forms (the short form only for 0xFD-0xFF): the form
+// checks' probe.
+struct FormProbe {
+    std::uint8_t space = 0xFF;
+    MemResult byte6;
+    std::optional<MemResult> short_form;
+
+    static FormProbe ask(CheckRun& run);
+};
+
+// The space the form checks read: a CDI space, 0xFD-0xFF preferred (so the short form is
+// covered too); else 0xFF.
+std::uint8_t data_space(CheckRun& run) {
+    std::optional<std::uint8_t> best;
+    for (std::uint8_t sp : layout_spaces(run))
+        if (!best || (sp >= 0xFD && *best < 0xFD)) best = sp;
+    return best.value_or(0xFF);
+}
+
+FormProbe FormProbe::ask(CheckRun& run) {
+    FormProbe p;
+    p.space = data_space(run);
+    const auto space = static_cast<Space>(p.space);
+    p.byte6 = run.note(run.session().read(run.node(), space, 0, 8, memory::SpaceForm::kByte6));
+    if (p.space >= 0xFD)
+        p.short_form =
+            run.note(run.session().read(run.node(), space, 0, 8, memory::SpaceForm::kShort));
+    return p;
+}
+
 // Lock/Reserve with id: the node ID the reply says holds the lock, nullopt without a reply.
 std::optional<std::uint64_t> lock_cmd(CheckRun& run, std::uint64_t id, MemResult& last) {
     memory::Message reply;
@@ -37,18 +67,19 @@ std::string form_seen(std::uint8_t sp, bool asked_short, const MemResult& r) {
 }
 
 void memory_config_options(CheckRun& run, const CheckSpec& spec) {
-    const MemResult& r = run.config_options();
-    if (run.ctx().options) return run.out(spec).pass("Get Configuration Options answered");
+    const OptionsProbe& options = run.probe<OptionsProbe>();
+    const MemResult& r = options.result;
+    if (options.reply) return run.out(spec).pass("Get Configuration Options answered");
     // The command is not mandatory: a rejection says the node does not implement it.
     if (r.rejected && !r.timed_out)
         return run.out(spec).skip("Get Configuration Options rejected with " + hex(r.error) +
                                   " (not implemented)");
     run.out(spec).fail("Get Configuration Options not answered", "reply 20 82 or Datagram Rejected",
-                       r.ok ? run.config_options_reply() : describe(r));
+                       r.ok ? options.described : describe(r));
 }
 
 void memory_reply_latency(CheckRun& run, const CheckSpec& spec) {
-    const CdiDownload& d = run.cdi();
+    const CdiDownload& d = run.probe<CdiDownload>();
     if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to time");
     const auto ms =
         std::chrono::duration_cast<std::chrono::milliseconds>(d.result.reply_latency).count();
@@ -65,18 +96,16 @@ void memory_reply_latency(CheckRun& run, const CheckSpec& spec) {
 }
 
 void memory_options_acdi_flags(CheckRun& run, const CheckSpec& spec) {
-    run.config_options();
-    run.acdi_blocks();
-    const CheckContext& ctx = run.ctx();
-    if (!ctx.options)
-        return run.out(spec).skip("depends on memory.config-options: no Options reply");
+    const auto& options = run.probe<OptionsProbe>().reply;
+    const AcdiProbe& acdi = run.probe<AcdiProbe>();
+    if (!options) return run.out(spec).skip("depends on memory.config-options: no Options reply");
     // Readability is known from the ACDI reads, made only with <acdi/>.
-    if (!ctx.document || !ctx.document->acdi)
+    if (!acdi.acdi)
         return run.out(spec).skip("the CDI has no <acdi/>: spaces 252/251 are not read");
-    const std::uint16_t c = ctx.options->available_commands;
-    const bool r252 = ctx.acdi_manufacturer.has_value();
-    const bool r251 = ctx.acdi_user.has_value();
-    const bool w251 = r251 && !run.space_info(0xFB).read_only;
+    const std::uint16_t c = options->available_commands;
+    const bool r252 = acdi.manufacturer.has_value();
+    const bool r251 = acdi.user.has_value();
+    const bool w251 = r251 && !run.probe<SpaceInfoProbe>(0xFB).read_only;
     const bool ok =
         ((c & 0x0800) != 0) == r252 && ((c & 0x0400) != 0) == r251 && ((c & 0x0200) != 0) == w251;
     std::string want = std::string(r252 ? "0x0800 set" : "0x0800 clear") +
@@ -87,12 +116,12 @@ void memory_options_acdi_flags(CheckRun& run, const CheckSpec& spec) {
 }
 
 void memory_space_info_layout(CheckRun& run, const CheckSpec& spec) {
-    run.cdi();
-    if (!run.ctx().layout) return run.out(spec, 0xFD).skip("depends on cdi.valid: no layout");
-    for (const auto& e : run.ctx().layout->extents()) {
+    const auto& layout = run.probe<CdiDownload>().layout;
+    if (!layout) return run.out(spec, 0xFD).skip("depends on cdi.valid: no layout");
+    for (const auto& e : layout->extents()) {
         const auto sp = static_cast<std::uint8_t>(e.space);
         if (!run.space_selected(spec, sp)) continue;
-        const SpaceInfo& info = run.space_info(sp);
+        const SpaceInfo& info = run.probe<SpaceInfoProbe>(sp);
         if (!info.answered) {
             run.out(spec, sp).skip("Get Address Space Information of " + hex(sp, 2) +
                                    " not answered (an optional command)");
@@ -107,13 +136,13 @@ void memory_space_info_layout(CheckRun& run, const CheckSpec& spec) {
 }
 
 void memory_read_byte6_form(CheckRun& run, const CheckSpec& spec) {
-    const FormProbe& p = run.form_probe();
+    const FormProbe& p = run.probe<FormProbe>();
     run.out(spec).judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form",
                         "Read Reply OK with 8 bytes", describe(p.byte6));
 }
 
 void memory_read_short_form(CheckRun& run, const CheckSpec& spec) {
-    const FormProbe& p = run.form_probe();
+    const FormProbe& p = run.probe<FormProbe>();
     if (!p.short_form)
         return run.out(spec).skip("space " + hex(p.space, 2) + " has only the byte-6 form");
     run.out(spec).judge(p.short_form->ok, "read of space " + hex(p.space, 2) + " in the short form",
@@ -121,7 +150,7 @@ void memory_read_short_form(CheckRun& run, const CheckSpec& spec) {
 }
 
 void memory_reply_form(CheckRun& run, const CheckSpec& spec) {
-    const FormProbe& p = run.form_probe();
+    const FormProbe& p = run.probe<FormProbe>();
     if (!p.byte6.ok)
         return run.out(spec).skip("depends on memory.read-byte6-form: " + describe(p.byte6));
     // The first read whose reply came in the other form, with both forms as on the wire.
@@ -134,15 +163,15 @@ void memory_reply_form(CheckRun& run, const CheckSpec& spec) {
     };
     judge("byte-6 read of " + hex(p.space, 2), p.space, false, p.byte6);
     if (p.short_form) judge("short-form read of " + hex(p.space, 2), p.space, true, *p.short_form);
-    judge("CDI read of 0xFF", 0xFF, true, run.cdi().result);
+    judge("CDI read of 0xFF", 0xFF, true, run.probe<CdiDownload>().result);
     run.out(spec).judge(seen.empty(), "replies use the form of the request", expected, seen);
 }
 
 void memory_read_short_at_end(CheckRun& run, const CheckSpec& spec) {
-    const SpaceInfo ff = run.space_info(0xFF);
+    const SpaceInfo ff = run.probe<SpaceInfoProbe>(0xFF);
     if (!ff.present || ff.highest_address < 3)
         return run.out(spec).skip("depends on cdi.space-info: 0xFF not present or too small");
-    if (std::string doubt = run.highest_too_small(0xFF); !doubt.empty())
+    if (std::string doubt = highest_too_small(run, 0xFF); !doubt.empty())
         return run.out(spec).skip(doubt);
     const MemResult& e =
         run.note(run.session().read(run.node(), Space::kCdi, ff.highest_address - 3, 8));
@@ -157,7 +186,7 @@ void memory_read_short_at_end(CheckRun& run, const CheckSpec& spec) {
 
 void memory_unknown_space(CheckRun& run, const CheckSpec& spec) {
     std::set<std::uint8_t> used = {0xFF, 0xFE, 0xFD, 0xFC, 0xFB, 0xFA, 0xF9, 0xF8, 0xEF};
-    for (std::uint8_t sp : run.layout_spaces()) used.insert(sp);
+    for (std::uint8_t sp : layout_spaces(run)) used.insert(sp);
     std::uint8_t unknown = 0x50;
     while (used.count(unknown)) ++unknown;
     const MemResult& u =
@@ -207,7 +236,7 @@ void memory_lock(CheckRun& run, const CheckSpec& spec) {
 void memory_readonly_refused(CheckRun& run, const CheckSpec& spec) {
     if (run.options().read_only) return run.out(spec, 0xFF).skip("--read-only");
     for (std::uint8_t sp : run.selected_spaces(spec, {0xFF, 0xFC})) {
-        const SpaceInfo& info = run.space_info(sp);
+        const SpaceInfo& info = run.probe<SpaceInfoProbe>(sp);
         if (!info.present) continue;
         // Rewrite the byte already there: nothing changes even on a faulty node.
         const MemResult& r = run.note(run.session().read(run.node(), static_cast<Space>(sp), 0, 1));

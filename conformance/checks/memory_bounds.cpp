@@ -67,28 +67,29 @@ MemResult write(CheckRun& run, std::uint8_t sp, std::uint32_t address,
 // each only when Space Info says it is present; 0xFF first.
 std::vector<std::uint8_t> bounded_spaces(CheckRun& run) {
     std::set<std::uint8_t> spaces = {kCdiSpace, kConfigSpace, kAcdiManufacturer, kAcdiUser};
-    for (std::uint8_t sp : run.layout_spaces()) spaces.insert(sp);
+    for (std::uint8_t sp : layout_spaces(run)) spaces.insert(sp);
     std::vector<std::uint8_t> out;
     for (auto it = spaces.rbegin(); it != spaces.rend(); ++it)
-        if (run.space_info(*it).present) out.push_back(*it);
+        if (run.probe<SpaceInfoProbe>(*it).present) out.push_back(*it);
     return out;
 }
 
 // True when the CDI uses 0xFB: a segment in it, or <acdi/> (which lays out its user block).
 bool acdi_user_used(CheckRun& run) {
-    run.cdi();
-    const std::vector<std::uint8_t> used = run.layout_spaces();
+    const CdiDownload& cdi = run.probe<CdiDownload>();
+    const std::vector<std::uint8_t> used = layout_spaces(run);
     const bool in_layout = std::find(used.begin(), used.end(), kAcdiUser) != used.end();
-    return in_layout || (run.ctx().document && run.ctx().document->acdi);
+    return in_layout || (cdi.document && cdi.document->acdi);
 }
 
 // Spaces a write may touch: writable per Space Info and used by the CDI; never 0xFF or 0xFC.
 std::vector<std::uint8_t> writable_spaces(CheckRun& run) {
     std::vector<std::uint8_t> out;
     for (std::uint8_t sp : bounded_spaces(run)) {
-        if (sp == kCdiSpace || sp == kAcdiManufacturer || run.space_info(sp).read_only) continue;
+        if (sp == kCdiSpace || sp == kAcdiManufacturer || run.probe<SpaceInfoProbe>(sp).read_only)
+            continue;
         if (sp == kConfigSpace || sp == kAcdiUser) {
-            const std::vector<std::uint8_t> used = run.layout_spaces();
+            const std::vector<std::uint8_t> used = layout_spaces(run);
             const bool in_layout = std::find(used.begin(), used.end(), sp) != used.end();
             if (!in_layout && !(sp == kAcdiUser && acdi_user_used(run))) continue;
         }
@@ -99,7 +100,7 @@ std::vector<std::uint8_t> writable_spaces(CheckRun& run) {
 
 // Why the byte must not be written ("" when it may be): the protected variable holding it.
 std::string protected_at(CheckRun& run, std::uint8_t sp, std::uint32_t address) {
-    const auto& layout = run.ctx().layout;
+    const auto& layout = run.probe<CdiDownload>().layout;
     if (!layout) return {};
     const cdi::Cursor c = layout->find(sp, address);
     if (!c.valid()) return {};
@@ -124,7 +125,7 @@ std::string restore(CheckRun& run, std::uint8_t sp, std::uint32_t address,
 
 void read_at_highest(CheckRun& run, const CheckSpec& spec) {
     for (std::uint8_t sp : run.selected_spaces(spec, bounded_spaces(run))) {
-        const std::uint32_t highest = run.space_info(sp).highest_address;
+        const std::uint32_t highest = run.probe<SpaceInfoProbe>(sp).highest_address;
         const MemResult r = read(run, sp, highest, 1);
         const std::string what = "1-byte read at " + hex(highest, 8) + " of " + space_name(sp) +
                                  " (Space Info's highest address)";
@@ -150,11 +151,11 @@ void read_at_highest(CheckRun& run, const CheckSpec& spec) {
 void read_past_end(CheckRun& run, const CheckSpec& spec) {
     for (std::uint8_t sp : run.selected_spaces(spec, bounded_spaces(run))) {
         // Past a highest address that is too small lies data: that is the other check's finding.
-        if (std::string doubt = run.highest_too_small(sp); !doubt.empty()) {
+        if (std::string doubt = highest_too_small(run, sp); !doubt.empty()) {
             run.out(spec, sp).skip(doubt);
             continue;
         }
-        const std::uint32_t highest = run.space_info(sp).highest_address;
+        const std::uint32_t highest = run.probe<SpaceInfoProbe>(sp).highest_address;
         if (highest == 0xFFFFFFFFu) {
             run.out(spec, sp).skip(space_name(sp) + " ends at 0xFFFFFFFF: no address past it");
             continue;
@@ -198,7 +199,7 @@ struct LastByte {
 };
 
 std::optional<LastByte> last_byte(CheckRun& run, std::uint8_t sp, std::string& why) {
-    const std::uint32_t highest = run.space_info(sp).highest_address;
+    const std::uint32_t highest = run.probe<SpaceInfoProbe>(sp).highest_address;
     const MemResult r = read(run, sp, highest, 1);
     if (r.ok && !r.data.empty()) return LastByte{highest, r.data[0], false};
     if (highest > 0 && r.error == kOutOfBounds) {
@@ -229,8 +230,8 @@ std::optional<Snapshot> snapshot(CheckRun& run, std::string& why) {
     auto is_writable = [&](std::uint32_t sp) {
         return std::find(writable.begin(), writable.end(), sp) != writable.end();
     };
-    if (run.ctx().layout)
-        for (const auto& e : run.ctx().layout->extents())
+    if (const auto& layout = run.probe<CdiDownload>().layout)
+        for (const auto& e : layout->extents())
             if (e.end > e.begin && is_writable(e.space))
                 wanted.push_back({static_cast<std::uint8_t>(e.space),
                                   {static_cast<std::uint32_t>(e.begin),
@@ -334,7 +335,7 @@ void judge_crossing(CheckRun& run, const CheckSpec& spec, std::uint8_t sp, const
 
 void write_past_end_space(CheckRun& run, const CheckSpec& spec, std::uint8_t sp) {
     // Below the real end a 2-byte write at "the last byte" crosses nothing.
-    if (std::string doubt = run.highest_too_small(sp); !doubt.empty())
+    if (std::string doubt = highest_too_small(run, sp); !doubt.empty())
         return run.out(spec, sp).skip(doubt);
     std::string why;
     const std::optional<LastByte> last = last_byte(run, sp, why);
@@ -378,7 +379,7 @@ struct MaskTarget {
 // The first byte of the first unprotected variable (int, string, eventid, float) of a writable
 // CDI space.
 std::optional<MaskTarget> mask_target(CheckRun& run) {
-    const auto& layout = run.ctx().layout;
+    const auto& layout = run.probe<CdiDownload>().layout;
     if (!layout) return std::nullopt;
     const std::vector<std::uint8_t> writable = writable_spaces(run);
     std::optional<MaskTarget> found;
@@ -426,12 +427,10 @@ std::string masked_step(CheckRun& run, const MaskTarget& t, std::uint8_t v, std:
 void write_under_mask(CheckRun& run, const CheckSpec& spec) {
     Verdict out = run.out(spec);
     if (run.options().read_only) return out.skip("--read-only");
-    run.config_options();
-    const auto& options = run.ctx().options;
+    const auto& options = run.probe<OptionsProbe>().reply;
     if (!options) return out.skip("no Get Configuration Options reply");
     if ((options->available_commands & memory::available_commands::kWriteUnderMask) == 0)
         return out.skip("write under mask not advertised (Options bit 0x8000 clear)");
-    run.cdi();
     const std::optional<MaskTarget> t = mask_target(run);
     if (!t) return out.skip("no unprotected variable in a writable CDI space");
     const MemResult first = read(run, t->space, t->address, 1);
@@ -479,8 +478,7 @@ void update_complete(CheckRun& run, const CheckSpec& spec) {
 
 void options_write_lengths(CheckRun& run, const CheckSpec& spec) {
     Verdict out = run.out(spec);
-    run.config_options();
-    const auto& options = run.ctx().options;
+    const auto& options = run.probe<OptionsProbe>().reply;
     if (!options) return out.skip("no Get Configuration Options reply");
     const std::uint8_t wl = options->write_lengths;
     const std::string what = "Options write-lengths byte " + hex(wl, 2);

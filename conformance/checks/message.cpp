@@ -5,7 +5,7 @@
 namespace olcb::conform::checks {
 namespace {
 void oir_unknown_mti(CheckRun& run, const CheckSpec& spec) {
-    const std::optional<std::uint16_t> code = run.frame_probe().oir;
+    const std::optional<std::uint16_t> code = run.probe<FrameProbe>().oir;
     if (!code)
         return run.out(spec).fail(
             "unknown addressed MTI 0x04F9 not answered with an OIR echoing it", "OIR echoing 04F9",
@@ -18,7 +18,7 @@ void oir_unknown_mti(CheckRun& run, const CheckSpec& spec) {
 }
 
 void verify_addressed(CheckRun& run, const CheckSpec& spec) {
-    run.out(spec).judge(run.frame_probe().verified,
+    run.out(spec).judge(run.probe<FrameProbe>().verified,
                         "Verify Node ID addressed answered with Verified Node ID",
                         "Verified Node ID", "no answer");
 }
@@ -33,7 +33,7 @@ void unknown_global_ignored(CheckRun& run, const CheckSpec& spec) {
     // An answer is a message to us (OIR, anything addressed): a global message from the node in
     // the window may answer another tool on the segment.
     // MessageNetworkS §3.5.2: the node may drop it; an answer is allowed, only noted.
-    const SilenceAnswers& a = silence_probe(run);
+    const SilenceAnswers& a = run.probe<SilenceAnswers>();
     if (a.to_us.empty()) return run.out(spec).pass("unknown global MTI 0x0930 ignored silently");
     run.out(spec).warn(
         "unknown global MTI 0x0930 answered with " + a.to_us +
@@ -41,8 +41,8 @@ void unknown_global_ignored(CheckRun& run, const CheckSpec& spec) {
 }
 
 void pip_answered(CheckRun& run, const CheckSpec& spec) {
-    run.out(spec).judge(run.pip().has_value(), "Protocol Support Inquiry answered",
-                        "Protocol Support Reply", "no reply");
+    run.out(spec).judge(run.probe<PipProbe>().reply.has_value(),
+                        "Protocol Support Inquiry answered", "Protocol Support Reply", "no reply");
 }
 
 void no_unsolicited(CheckRun& run, const CheckSpec& spec) {

@@ -93,9 +93,7 @@ bool judge_window(CheckRun& run, std::size_t mark, std::uint16_t other, SilenceA
 
 }  // namespace
 
-const SilenceAnswers& silence_probe(CheckRun& run) {
-    static const std::string key = "message.silence-probe";
-    if (const SilenceAnswers* known = run.memo<SilenceAnswers>(key)) return *known;
+SilenceAnswers SilenceAnswers::ask(CheckRun& run) {
     Session& s = run.session();
     SilenceAnswers a;
     const auto other = other_alias(run);
@@ -117,7 +115,7 @@ const SilenceAnswers& silence_probe(CheckRun& run) {
         }
     }
     a.has_other = other.has_value();
-    return run.remember(key, std::move(a));
+    return a;
 }
 
 namespace {
@@ -125,7 +123,7 @@ namespace {
 // One "addressed to another node: silence" check, from the shared probe.
 void silent_to_other(CheckRun& run, const CheckSpec& spec, std::string SilenceAnswers::*seen_of,
                      const std::string& what) {
-    const SilenceAnswers& a = silence_probe(run);
+    const SilenceAnswers& a = run.probe<SilenceAnswers>();
     if (!a.has_other) return run.out(spec).skip("no unused alias to address");
     if (!a.judged)
         return run.out(spec).skip("other sources spoke in every silence window: not judged");
@@ -159,7 +157,7 @@ void pip_fourth_byte(CheckRun& run, const CheckSpec& spec) {
     Message psi;
     psi.mti = Mti::kProtocolSupportInquiry;
     psi.destination = NodeHandle{run.node().id, alias};
-    // Asked again, not taken from run.pip(): the decoded set drops the raw bytes.
+    // Asked again, not taken from the PIP probe: the decoded set drops the raw bytes.
     s.send(psi);
     const auto reply = s.wait_for(
         [&](const Message& m) {
@@ -180,9 +178,9 @@ void pip_fourth_byte(CheckRun& run, const CheckSpec& spec) {
 
 // me60: the simple bit and the Verified Node ID MTI both say whether the node is simple.
 void pip_simple_bit(CheckRun& run, const CheckSpec& spec) {
-    const auto& pip = run.pip();
+    const auto& pip = run.probe<PipProbe>().reply;
     if (!pip) return run.out(spec).skip("no Protocol Support Reply (see message.pip-answered)");
-    const auto& mti = run.frame_probe().verified_mti;
+    const auto& mti = run.probe<FrameProbe>().verified_mti;
     if (!mti) return run.out(spec).skip("no Verified Node ID (see message.verify-addressed)");
     const bool bit = pip->has(Protocol::kSimpleProtocol);
     const bool simple_mti = *mti == Mti::kVerifiedNodeIdSimple;

@@ -6,7 +6,7 @@ namespace {
 
 void bit_agrees(CheckRun& run, const CheckSpec& spec, Protocol bit, bool works,
                 const std::string& what) {
-    const auto& pip = run.pip();
+    const auto& pip = run.probe<PipProbe>().reply;
     if (!pip)
         return run.out(spec).skip("depends on message.pip-answered: no Protocol Support Reply");
     const bool set = pip->has(bit);
@@ -15,29 +15,29 @@ void bit_agrees(CheckRun& run, const CheckSpec& spec, Protocol bit, bool works,
 }
 
 void pip_snip_bit(CheckRun& run, const CheckSpec& spec) {
-    bit_agrees(run, spec, Protocol::kSnip, run.snip_raw().has_value(),
+    bit_agrees(run, spec, Protocol::kSnip, run.probe<SnipProbe>().raw.has_value(),
                "PIP SNIP bit agrees with the SNIP answer");
 }
 
 void pip_datagram_bit(CheckRun& run, const CheckSpec& spec) {
-    bit_agrees(run, spec, Protocol::kDatagram, run.datagrams_answered(),
+    bit_agrees(run, spec, Protocol::kDatagram, datagrams_answered(run),
                "PIP Datagram bit agrees with datagram answers");
 }
 
 void pip_memory_config_bit(CheckRun& run, const CheckSpec& spec) {
-    bit_agrees(run, spec, Protocol::kMemoryConfiguration, run.memory_works(),
+    bit_agrees(run, spec, Protocol::kMemoryConfiguration, memory_works(run),
                "PIP Memory Configuration bit agrees with memory answers");
 }
 
 void pip_cdi_bit(CheckRun& run, const CheckSpec& spec) {
-    bit_agrees(run, spec, Protocol::kCdi, run.cdi().read_ok, "PIP CDI bit agrees with space 0xFF");
+    bit_agrees(run, spec, Protocol::kCdi, run.probe<CdiDownload>().read_ok,
+               "PIP CDI bit agrees with space 0xFF");
 }
 
 void pip_acdi_bit(CheckRun& run, const CheckSpec& spec) {
-    run.cdi();
-    if (!run.ctx().document)
-        return run.out(spec).skip("depends on cdi.well-formed: no CDI document");
-    bit_agrees(run, spec, Protocol::kAcdi, run.ctx().document->acdi.has_value(),
+    const CdiDownload& cdi = run.probe<CdiDownload>();
+    if (!cdi.document) return run.out(spec).skip("depends on cdi.well-formed: no CDI document");
+    bit_agrees(run, spec, Protocol::kAcdi, cdi.document->acdi.has_value(),
                "PIP ACDI bit iff the CDI has <acdi/>");
 }
 

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "conformance/checks/check_run.hpp"
+#include "conformance/checks/probes.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -19,6 +20,16 @@ constexpr std::size_t kShortReadsListed = 3;
 // 1-byte reads short_read_checks() makes per space to learn whether a short reply was the end.
 constexpr std::size_t kMaxEndProbes = 8;
 
+// Space Info of space: the protocol checks' answer, else asked now (and kept in ctx).
+SpaceInfo space_info(Session& s, const NodeInfo& node, std::uint8_t space, CheckContext& ctx) {
+    auto known = ctx.spaces.find(space);
+    if (known != ctx.spaces.end() && known->second.answered) return known->second;
+    MemResult outcome;
+    const SpaceInfo info = ask_space_info(s, node, space, outcome);
+    if (outcome.not_sent.empty()) ctx.temporary_rejects += outcome.temporary_rejects;
+    return ctx.spaces[space] = info;
+}
+
 // The short replies of one space that were not the end of it. One that nothing was read after is
 // settled by a 1-byte read where it ended (data: not the end; 0x1082: the end), then by Space Info.
 std::vector<const ShortRead*> short_reads_inside(Session& s, const NodeInfo& node,
@@ -28,12 +39,7 @@ std::vector<const ShortRead*> short_reads_inside(Session& s, const NodeInfo& nod
     };
     std::optional<SpaceInfo> info;
     auto inside = [&](const ShortRead& r) {
-        if (!info) {
-            auto known = ctx.spaces.find(space);
-            info = known != ctx.spaces.end() && known->second.answered
-                       ? known->second
-                       : CheckRun(s, node, ProtocolOptions{}, ctx).space_info(space);
-        }
+        if (!info) info = space_info(s, node, space, ctx);
         return info->present && r.address + std::uint64_t{r.got} <= info->highest_address;
     };
     std::set<std::uint64_t> probed;
@@ -111,7 +117,8 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
         o.answer_window = std::max(o.answer_window, ctx.timing->answer);
         o.quiet_window = std::max(o.quiet_window, ctx.timing->quiet);
     }
-    CheckRun run(session, node, o, ctx);
+    o.cdi_progress = ctx.cdi_progress;
+    CheckRun run(session, node, o);
     std::string gone;  // the check after which the node stopped answering
     for (const CheckSpec& spec : check_registry()) {
         if (!spec.run || !o.selection.wants(spec)) continue;
@@ -141,6 +148,7 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
         run.share_duration(first, std::chrono::steady_clock::now() - since);
         if (!heard_from(run, mark) && !session.ping(node, o.answer_window)) gone = spec.id;
     }
+    hand_over(run, ctx);
     ctx.lost_after = gone;
     std::vector<CheckResult> out = run.take();
     std::erase_if(out, [&](const CheckResult& c) { return !o.selection.wants_id(c.id); });

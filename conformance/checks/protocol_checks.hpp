@@ -2,6 +2,8 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "base/timings.hpp"
@@ -32,9 +34,13 @@ struct ProtocolOptions {
     bool reboot = false;
     /// --only / --skip / --thorough: which registry entries run.
     CheckSelection selection;
+    /// Called with the bytes read so far while the CDI downloads (run_protocol_checks() passes
+    /// the CheckContext's).
+    std::function<void(std::size_t)> cdi_progress;
 };
 
-/// Runs every protocol check against node, filling ctx for later checks.
+/// Runs every protocol check against node, then hands what its probes learned to ctx for the
+/// later phases (hand_over()).
 std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
                                              const ProtocolOptions& options, CheckContext& ctx);
 

@@ -33,12 +33,13 @@ std::string first_difference(std::span<const Field> fields, const std::string& s
 }
 
 void snip_version_bytes(CheckRun& run, const CheckSpec& spec) {
-    const auto& raw = run.snip_raw();
-    if (!raw || raw->empty() || !run.ctx().snip) return run.out(spec).skip("no SNIP reply");
+    const SnipProbe& snip = run.probe<SnipProbe>();
+    const auto& raw = snip.raw;
+    if (!raw || raw->empty() || !snip.snip) return run.out(spec).skip("no SNIP reply");
     // SimpleNodeInformationS §5.1: 0x01 counts as the current version; §5.2: higher ones are
     // later versions with more strings.
     const unsigned fixed = (*raw)[0];
-    const unsigned user = run.ctx().snip->user_version;
+    const unsigned user = snip.snip->user_version;
     const std::string seen = std::to_string(fixed) + ", " + std::to_string(user);
     if ((fixed == 1 || fixed == 4) && (user == 1 || user == 2))
         return run.out(spec).pass("SNIP version bytes " + seen);
@@ -76,9 +77,9 @@ void judge_utf8(CheckRun& run, const CheckSpec& spec, const std::vector<NamedTex
 namespace {
 
 void snip_utf8(CheckRun& run, const CheckSpec& spec) {
-    run.snip_raw();
-    if (!run.ctx().snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
-    const memory::Snip& sn = *run.ctx().snip;
+    const auto& snip = run.probe<SnipProbe>().snip;
+    if (!snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
+    const memory::Snip& sn = *snip;
     judge_utf8(run, spec,
                {{"manufacturer", sn.manufacturer},
                 {"model", sn.model},
@@ -91,14 +92,13 @@ void snip_utf8(CheckRun& run, const CheckSpec& spec) {
 }
 
 void snip_matches_acdi(CheckRun& run, const CheckSpec& spec) {
-    run.snip_raw();
-    run.acdi_blocks();
-    CheckContext& ctx = run.ctx();
-    if (!ctx.snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
-    if (!ctx.acdi_manufacturer || !ctx.acdi_user)
+    const auto& snip = run.probe<SnipProbe>().snip;
+    const AcdiProbe& acdi = run.probe<AcdiProbe>();
+    if (!snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
+    if (!acdi.manufacturer || !acdi.user)
         return run.out(spec).skip("spaces 252/251 not read (no <acdi/> in the CDI, or unreadable)");
-    const memory::Snip from = memory::snip_from_acdi(*ctx.acdi_manufacturer, *ctx.acdi_user);
-    const memory::Snip& sn = *ctx.snip;
+    const memory::Snip from = memory::snip_from_acdi(*acdi.manufacturer, *acdi.user);
+    const memory::Snip& sn = *snip;
     std::string want, got;
     const Field fixed[] = {{"manufacturer", &from.manufacturer, &sn.manufacturer},
                            {"model", &from.model, &sn.model},
@@ -114,14 +114,13 @@ void snip_matches_acdi(CheckRun& run, const CheckSpec& spec) {
 }
 
 void snip_matches_cdi(CheckRun& run, const CheckSpec& spec) {
-    run.snip_raw();
-    run.cdi();
-    CheckContext& ctx = run.ctx();
-    if (!ctx.snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
-    if (!ctx.document || !ctx.document->identification)
+    const auto& snip = run.probe<SnipProbe>().snip;
+    const CdiDownload& cdi = run.probe<CdiDownload>();
+    if (!snip) return run.out(spec).skip("depends on snip.version-bytes: no SNIP reply");
+    if (!cdi.document || !cdi.document->identification)
         return run.out(spec).skip("the CDI has no <identification> (or did not parse)");
-    const auto& id = *ctx.document->identification;
-    const memory::Snip& sn = *ctx.snip;
+    const auto& id = *cdi.document->identification;
+    const memory::Snip& sn = *snip;
     // §5.1.1 compares the tags the CDI has: all four are optional in the schema.
     std::vector<Field> present;
     for (const Field& f : {Field{"manufacturer", &id.manufacturer, &sn.manufacturer},

@@ -27,15 +27,15 @@ struct StreamSupport {
     bool options = false;  // Options: stream reads (0x1000) or the stream lengths bit
     bool lengths = false;  // Options write-lengths 0x01 (the standard's stream bit)
     std::string skip;      // why the stream-read checks SKIP ("" = they run)
+
+    static StreamSupport ask(CheckRun& run);
 };
 
-const StreamSupport& support(CheckRun& run) {
-    if (const auto* s = run.memo<StreamSupport>("stream.support")) return *s;
+StreamSupport StreamSupport::ask(CheckRun& run) {
     StreamSupport s;
-    const auto& pip = run.pip();
+    const auto& pip = run.probe<PipProbe>().reply;
     s.pip = pip && pip->has(Protocol::kStream);
-    run.config_options();
-    if (const auto& o = run.ctx().options) {
+    if (const auto& o = run.probe<OptionsProbe>().reply) {
         s.lengths = (o->write_lengths & memory::write_lengths::kStreams) != 0;
         s.options =
             (o->available_commands & memory::available_commands::kStreamReads) != 0 || s.lengths;
@@ -46,27 +46,31 @@ const StreamSupport& support(CheckRun& run) {
         s.skip = "node does not advertise streams";
         if (s.pip) s.skip += " reads (PIP Stream, but Options says no stream reads)";
     }
-    return run.remember("stream.support", s);
+    return s;
 }
 
 // The whole CDI by stream with the largest buffer (Proceed at once).
-const StreamReadResult& cdi_stream(CheckRun& run) {
-    if (const auto* r = run.memo<StreamReadResult>("stream.cdi")) return *r;
-    StreamReadResult r = run.session().read_stream(run.node(), Space::kCdi, 0);
-    run.tally(r.mem);
-    return run.remember("stream.cdi", std::move(r));
-}
+struct CdiStream : StreamReadResult {
+    static CdiStream ask(CheckRun& run) {
+        CdiStream r{run.session().read_stream(run.node(), Space::kCdi, 0)};
+        run.tally(r.mem);
+        return r;
+    }
+};
 
 // A read of a few small buffers, each held kHold before lcc-conform's Proceed.
-const StreamReadResult& windowed(CheckRun& run) {
-    if (const auto* r = run.memo<StreamReadResult>("stream.windowed")) return *r;
+struct WindowedStream : StreamReadResult {
+    static WindowedStream ask(CheckRun& run);
+};
+
+WindowedStream WindowedStream::ask(CheckRun& run) {
     StreamReadOptions o;
     o.buffer = kProbeBuffer;
     o.count = kProbeBuffer * kProbeWindows + kProbeBuffer / 2;
     o.hold = kHold;
-    StreamReadResult r = run.session().read_stream(run.node(), Space::kCdi, 0, o);
+    WindowedStream r{run.session().read_stream(run.node(), Space::kCdi, 0, o)};
     run.tally(r.mem);
-    return run.remember("stream.windowed", std::move(r));
+    return r;
 }
 
 std::string outcome(const StreamReadResult& r) {
@@ -79,7 +83,7 @@ std::string outcome(const StreamReadResult& r) {
 
 // SKIPs (and returns false) when the stream checks cannot run.
 bool runnable(CheckRun& run, Verdict& v) {
-    const StreamSupport& s = support(run);
+    const StreamSupport& s = run.probe<StreamSupport>();
     if (!s.skip.empty()) {
         v.skip(s.skip);
         return false;
@@ -89,7 +93,7 @@ bool runnable(CheckRun& run, Verdict& v) {
 
 void stream_advertised(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
-    const StreamSupport& s = support(run);
+    const StreamSupport& s = run.probe<StreamSupport>();
     if (run.options().no_stream) return v.skip("--no-stream");
     if (!s.pip && !s.options) return v.skip("node does not advertise streams");
     // Only write-lengths 0x01 is the standard's claim (§4.14); 0x1000 of the available commands
@@ -109,8 +113,8 @@ void stream_advertised(CheckRun& run, const CheckSpec& spec) {
 void stream_cdi_read(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
-    const StreamReadResult& r = cdi_stream(run);
-    const std::vector<std::uint8_t>& dg = run.cdi().result.data;
+    const StreamReadResult& r = run.probe<CdiStream>();
+    const std::vector<std::uint8_t>& dg = run.probe<CdiDownload>().result.data;
     if (!r.mem.ok) return v.fail("stream read of the CDI failed", "the CDI", outcome(r));
     const auto& got = r.mem.data;
     const bool same = got.size() >= dg.size() && std::equal(dg.begin(), dg.end(), got.begin());
@@ -129,7 +133,7 @@ void stream_cdi_read(CheckRun& run, const CheckSpec& spec) {
 void stream_complete(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
-    const StreamReadResult& r = cdi_stream(run);
+    const StreamReadResult& r = run.probe<CdiStream>();
     if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
     if (!r.completed) return v.fail("the stream never ended", "Data Complete", outcome(r));
     if (!r.reply) return v.fail("no Read Stream Reply OK", "Read Stream Reply OK", outcome(r));
@@ -149,7 +153,7 @@ void stream_complete(CheckRun& run, const CheckSpec& spec) {
 void stream_buffer_negotiation(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
-    const StreamReadResult& r = windowed(run);
+    const StreamReadResult& r = run.probe<WindowedStream>();
     if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
     if (r.proposed == 0) return v.fail("the node proposed a buffer of 0", "> 0", "0");
     const std::uint64_t granted = r.granted;
@@ -165,7 +169,7 @@ void stream_buffer_negotiation(CheckRun& run, const CheckSpec& spec) {
 void stream_proceed(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
-    const StreamReadResult& r = windowed(run);
+    const StreamReadResult& r = run.probe<WindowedStream>();
     if (!r.initiated) return v.fail("no stream was opened", "Stream Initiate Request", outcome(r));
     if (r.during_hold > 0) {
         return v.fail("data kept coming while a full buffer waited for our Proceed",
@@ -174,7 +178,7 @@ void stream_proceed(CheckRun& run, const CheckSpec& spec) {
                           " held buffers");
     }
     if (!r.mem.ok) return v.fail("the windowed read did not finish", "Data Complete", outcome(r));
-    const std::vector<std::uint8_t>& dg = run.cdi().result.data;
+    const std::vector<std::uint8_t>& dg = run.probe<CdiDownload>().result.data;
     const std::size_t n = std::min(r.mem.data.size(), dg.size());
     if (!std::equal(r.mem.data.begin(), r.mem.data.begin() + static_cast<std::ptrdiff_t>(n),
                     dg.begin())) {
@@ -189,10 +193,10 @@ void stream_proceed(CheckRun& run, const CheckSpec& spec) {
 void stream_read_past_end(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
-    const SpaceInfo& info = run.space_info(0xFF);
+    const SpaceInfo& info = run.probe<SpaceInfoProbe>(0xFF);
     if (!info.present) return v.skip("space 0xFF has no Space Info");
     // Past a too-small highest address the read is inside the space: that check's finding.
-    if (const std::string why = run.highest_too_small(0xFF); !why.empty()) return v.skip(why);
+    if (const std::string why = highest_too_small(run, 0xFF); !why.empty()) return v.skip(why);
     const std::uint32_t end = info.highest_address + 1;
     StreamReadOptions o;
     o.count = kProbeBuffer;

@@ -22,8 +22,7 @@ using testing::FakeBench;
 using testing::SimBench;
 
 std::vector<CheckResult> run_list(Session& s, const NodeInfo& node, std::string_view only = {}) {
-    CheckContext ctx;
-    CheckRun run(s, node, ProtocolOptions{}, ctx);
+    CheckRun run(s, node, ProtocolOptions{});
     for (const CheckSpec& spec : checks::datagram_protocol_checks())
         if (only.empty() || spec.id == only) run.run(spec);
     return run.take();

@@ -8,6 +8,7 @@
 #include "conformance/checks/check_run.hpp"
 #include "conformance/checks/checks.hpp"
 #include "conformance/checks/events.hpp"
+#include "conformance/checks/probes.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {
@@ -27,8 +28,9 @@ std::vector<CheckResult> run_specs(SimBench& b, const std::vector<CheckSpec>& sp
                                    CheckContext& ctx) {
     auto node = b.start();
     if (!node) return {};
-    CheckRun run(*b.session, *node, ProtocolOptions{}, ctx);
+    CheckRun run(*b.session, *node, ProtocolOptions{});
     for (const CheckSpec& spec : specs) run.run(spec);
+    hand_over(run, ctx);
     return run.take();
 }
 
@@ -37,7 +39,7 @@ std::vector<CheckResult> run_events(SimBench& b) {
     return run_specs(b, checks::event_checks(), ctx);
 }
 
-// The follow-write check after the read-only checks filled the context (layout, timing).
+// The follow-write check after the read-only checks handed over what they learned (the layout).
 std::vector<CheckResult> follow_write(SimBench& b, const ProtectionRules& rules = {}) {
     CheckContext ctx;
     run_specs(b, checks::event_checks(), ctx);
@@ -105,8 +107,7 @@ TEST(EventChecksTest, NewChecksTakeUnderASecondOnTheDefaultNode) {
     std::vector<CheckSpec> specs = checks::memory_bounds_checks();
     const std::vector<CheckSpec> events = checks::event_checks();
     specs.insert(specs.end(), events.begin(), events.end());
-    CheckContext ctx;
-    CheckRun run(*b.session, *node, ProtocolOptions{}, ctx);
+    CheckRun run(*b.session, *node, ProtocolOptions{});
     const TimePoint start = b.net.now();
     for (const CheckSpec& spec : specs) run.run(spec);
     const Duration took = b.net.now() - start;

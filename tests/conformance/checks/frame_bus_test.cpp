@@ -25,8 +25,7 @@ using testing::SimBench;
 std::vector<CheckResult> run_list(Session& s, const NodeInfo& node,
                                   const std::vector<CheckSpec>& list, const ProtocolOptions& o = {},
                                   std::string_view only = {}) {
-    CheckContext ctx;
-    CheckRun run(s, node, o, ctx);
+    CheckRun run(s, node, o);
     for (const CheckSpec& spec : list)
         if (only.empty() || spec.id == only) run.run(spec);
     return run.take();

@@ -55,8 +55,7 @@ std::vector<CheckResult> probe_on_crowded_bus(int others, Duration& took) {
     auto node = b.session->find_node(kDut, 3s);
     EXPECT_TRUE(node);
     if (!node) return {};
-    CheckContext ctx;
-    CheckRun run(*b.session, *node, ProtocolOptions{}, ctx);
+    CheckRun run(*b.session, *node, ProtocolOptions{});
     const TimePoint t0 = b.net.now();
     for (const CheckSpec& spec : check_registry()) {
         for (const char* id : kProbeChecks)

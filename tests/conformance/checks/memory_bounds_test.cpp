@@ -31,8 +31,7 @@ struct Ran {
 // Every entry of specs, in order, in one CheckRun against the node.
 Ran run_specs(Session& session, const NodeInfo& node, const std::vector<CheckSpec>& specs,
               const ProtocolOptions& options = {}) {
-    CheckContext ctx;
-    CheckRun run(session, node, options, ctx);
+    CheckRun run(session, node, options);
     const TimePoint start = session.link().now();
     for (const CheckSpec& spec : specs) run.run(spec);
     return {run.take(), session.link().now() - start};

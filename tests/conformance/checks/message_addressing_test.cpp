@@ -23,8 +23,7 @@ using testing::SimBench;
 
 std::vector<CheckResult> run_list(Session& s, const NodeInfo& node,
                                   const std::vector<CheckSpec>& list, std::string_view only = {}) {
-    CheckContext ctx;
-    CheckRun run(s, node, ProtocolOptions{}, ctx);
+    CheckRun run(s, node, ProtocolOptions{});
     for (const CheckSpec& spec : list)
         if (only.empty() || spec.id == only) run.run(spec);
     return run.take();

@@ -19,8 +19,7 @@ using testing::SimBench;
 std::map<std::string, CheckResult> run_streams(SimBench& b, const ProtocolOptions& options = {}) {
     auto node = b.start();
     if (!node) return {};
-    CheckContext ctx;
-    CheckRun run(*b.session, *node, options, ctx);
+    CheckRun run(*b.session, *node, options);
     for (const CheckSpec& spec : checks::stream_checks()) run.run(spec);
     std::map<std::string, CheckResult> out;
     for (auto& r : run.take()) out[r.id] = r;

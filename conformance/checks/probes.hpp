@@ -1,0 +1,114 @@
+// The probes several check families share: what the node answered to one exchange, asked once
+// per run on first use (CheckRun::probe<P>()), and hand_over(), which gives what they learned to
+// the later phases of the node's run. A probe only one family uses lives in that family's file.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cdi/document.hpp"
+#include "cdi/layout.hpp"
+#include "cdi/rule_finding.hpp"
+#include "conformance/checks/check_context.hpp"
+#include "conformance/checks/check_run.hpp"
+#include "memory/memory_config_codec.hpp"
+#include "memory/snip.hpp"
+#include "openlcb/pip.hpp"
+
+namespace olcb::conform {
+
+/// Answers to the injected control frames and first messages (AME, CID, unknown MTI, Verify).
+struct FrameProbe {
+    std::size_t amd = 0;               ///< AMD frames from the node with its node ID
+    std::size_t rid = 0;               ///< RID frames from the node
+    std::size_t segment_amd = 0;       ///< AMD frames from every other node (the global AME's)
+    std::optional<std::uint16_t> oir;  ///< the code of an OIR echoing the unknown MTI
+    bool verified = false;             ///< Verified Node ID to the addressed Verify
+    std::optional<Mti> verified_mti;   ///< which Verified MTI (simple or full) it used
+
+    static FrameProbe ask(CheckRun& run);
+};
+
+/// The SNIP request.
+struct SnipProbe {
+    std::optional<std::vector<std::uint8_t>> raw;  ///< the reply's payload (nullopt: no reply)
+    std::optional<memory::Snip> snip;              ///< the payload decoded (when not empty)
+
+    static SnipProbe ask(CheckRun& run);
+};
+
+/// The Protocol Support Inquiry.
+struct PipProbe {
+    std::optional<ProtocolSet> reply;  ///< the Protocol Support Reply (nullopt: none came)
+
+    static PipProbe ask(CheckRun& run);
+};
+
+/// Get Configuration Options.
+struct OptionsProbe {
+    MemResult result;                                 ///< the exchange's outcome
+    std::optional<memory::ConfigOptionsReply> reply;  ///< the reply, when one came
+    std::string described;  ///< the reply in words, or the outcome when it failed
+
+    static OptionsProbe ask(CheckRun& run);
+};
+
+/// Get Address Space Information of one space. Unanswered, it is asked again on the next use.
+struct SpaceInfoProbe : SpaceInfo {
+    using Key = std::uint8_t;
+    static SpaceInfoProbe ask(CheckRun& run, std::uint8_t space);
+    bool settled() const { return answered; }
+};
+
+/// Space 0xFF downloaded, parsed and laid out.
+struct CdiDownload {
+    MemResult result;      ///< the read_range() outcome
+    bool read_ok = false;  ///< data came
+    /// Bytes that came from past Space Info's highest address (it is too small when not 0).
+    std::uint32_t beyond_highest = 0;
+    std::vector<std::uint8_t> text;  ///< the bytes up to (excluding) the NUL
+    bool nul_found = false;          ///< the download ended at a NUL
+    /// Parsed, when data came (on the heap: the layout points into it).
+    std::unique_ptr<cdi::Document> document;
+    std::optional<cdi::Layout> layout;    ///< its layout (when without errors)
+    std::vector<cdi::RuleFinding> rules;  ///< cdi::check_rules() of the text, when data came
+
+    static CdiDownload ask(CheckRun& run);
+};
+
+/// Spaces 252/251 read field by field, only with <acdi/> in the CDI.
+struct AcdiProbe {
+    std::optional<cdi::Acdi> acdi;  ///< the CDI's <acdi/> (nullopt: none, so nothing was read)
+    MemResult manufacturer_result;  ///< the outcome of reading 252
+    MemResult user_result;          ///< the outcome of reading 251
+    std::optional<std::vector<std::uint8_t>> manufacturer;  ///< 252's 125 bytes, when read
+    std::optional<std::vector<std::uint8_t>> user;          ///< 251's 128 bytes, when read
+
+    static AcdiProbe ask(CheckRun& run);
+};
+
+/// Get Address Space Information of space, the exchange's outcome in outcome (the probe's
+/// exchange; short_read_checks() asks it after the checks too).
+SpaceInfo ask_space_info(Session& s, const NodeInfo& node, std::uint8_t space, MemResult& outcome);
+
+/// "depends on <id>: why" when a check finds Space Info's highest address of space too small
+/// (the CDI goes on past it, the layout or ACDI needs more), so a check at that address would
+/// only repeat the finding; "" when nothing says so.
+std::string highest_too_small(CheckRun& run, std::uint8_t space);
+/// True when any memory-config exchange got an answer (asks Options when none was made).
+bool memory_works(CheckRun& run);
+/// True when any datagram got an answer, Datagram Rejected included (asks Options when none
+/// did).
+bool datagrams_answered(CheckRun& run);
+/// The spaces the CDI's segments use, in ascending order.
+std::vector<std::uint8_t> layout_spaces(CheckRun& run);
+
+/// Once the checks are done: what the probes learned (PIP, SNIP, the CDI, its document and
+/// layout, the ACDI blocks, Options, Space Info) and the temporary rejects, moved into ctx for
+/// the later phases (encoding, backup, report). Probes never asked leave ctx as it was.
+void hand_over(CheckRun& run, CheckContext& ctx);
+
+}  // namespace olcb::conform
