@@ -1,4 +1,6 @@
-// What the protocol checks learn about a node and later checks (encoding, backup) reuse.
+// What the protocol checks hand to the later phases of a node's run (encoding, backup, report).
+// The checks never read it: they read their probes (check_run.hpp), and hand_over() moves what
+// the probes learned into it once the checks are done.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +30,8 @@ struct SpaceInfo {
     std::optional<std::uint32_t> lowest_address;
 };
 
-/// Knowledge gathered by run_protocol_checks(); empty members mean "not learned".
+/// What run_protocol_checks() learned (empty members: not learned), and the run's inputs
+/// (timing, progress callbacks) and outcome (lost_after, not_run).
 struct CheckContext {
     std::optional<ProtocolSet> pip;           ///< Protocol Support Reply
     std::optional<memory::Snip> snip;         ///< decoded SNIP reply
