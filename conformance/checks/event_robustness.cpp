@@ -14,7 +14,7 @@ namespace {
 std::array<std::uint8_t, 8> tool_event(Session& s, std::uint8_t tag) {
     const std::uint64_t id = s.tool_id().value();
     std::array<std::uint8_t, 8> e{};
-    for (int i = 0; i < 6; ++i) e[i] = static_cast<std::uint8_t>(id >> (8 * (5 - i)));
+    for (std::size_t i = 0; i < 6; ++i) e[i] = static_cast<std::uint8_t>(id >> (8 * (5 - i)));
     e[6] = 0xEE;
     e[7] = tag;
     return e;

@@ -316,7 +316,8 @@ constexpr std::size_t kCrowd = 8;
 std::size_t crowd(CheckRun& run) {
     if (run.options().selection.thorough) return 0;
     std::size_t n = 0;
-    for (const NodeInfo& seen : run.session().nodes_seen()) n += is_tool_id(seen.id) ? 0 : 1;
+    for (const NodeInfo& seen : run.session().nodes_seen())
+        if (!is_tool_id(seen.id)) ++n;
     return n > kCrowd ? n : 0;
 }
 
@@ -633,12 +634,12 @@ std::string follow_asks(FollowRun& f, const EventVar& v, const EventAnswers& a, 
 void FollowRun::run(const EventVar& v, const EventAnswers& a, std::uint64_t id) {
     const std::string what = "after writing " + event_text(id) + " into " + v.key + " (space " +
                              hex(v.space, 2) + " at " + hex(v.address, 8) + ") and Update Complete";
-    const MemResult w = write_id(v, id);
-    if (!w.ok) {
+    const MemResult written = write_id(v, id);
+    if (!written.ok) {
         const std::string seen = restore(v);
         if (!seen.empty()) return restore_failed(v, seen);
         out.push_back(follow_result(Status::kSkip, "writing " + event_text(id) + " into " + v.key +
-                                                       ": " + describe(w) + "; not tested"));
+                                                       ": " + describe(written) + "; not tested"));
         return;
     }
     update_complete();

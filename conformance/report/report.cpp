@@ -70,13 +70,13 @@ void ProgressBar::start(std::string label, std::size_t total,
 }
 
 std::string ProgressBar::render(std::size_t done, std::chrono::steady_clock::time_point now) const {
-    constexpr int kWidth = 30;
+    constexpr std::size_t kWidth = 30;
     double elapsed = std::chrono::duration<double>(now - started_).count();
     std::string line = label_ + " ";
     if (total_ > 0) {
         std::size_t shown = done > total_ ? total_ : done;
-        int filled =
-            static_cast<int>(static_cast<double>(shown) * kWidth / static_cast<double>(total_));
+        const auto filled = static_cast<std::size_t>(
+            static_cast<double>(shown) * static_cast<double>(kWidth) / static_cast<double>(total_));
         line += "[" + std::string(filled, '#') + std::string(kWidth - filled, '.') + "] ";
         line += std::to_string(shown) + "/" + std::to_string(total_) + " B";
         if (shown > 0 && elapsed > 0) {

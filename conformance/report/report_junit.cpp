@@ -94,7 +94,8 @@ void add_testcase(pugi::xml_node suite, const CheckResult& c, const std::string&
 
 std::size_t count_errors(const NodeReport& r) {
     std::size_t n = 0;
-    for (const CheckResult& c : r.checks) n += is_error(c) ? 1 : 0;
+    for (const CheckResult& c : r.checks)
+        if (is_error(c)) ++n;
     return n;
 }
 

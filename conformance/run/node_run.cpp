@@ -171,7 +171,7 @@ bool NodeRun::timed(std::string_view name, const std::function<bool()>& step) {
     say(std::string(name) + " done in " + elapsed_text(spent));
     std::size_t untimed = 0;
     for (std::size_t i = first; i < report_.checks.size(); ++i)
-        untimed += report_.checks[i].duration == Duration{} ? 1 : 0;
+        if (report_.checks[i].duration == Duration{}) ++untimed;
     if (untimed == 0) return ok;
     for (std::size_t i = first; i < report_.checks.size(); ++i) {
         if (report_.checks[i].duration == Duration{})
