@@ -89,7 +89,7 @@ bool apply(std::string_view item, FaultSet& faults, std::string& error) {
     }
     if (const FaultDecl* d = find_fault(name)) {
         const auto v = parse_value(*d, value, error);
-        if (v) d->access.apply(faults, *v);
+        if (v) set_fault(faults, *d, *v);
         return v.has_value();
     }
     error = "unknown fault '" + std::string(name) + "' (known: ";
@@ -105,7 +105,7 @@ bool apply(std::string_view item, FaultSet& faults, std::string& error) {
 
 // The name parse_faults() reads back to fault d of f; nullopt when it is off.
 std::optional<std::string> name_if_set(const FaultSet& f, const FaultDecl& d) {
-    const FaultValue v = d.access.read(f);
+    const FaultValue v = fault_value(f, d);
     if (v == FaultValue{}) return std::nullopt;
     std::string text(d.name);
     switch (d.param.kind) {

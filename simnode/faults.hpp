@@ -6,6 +6,8 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -13,34 +15,30 @@
 
 namespace olcb::simnode {
 
-/// Which Protocol Support Reply bit pip-missing-bit drops.
-enum class PipBit : std::uint8_t { kCdi, kAcdi, kSnip, kDatagram, kMemoryConfiguration, kEvents };
+/// A fault's parameter as parse_faults() reads it; {0, 0} means the fault is off.
+struct FaultValue {
+    std::uint32_t value = 0;   ///< flag: 1; number: the number; choice: index + 1; latency: MS
+    std::uint32_t jitter = 0;  ///< latency's JITTER, else 0
+    friend bool operator==(const FaultValue&, const FaultValue&) = default;
+};
 
-/// The faults of one node; all off by default (a well-behaved node).
+/// The faults of one node; all off by default (a well-behaved node). A fault that reaches into
+/// the node's life (restarts, storage, the CDI it loads) keeps a field here, read by SimNode and
+/// NodeMemory; a fault whose hooks (fault_hooks.hpp) do all it does is kept in by_name.
 struct FaultSet {
-    bool snip_mismatch = false;         ///< SNIP model string differs from ACDI/CDI
-    bool snip_invalid_utf8 = false;     ///< SNIP user name ends in bytes that are not UTF-8
-    bool acdi_version = false;          ///< 252/251 version bytes are fixed+1 / var+1
-    std::optional<PipBit> pip_missing;  ///< PSR lacks this bit although the node serves it
-    bool cdi_unterminated = false;      ///< space 0xFF without the terminating NUL
-    bool cdi_padding = false;           ///< NULs and garbage after the terminating NUL
-    bool cdi_invalid = false;           ///< served CDI violates the schema (loads invalid CDIs)
-    bool int_byte_order = false;        ///< ints stored little-endian
-    bool string_unterminated = false;   ///< strings fill their field without a NUL
-    bool eventid_byte_order = false;    ///< event IDs stored little-endian
-    bool float_width = false;           ///< floats stored with the next smaller precision
-    bool write_dropped = false;         ///< writes acknowledged but not stored
-    bool write_not_persisted = false;   ///< writes kept in RAM only: lost on reboot
-    bool readonly_writable = false;     ///< writes to 0xFF and 252 accepted
-    bool read_past_end = false;         ///< read at/after the end returns zeros, not 0x1082
-    bool space_info_short = false;      ///< space information highest address too small
-    bool reply_form = false;            ///< replies in the other (short / byte-6) form
-    bool no_datagram_ack = false;       ///< reply datagram sent before Datagram Received OK
-    /// Reply datagrams held back this long (slow-reply=MS; 0 = off).
-    std::chrono::milliseconds slow_reply{0};
+    bool acdi_version = false;         ///< 252/251 version bytes are fixed+1 / var+1
+    bool cdi_unterminated = false;     ///< space 0xFF without the terminating NUL
+    bool cdi_padding = false;          ///< NULs and garbage after the terminating NUL
+    bool cdi_invalid = false;          ///< served CDI violates the schema (loads invalid CDIs)
+    bool int_byte_order = false;       ///< ints stored little-endian
+    bool string_unterminated = false;  ///< strings fill their field without a NUL
+    bool eventid_byte_order = false;   ///< event IDs stored little-endian
+    bool float_width = false;          ///< floats stored with the next smaller precision
+    bool write_dropped = false;        ///< writes acknowledged but not stored
+    bool write_not_persisted = false;  ///< writes kept in RAM only: lost on reboot
+    bool readonly_writable = false;    ///< writes to 0xFF and 252 accepted
     /// The first N datagrams are rejected with 0x2020 (reject-temporary=N; 0 = off).
     std::uint32_t reject_temporary = 0;
-    bool alias_conflict_ignored = false;  ///< no RID on CID, no AMR on conflict
     /// Period of unsolicited Verify Node ID Global messages (unsolicited-traffic=MS; 0 = off).
     std::chrono::milliseconds unsolicited_period{0};
     /// Silence after a SNIP request while the watched int differs from its value at creation,
@@ -52,33 +50,21 @@ struct FaultSet {
     /// The Nth stored write restarts the node without its Write Reply (reboot-on-write=N; 0 =
     /// off); once per process.
     std::uint32_t reboot_on_write = 0;
-    bool reset_rejected = false;  ///< Reset/Reboot rejected with 0x1041
-    bool lock_rejected = false;   ///< Lock/Reserve rejected with 0x1041
     /// Every restart factory-resets the writable spaces while the watched int differs from its
     /// value at creation.
     bool factory_reset_on_version_change = false;
-    bool new_alias_on_reboot = false;    ///< every restart reserves a different alias
-    bool field_reads_only = false;       ///< 251/252 reads return one ACDI field (or 1 byte)
-    bool unknown_space_0x1041 = false;   ///< read/write of an unknown space rejected 0x1041
-    bool readonly_0x1041 = false;        ///< write to a read-only space rejected 0x1041
-    bool read_past_end_garbage = false;  ///< 0xFD read at/after the end returns 0xA5 bytes
     bool write_past_end_spills = false;  ///< crossing writes accepted; 251's tail lands in 253
     /// Crossing writes accepted; the bytes past the end are kept (on disk) where no read reaches.
     bool write_past_end_grows = false;
-    bool highest_unreadable = false;        ///< 251/253 Space Info highest = size (one too high)
     bool events_stale_after_write = false;  ///< identifies the start-up event IDs until restart
     bool events_missing = false;            ///< eventid slots 1, 3, 5... never identified
-    bool duplicate_id_silent = false;       ///< no PCER on a duplicate node ID
-    bool burst_drops = false;               ///< addressed messages dropped during frame bursts
-    bool answers_standard_frames = false;   ///< any 11-bit frame answered with Verified Node ID
-    bool stream_wrong_count = false;        ///< Data Complete counts one byte more than sent
-    bool stream_no_complete = false;        ///< stream reads never end with Data Complete
-    bool stream_ignore_proceed = false;     ///< sends the whole read without Data Proceed
-    bool stream_exceed_buffer = false;      ///< sends twice the granted buffer per Proceed
     /// Every answer is sent this long after its request arrived (latency=MS[:JITTER]; 0 = off).
     std::chrono::milliseconds latency{0};
     /// Up to this much more, uniformly random per answer, seeded by the node ID.
     std::chrono::milliseconds latency_jitter{0};
+
+    /// The values of the faults that keep no field, by name (set_fault(), fault_value()).
+    std::map<std::string, FaultValue, std::less<>> by_name;
 
     /// True when no fault is set.
     bool none() const;

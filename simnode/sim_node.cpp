@@ -15,83 +15,19 @@
 namespace olcb::simnode {
 namespace {
 
-// How far space-info-short undercuts the real highest address.
-constexpr std::uint32_t kSpaceInfoShortBy = 16;
 constexpr std::uint8_t kConfigSpace = 0xFD;
-// What read-past-end-garbage returns for each byte past the end of 0xFD.
-constexpr std::uint8_t kPastEndGarbage = 0xA5;
-
-// field-reads-only: where the ACDI fields of 252 and 251 start and how long they are (fact
-// sheet 7); the first of each space is the version byte.
-struct AcdiField {
-    std::uint32_t address, size;
-};
-constexpr AcdiField kManufacturerFields[] = {{0, 1}, {1, 41}, {42, 41}, {83, 21}, {104, 21}};
-constexpr AcdiField kUserFields[] = {{0, 1}, {1, 63}, {64, 64}};
-
-// field-reads-only: cuts a Read Reply of 251/252 to the field it starts at (a string up to and
-// including its NUL) or to 1 byte off a field start.
-void cut_to_field(memory::ReadReply& r) {
-    std::span<const AcdiField> fields;
-    if (r.space == memory::Space::kAcdiManufacturer) {
-        fields = kManufacturerFields;
-    } else if (r.space == memory::Space::kAcdiUser) {
-        fields = kUserFields;
-    } else {
-        return;
-    }
-    std::size_t keep = 1;
-    for (const AcdiField& field : fields) {
-        if (r.address != field.address) continue;
-        const std::size_t within = std::min<std::size_t>(field.size, r.data.size());
-        const auto end = r.data.begin() + static_cast<std::ptrdiff_t>(within);
-        const auto nul = std::find(r.data.begin(), end, std::uint8_t{0});
-        keep = static_cast<std::size_t>((nul == end ? end : nul + 1) - r.data.begin());
-    }
-    if (r.data.size() > keep) r.data.resize(keep);
-}
-
-Protocol pip_protocol(PipBit bit) {
-    switch (bit) {
-        case PipBit::kCdi:
-            return Protocol::kCdi;
-        case PipBit::kAcdi:
-            return Protocol::kAcdi;
-        case PipBit::kSnip:
-            return Protocol::kSnip;
-        case PipBit::kDatagram:
-            return Protocol::kDatagram;
-        case PipBit::kMemoryConfiguration:
-            return Protocol::kMemoryConfiguration;
-        case PipBit::kEvents:
-            return Protocol::kEventExchange;
-    }
-    return Protocol::kCdi;
-}
-
-// The other form for a short-form-capable space; byte-6-only spaces keep theirs.
-memory::SpaceForm other_form(memory::Space space, memory::SpaceForm form) {
-    if (!memory::has_short_form(space)) return form;
-    return memory::resolve_form(space, form) == memory::SpaceForm::kShort
-               ? memory::SpaceForm::kByte6
-               : memory::SpaceForm::kShort;
-}
 
 }  // namespace
 
 namespace {
 
-// The stack of a node: what it serves, the faults its configuration decides (its PIP, the
-// duplicate-ID PCER, its alias after a restart) and its stream transport. The faults on frames
-// and streams are hooks of StackFaults.
+// The stack of a node: what it serves and its stream transport, then what the faults' hooks
+// change of it (its PIP, the duplicate-ID PCER, its alias after a restart).
 NodeStackConfig stack_config_for(const NodeConfig& config, ProtocolSet served) {
     NodeStackConfig sc;
     sc.node_id = config.node_id;
     sc.protocols = served;
-    if (config.faults.pip_missing)
-        sc.protocols.set(pip_protocol(*config.faults.pip_missing), false);
-    sc.builtins.duplicate_id_pcer = !config.faults.duplicate_id_silent;
-    sc.new_alias_on_restart = config.faults.new_alias_on_reboot;
+    sc.builtins.duplicate_id_pcer = true;  // optional (CAN 6), as OpenMRN nodes send it
     sc.streams = config.streams;
     // Incoming streams are taken (and their data dropped), as OlcbChecker's st checks expect.
     sc.stream.accept_unsolicited = true;
@@ -101,6 +37,7 @@ NodeStackConfig stack_config_for(const NodeConfig& config, ProtocolSet served) {
         sc.builtins.protocol_support = false;
         sc.builtins.reject_unknown_addressed = false;
     }
+    ActiveFaults(config.faults).stack_config(sc);
     return sc;
 }
 
@@ -187,8 +124,8 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
       }()),
       served_protocols_(served),
       answer_delay_(config_.faults.latency, config_.faults.latency_jitter, config_.node_id.value()),
-      stack_faults_(config_.faults) {
-    stack_faults_.attach(stack_);
+      faults_(config_.faults) {
+    faults_.attach(stack_);
     memory_->serve(server_);
     startup_events_ = memory_->events();
     if (config_.faults.abort_on_value.count() > 0 || config_.faults.factory_reset_on_version_change)
@@ -228,20 +165,7 @@ bool SimNode::watched_changed() const {
 
 memory::Snip SimNode::snip() const {
     memory::Snip s = memory_->snip();
-    if (config_.faults.snip_mismatch) {
-        // Still a valid SNIP string, just not the one ACDI and the CDI hold.
-        constexpr std::string_view kSuffix = " (SNIP)";
-        s.model =
-            std::string(memory::clamp_utf8(s.model, memory::kSnipModelMax - 1 - kSuffix.size())) +
-            std::string(kSuffix);
-    }
-    if (config_.faults.snip_invalid_utf8) {
-        // Bytes no UTF-8 text holds anywhere: a client must not trust SNIP strings blindly.
-        constexpr std::string_view kInvalid = "\xFF\xFE";
-        s.user_name = std::string(memory::clamp_utf8(
-                          s.user_name, memory::kSnipUserNameMax - 1 - kInvalid.size())) +
-                      std::string(kInvalid);
-    }
+    faults_.snip(s);
     return s;
 }
 
@@ -582,21 +506,16 @@ memory::WriteStatus SimNode::write_memory(std::uint8_t space, std::uint32_t addr
 // which send_answer() encodes once.
 memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t> payload) {
     memory::DecodeResult asked = memory::decode(payload);
-    if (auto early = command_faults(asked)) return std::move(*early);
+    if (auto early = faults_.request(asked)) return std::move(*early);
     memory::Source source;
     source.alias = src;
     source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
     const FaultSet& f = config_.faults;
-    const std::optional<memory::Read> read =
-        asked.ok() && std::holds_alternative<memory::Read>(asked.message)
-            ? std::optional(std::get<memory::Read>(asked.message))
-            : std::nullopt;
     if (f.mask_ignored.count() > 0) unmask(asked);
     memory::Decision decision = f.write_past_end_spills || f.write_past_end_grows
                                     ? crossing_write(source, asked)
                                     : server_.handle(source, asked);
-    apply_reject_faults(decision);
-    apply_reply_faults(decision, read);
+    faults_.reply(asked, decision);
     const memory::SideEffects& fx = decision.effects;
     if (decision.accepted && fx.unique_id_counter &&
         !memory_->store_unique_id_counter(*fx.unique_id_counter)) {
@@ -604,18 +523,6 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
         decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
     }
     return decision;
-}
-
-std::optional<memory::Decision> SimNode::command_faults(const memory::DecodeResult& asked) const {
-    const FaultSet& f = config_.faults;
-    if (!f.reset_rejected && !f.lock_rejected) return std::nullopt;
-    // Decided before the server sees the command: it would clear or take the lock.
-    if (!asked.ok()) return std::nullopt;
-    if ((f.reset_rejected && std::holds_alternative<memory::ResetReboot>(asked.message)) ||
-        (f.lock_rejected && std::holds_alternative<memory::Lock>(asked.message))) {
-        return memory::Decision::reject(memory::ErrorCode::kSubcommandUnknown);
-    }
-    return std::nullopt;
 }
 
 // mask-ignored: a Write Under Mask becomes a Write of its data bytes (the masks ignored), and
@@ -678,13 +585,16 @@ void SimNode::send_answer(std::uint16_t src, memory::Decision& decision) {
         return;
     }
     std::vector<std::uint8_t> reply = decision.reply_bytes();
-    if (config_.faults.no_datagram_ack) {
+    AnswerPlan plan;
+    plan.index = replies_++;
+    faults_.answer(plan);
+    if (plan.reply_first) {
         send_reply(src, std::move(reply));
         stack_.accept_datagram(src, flags);
-    } else if (config_.faults.slow_reply.count() > 0 && replies_++ % kSlowReplyEvery == 0) {
+    } else if (plan.delay.count() > 0) {
         stack_.accept_datagram(src, flags);
         const std::uint32_t generation = boot_generation_;
-        stack_.schedule(stack_.now() + config_.faults.slow_reply,
+        stack_.schedule(stack_.now() + plan.delay,
                         [this, generation, src, reply = std::move(reply)](TimePoint) {
                             if (generation == boot_generation_) send_reply(src, reply);
                         });
@@ -696,67 +606,6 @@ void SimNode::send_answer(std::uint16_t src, memory::Decision& decision) {
 
 void SimNode::send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply) {
     stack_.send_datagram(dest, reply, stack_.now());
-}
-
-void SimNode::apply_reply_faults(memory::Decision& decision,
-                                 const std::optional<memory::Read>& read) const {
-    const FaultSet& f = config_.faults;
-    if (!decision.reply || !(f.read_past_end || f.read_past_end_garbage || f.space_info_short ||
-                             f.reply_form || f.field_reads_only || f.highest_unreadable)) {
-        return;
-    }
-    memory::Message& reply = *decision.reply;
-    if (f.field_reads_only) {
-        if (auto* r = std::get_if<memory::ReadReply>(&reply)) cut_to_field(*r);
-    }
-    if (f.read_past_end || f.read_past_end_garbage) fill_past_end(reply, read);
-    if (auto* info = std::get_if<memory::SpaceInfoReply>(&reply)) {
-        if (f.highest_unreadable &&
-            (info->space == memory::Space::kAcdiUser || info->space == memory::Space::kConfig)) {
-            ++info->highest_address;  // the size, as OpenMRN's FileMemorySpace says
-        }
-        if (f.space_info_short) {
-            info->highest_address -= std::min(info->highest_address, kSpaceInfoShortBy);
-        }
-    }
-    if (f.reply_form) {
-        std::visit(
-            [&](auto& m) {
-                using T = std::decay_t<decltype(m)>;
-                if constexpr (std::is_same_v<T, memory::ReadReply> ||
-                              std::is_same_v<T, memory::ReadReplyFail> ||
-                              std::is_same_v<T, memory::WriteReply> ||
-                              std::is_same_v<T, memory::WriteReplyFail>) {
-                    m.form = other_form(m.space, m.form);
-                }
-            },
-            reply);
-    }
-}
-
-// read-past-end (every space: zeros) and read-past-end-garbage (0xFD only: 0xA5 bytes): a read
-// starting at/after the end gets Read Reply OK with `count` bytes instead of the 0x1082 failure.
-void SimNode::fill_past_end(memory::Message& reply, const std::optional<memory::Read>& read) const {
-    const auto* fail = std::get_if<memory::ReadReplyFail>(&reply);
-    if (fail == nullptr || fail->error != memory::ErrorCode::kOutOfBounds || !read) return;
-    std::uint8_t fill = 0;
-    if (!config_.faults.read_past_end) {
-        if (read->space != memory::Space::kConfig) return;
-        fill = kPastEndGarbage;
-    }
-    reply = memory::ReadReply{read->space, read->address,
-                              std::vector<std::uint8_t>(read->count & 0x7F, fill), read->form};
-}
-
-void SimNode::apply_reject_faults(memory::Decision& decision) const {
-    const FaultSet& f = config_.faults;
-    const memory::ErrorCode code = decision.reject_error;
-    // The server gives 0x1081 only to reads and writes, 0x1083 only to writes.
-    if (!decision.accepted &&
-        ((f.unknown_space_0x1041 && code == memory::ErrorCode::kSpaceUnknown) ||
-         (f.readonly_0x1041 && code == memory::ErrorCode::kReadOnly))) {
-        decision.reject_error = memory::ErrorCode::kSubcommandUnknown;
-    }
 }
 
 }  // namespace olcb::simnode

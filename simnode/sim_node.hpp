@@ -21,8 +21,8 @@
 #include "simnode/answer_delay.hpp"
 #include "simnode/event_roles.hpp"
 #include "simnode/faults.hpp"
+#include "simnode/faults/fault_hooks.hpp"
 #include "simnode/node_memory.hpp"
-#include "simnode/stack_faults.hpp"
 
 namespace olcb::simnode {
 
@@ -63,10 +63,6 @@ struct NodeCounters {
     std::uint64_t temporary_rejects = 0;  ///< datagrams rejected by reject-temporary
     std::uint32_t storage_errors = 0;     ///< factory reset or counter writes that failed
 };
-
-/// slow-reply holds back the first reply datagram and then every this-many-th: like firmware
-/// that stalls now and then (a flash erase), and a client's run stays bounded in time.
-inline constexpr std::uint64_t kSlowReplyEvery = 32;
 
 /// One simulated node.
 class SimNode {
@@ -139,7 +135,6 @@ private:
     void answer_datagram(const ReceivedDatagram& datagram);
     void after_write(const memory::WrittenRange& written);
     memory::Decision decide(std::uint16_t src, std::span<const std::uint8_t> payload);
-    std::optional<memory::Decision> command_faults(const memory::DecodeResult& asked) const;
     void send_answer(std::uint16_t src, memory::Decision& decision);
     bool reboot_on_this_write();
     void find_watched();
@@ -152,10 +147,6 @@ private:
     void advertise_all();
     void identified(EventId id, bool producer);
     void send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply);
-    void apply_reply_faults(memory::Decision& decision,
-                            const std::optional<memory::Read>& read) const;
-    void apply_reject_faults(memory::Decision& decision) const;
-    void fill_past_end(memory::Message& reply, const std::optional<memory::Read>& read) const;
     memory::Decision crossing_write(const memory::Source& source,
                                     const memory::DecodeResult& asked);
     void unmask(memory::DecodeResult& asked);
@@ -177,8 +168,8 @@ private:
     ProtocolSet served_protocols_;
     NodeCounters counters_;
     AnswerDelay answer_delay_;           // the latency fault
-    StackFaults stack_faults_;           // the faults on frames and streams (stack hooks)
-    std::uint64_t replies_ = 0;          // numbers replies for slow-reply
+    ActiveFaults faults_;                // the faults' hooks
+    std::uint64_t replies_ = 0;          // reply datagrams sent or scheduled
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
     bool unsolicited_started_ = false;
     std::uint32_t stored_writes_ = 0;    // counts writes for reboot-on-write

@@ -7,6 +7,7 @@ std::vector<FaultDecl> acdi_faults() {
     return {
         {
             .name = "acdi-version",
+            .order = 30,
             .access = flag_field<&FaultSet::acdi_version>(),
             .summary = "version bytes of spaces 252/251 are fixed+1 and var+1",
             .rule_broken = "CDI 5.1.2: byte 0 of 252 is the `fixed` attribute, byte 0 of 251 the "

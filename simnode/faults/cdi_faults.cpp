@@ -7,6 +7,7 @@ std::vector<FaultDecl> cdi_faults() {
     return {
         {
             .name = "cdi-unterminated",
+            .order = 50,
             .access = flag_field<&FaultSet::cdi_unterminated>(),
             .summary = "space 0xFF holds the CDI without its terminating NUL",
             .rule_broken = "CDI: the CDI is a NUL-terminated string in space 0xFF (fact sheet "
@@ -19,6 +20,7 @@ std::vector<FaultDecl> cdi_faults() {
         },
         {
             .name = "cdi-padding",
+            .order = 60,
             .access = flag_field<&FaultSet::cdi_padding>(),
             .summary = "space 0xFF has extra NULs and garbage after the NUL",
             .rule_broken = "none broken: a space may be larger than the text it holds (MemCfg "
@@ -31,6 +33,7 @@ std::vector<FaultDecl> cdi_faults() {
         },
         {
             .name = "cdi-invalid",
+            .order = 70,
             .access = flag_field<&FaultSet::cdi_invalid>(),
             .summary = "served CDI violates the schema (no XML declaration, unknown element)",
             .rule_broken = "CDI 5.1 / schema: the served XML declares and follows the CDI schema",

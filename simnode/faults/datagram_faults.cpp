@@ -3,11 +3,19 @@
 
 namespace olcb::simnode {
 
+namespace {
+
+void reply_before_ok(AnswerPlan& plan, FaultValue) {
+    plan.reply_first = true;
+}
+
+}  // namespace
+
 std::vector<FaultDecl> datagram_faults() {
     return {
         {
             .name = "no-datagram-ack",
-            .access = flag_field<&FaultSet::no_datagram_ack>(),
+            .order = 180,
             .summary = "reply datagram sent before the Datagram Received OK",
             .rule_broken = "Datagram: every datagram gets Datagram Received OK/Rejected; MemCfg: "
                            "the OK (Reply Pending) precedes the reply datagram (fact sheet 4, "
@@ -16,9 +24,11 @@ std::vector<FaultDecl> datagram_faults() {
             .verdict = Verdict::kWarn,
             .category = "datagram",
             .checks = {"datagram.ok-before-reply"},
+            .hooks = {.answer = reply_before_ok},
         },
         {
             .name = "reject-temporary",
+            .order = 200,
             .param = {ParamKind::kNumber, "N", 3, 1, kMaxCount},
             .access = count_field<&FaultSet::reject_temporary>(),
             .summary = "the first N datagrams are rejected with 0x2020, then it works",

@@ -8,6 +8,7 @@ std::vector<FaultDecl> encoding_faults() {
     return {
         {
             .name = "int-byte-order",
+            .order = 80,
             .access = flag_field<&FaultSet::int_byte_order>(),
             .summary = "<int> values stored little-endian",
             .rule_broken = "CDI 5.1.4.2: `<int>` values are stored big-endian (fact sheet "
@@ -21,6 +22,7 @@ std::vector<FaultDecl> encoding_faults() {
         },
         {
             .name = "string-unterminated",
+            .order = 90,
             .access = flag_field<&FaultSet::string_unterminated>(),
             .summary = "<string> values fill the field with spaces, no NUL",
             .rule_broken = "CDI 5.1.4.3: a `<string>` shorter than its size is NUL-terminated",
@@ -32,6 +34,7 @@ std::vector<FaultDecl> encoding_faults() {
         },
         {
             .name = "eventid-byte-order",
+            .order = 100,
             .access = flag_field<&FaultSet::eventid_byte_order>(),
             .summary = "<eventid> values stored little-endian",
             .rule_broken = "CDI 5.1.4.4 / Events: an `<eventid>` is 8 bytes big-endian (fact "
@@ -44,6 +47,7 @@ std::vector<FaultDecl> encoding_faults() {
         },
         {
             .name = "float-width",
+            .order = 110,
             .access = flag_field<&FaultSet::float_width>(),
             .summary = "<float> values stored with the next smaller precision",
             .rule_broken = "CDI 5.1.4.5: a `<float>` of size 2/4/8 is IEEE-754 half/single/double",

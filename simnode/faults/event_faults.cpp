@@ -7,6 +7,7 @@ std::vector<FaultDecl> event_faults() {
     return {
         {
             .name = "events-stale-after-write",
+            .order = 380,
             .access = flag_field<&FaultSet::events_stale_after_write>(),
             .summary = "events identified as at start-up: written event IDs not identified until "
                        "a restart",
@@ -23,6 +24,7 @@ std::vector<FaultDecl> event_faults() {
         },
         {
             .name = "events-missing",
+            .order = 390,
             .access = flag_field<&FaultSet::events_missing>(),
             .summary = "every second eventid of the CDI (slots 1, 3, 5...) never identified",
             .rule_broken = "Events: a node identifies every event it produces or consumes (fact "

@@ -8,76 +8,13 @@
 namespace olcb::simnode {
 namespace {
 
-constexpr std::vector<FaultDecl> (*kFamilies[])() = {
-    snip_faults,    acdi_faults,    pip_faults,      cdi_faults,    encoding_faults,
-    write_faults,   read_faults,    datagram_faults, timing_faults, frame_faults,
-    message_faults, restart_faults, event_faults,    stream_faults,
-};
-
-// The order the faults were added in, which to_names(), --list-faults and docs/faults.md keep
-// so their output stays stable; a fault not listed (a new one) follows in family order.
-constexpr std::string_view kHistoricalOrder[] = {
-    "snip-mismatch",
-    "snip-invalid-utf8",
-    "acdi-version",
-    "pip-missing-bit",
-    "cdi-unterminated",
-    "cdi-padding",
-    "cdi-invalid",
-    "int-byte-order",
-    "string-unterminated",
-    "eventid-byte-order",
-    "float-width",
-    "write-dropped",
-    "write-not-persisted",
-    "readonly-writable",
-    "read-past-end",
-    "space-info-short",
-    "reply-form",
-    "no-datagram-ack",
-    "slow-reply",
-    "reject-temporary",
-    "alias-conflict-ignored",
-    "unsolicited-traffic",
-    "abort-on-value",
-    "reboot-on-write",
-    "reset-rejected",
-    "lock-rejected",
-    "factory-reset-on-version-change",
-    "new-alias-on-reboot",
-    "field-reads-only",
-    "unknown-space-0x1041",
-    "readonly-0x1041",
-    "latency",
-    "read-past-end-garbage",
-    "write-past-end-spills",
-    "write-past-end-grows",
-    "mask-ignored",
-    "highest-unreadable",
-    "events-stale-after-write",
-    "events-missing",
-    "duplicate-id-silent",
-    "burst-drops",
-    "answers-standard-frames",
-    "stream-wrong-count",
-    "stream-no-complete",
-    "stream-ignore-proceed",
-    "stream-exceed-buffer",
-};
-
-std::size_t historical_rank(std::string_view name) {
-    const auto* it = std::find(std::begin(kHistoricalOrder), std::end(kHistoricalOrder), name);
-    return static_cast<std::size_t>(it - std::begin(kHistoricalOrder));
-}
-
 std::vector<FaultDecl> collect() {
     std::vector<FaultDecl> all;
-    for (const auto family : kFamilies) {
+    for (const FaultFamily family : fault_families()) {
         for (FaultDecl& d : family()) all.push_back(std::move(d));
     }
-    std::stable_sort(all.begin(), all.end(), [](const FaultDecl& a, const FaultDecl& b) {
-        return historical_rank(a.name) < historical_rank(b.name);
-    });
+    std::stable_sort(all.begin(), all.end(),
+                     [](const FaultDecl& a, const FaultDecl& b) { return a.order < b.order; });
     return all;
 }
 
@@ -107,6 +44,21 @@ const FaultDecl* find_fault(std::string_view name) {
         if (d.name == name) return &d;
     }
     return nullptr;
+}
+
+FaultValue fault_value(const FaultSet& faults, const FaultDecl& d) {
+    if (d.access.read != nullptr) return d.access.read(faults);
+    const auto it = faults.by_name.find(d.name);
+    return it == faults.by_name.end() ? FaultValue{} : it->second;
+}
+
+void set_fault(FaultSet& faults, const FaultDecl& d, FaultValue v) {
+    if (d.access.apply != nullptr) return d.access.apply(faults, v);
+    if (v == FaultValue{}) {
+        faults.by_name.erase(std::string(d.name));
+    } else {
+        faults.by_name[std::string(d.name)] = v;
+    }
 }
 
 std::string category_column(const FaultDecl& d) {

@@ -9,15 +9,9 @@
 #include <vector>
 
 #include "simnode/faults.hpp"
+#include "simnode/faults/fault_hooks.hpp"
 
 namespace olcb::simnode {
-
-/// A fault's parameter as parse_faults() reads it; {0, 0} means the fault is off.
-struct FaultValue {
-    std::uint32_t value = 0;   ///< flag: 1; number: the number; choice: index + 1; latency: MS
-    std::uint32_t jitter = 0;  ///< latency's JITTER, else 0
-    friend bool operator==(const FaultValue&, const FaultValue&) = default;
-};
 
 /// The syntax of a fault's parameter.
 enum class ParamKind : std::uint8_t {
@@ -44,7 +38,8 @@ enum class Verdict : std::uint8_t {
     kNone,        ///< nothing wrong: every check passes, exit 0
 };
 
-/// How a fault sets FaultSet and reads it back (for to_names()).
+/// How a fault sets FaultSet and reads it back (for to_names()); left empty, the fault's value
+/// is kept in FaultSet::by_name under its name.
 struct FaultAccess {
     void (*apply)(FaultSet&, FaultValue) = nullptr;
     FaultValue (*read)(const FaultSet&) = nullptr;
@@ -52,7 +47,10 @@ struct FaultAccess {
 
 /// One fault, declared once.
 struct FaultDecl {
-    std::string_view name;     ///< e.g. "reject-temporary"
+    std::string_view name;  ///< e.g. "reject-temporary"
+    /// Where it stands among all faults (--list-faults, docs/faults.md's rows, to_names() and the
+    /// order hooks run in); gaps of 10 leave room, as CheckSpec::order does for checks.
+    int order = 0;
     FaultParam param;          ///< its "=..." syntax, default and bounds
     FaultAccess access;        ///< the FaultSet field(s) it sets
     std::string_view summary;  ///< one line for --help / --list-faults
@@ -67,7 +65,14 @@ struct FaultDecl {
     std::string_view category_note;  ///< appended in parentheses, e.g. "above 750 ms: message"
     /// Check IDs (as reports name them) seen to flag it with the verdict's status.
     std::vector<std::string_view> checks;
+    FaultHooks hooks;  ///< what it changes in the node, at which points
 };
+
+/// The value of fault d in faults ({0, 0}: off).
+FaultValue fault_value(const FaultSet& faults, const FaultDecl& d);
+
+/// Sets fault d of faults to v.
+void set_fault(FaultSet& faults, const FaultDecl& d, FaultValue v);
 
 // Accessors for the common field types, so a declaration names its field once.
 template <bool FaultSet::*Field>

@@ -3,10 +3,19 @@
 
 namespace olcb::simnode {
 
+namespace {
+
+void no_duplicate_pcer(NodeStackConfig& config, FaultValue) {
+    config.builtins.duplicate_id_pcer = false;
+}
+
+}  // namespace
+
 std::vector<FaultDecl> message_faults() {
     return {
         {
             .name = "unsolicited-traffic",
+            .order = 220,
             .param = {ParamKind::kNumber, "MS", 1000, 10, kMaxDelayMs},
             .access = ms_field<&FaultSet::unsolicited_period>(),
             .summary = "a Verify Node ID Global every MS milliseconds",
@@ -20,7 +29,7 @@ std::vector<FaultDecl> message_faults() {
         },
         {
             .name = "duplicate-id-silent",
-            .access = flag_field<&FaultSet::duplicate_id_silent>(),
+            .order = 400,
             .summary = "no duplicate-node-ID PCER on a duplicate node ID",
             .rule_broken = "none required: CAN 6 lets a node indicate a duplicate node ID with "
                            "the PCER `01.01.00.00.00.00.02.01`, optionally (fact sheet 1.6); "
@@ -30,6 +39,7 @@ std::vector<FaultDecl> message_faults() {
             .verdict = Verdict::kWarn,
             .category = "message",
             .checks = {"message.duplicate-node-id"},
+            .hooks = {.stack_config = no_duplicate_pcer},
         },
     };
 }

@@ -5,17 +5,16 @@ namespace olcb::simnode {
 
 namespace {
 
-// The choice's index + 1, in the order of PipBit and of the declaration's choices.
-void apply_pip_missing(FaultSet& f, FaultValue v) {
-    if (v.value == 0) {
-        f.pip_missing.reset();
-    } else {
-        f.pip_missing = static_cast<PipBit>(v.value - 1);
-    }
-}
+// The protocols of the choices, in the declaration's order (the value is the index + 1).
+constexpr Protocol kChoices[] = {Protocol::kCdi,
+                                 Protocol::kAcdi,
+                                 Protocol::kSnip,
+                                 Protocol::kDatagram,
+                                 Protocol::kMemoryConfiguration,
+                                 Protocol::kEventExchange};
 
-FaultValue read_pip_missing(const FaultSet& f) {
-    return {f.pip_missing ? static_cast<std::uint32_t>(*f.pip_missing) + 1 : 0U};
+void drop_bit(NodeStackConfig& config, FaultValue v) {
+    config.protocols.set(kChoices[v.value - 1], false);
 }
 
 }  // namespace
@@ -24,13 +23,13 @@ std::vector<FaultDecl> pip_faults() {
     return {
         {
             .name = "pip-missing-bit",
+            .order = 40,
             .param = {ParamKind::kChoice,
                       "",
                       1,
                       1,
                       6,
                       {"cdi", "acdi", "snip", "datagram", "memory", "events"}},
-            .access = {apply_pip_missing, read_pip_missing},
             .summary = "Protocol Support Reply lacks a bit for a protocol the node serves",
             .doc_parameter = "`cdi` (default), `acdi`, `snip`, `datagram`, `memory`, `events`",
             .rule_broken = "MsgNet PIP: the reply lists every protocol the node implements; CDI "
@@ -40,6 +39,7 @@ std::vector<FaultDecl> pip_faults() {
             .verdict = Verdict::kFail,
             .category = "pip",
             .checks = {"pip.cdi-bit"},
+            .hooks = {.stack_config = drop_bit},
         },
     };
 }

@@ -3,10 +3,26 @@
 
 namespace olcb::simnode {
 
-std::vector<FaultDecl> restart_faults() {
+namespace {
+
+// Decided before the server sees the command: it would clear or take the lock.
+template <typename Command>
+void refuse(RequestTurn& turn, FaultValue) {
+    if (turn.asked.ok() && std::holds_alternative<Command>(turn.asked.message)) {
+        turn.answer = memory::Decision::reject(memory::ErrorCode::kSubcommandUnknown);
+    }
+}
+
+void next_alias_on_restart(NodeStackConfig& config, FaultValue) {
+    config.new_alias_on_restart = true;
+}
+
+// Crashes and restarts.
+std::vector<FaultDecl> restarts() {
     return {
         {
             .name = "abort-on-value",
+            .order = 230,
             .param = {ParamKind::kNumber, "MS", 3000, 1, kMaxDelayMs},
             .access = ms_field<&FaultSet::abort_on_value>(),
             .summary = "a SNIP request while the first 253 int was changed: silent MS ms, then a "
@@ -27,31 +43,8 @@ std::vector<FaultDecl> restart_faults() {
             .verdict = Verdict::kNone,
         },
         {
-            .name = "reset-rejected",
-            .access = flag_field<&FaultSet::reset_rejected>(),
-            .summary = "Reset/Reboot rejected with 0x1041; the node does not restart",
-            .rule_broken = "none broken by itself: Reset/Reboot is an optional command, and an "
-                           "unknown command is rejected `0x1041` (fact sheet 5.2, 5.4); OpenMRN "
-                           "on Linux does this (`real-world.md` §1)",
-            .client_sees = "`20 A9` gets Datagram Rejected `0x1041` and the node does not "
-                           "restart (lock, images and alias untouched). A careful client quotes "
-                           "the code, skips what needs a reboot and sees nothing wrong",
-            .verdict = Verdict::kNone,
-        },
-        {
-            .name = "lock-rejected",
-            .access = flag_field<&FaultSet::lock_rejected>(),
-            .summary = "Lock/Reserve rejected with 0x1041",
-            .rule_broken = "none broken by itself: Lock/Reserve is advisory, and an unknown "
-                           "command is rejected `0x1041` (fact sheet 5.4); OpenMRN on Linux does "
-                           "this (`real-world.md` §1)",
-            .client_sees = "`20 88 …` gets Datagram Rejected `0x1041`; the lock stays free. A "
-                           "careful client reports the code and works without the lock: nothing "
-                           "wrong",
-            .verdict = Verdict::kNone,
-        },
-        {
             .name = "factory-reset-on-version-change",
+            .order = 270,
             .access = flag_field<&FaultSet::factory_reset_on_version_change>(),
             .summary = "a restart while the first 253 int was changed factory-resets the "
                        "configuration",
@@ -69,7 +62,7 @@ std::vector<FaultDecl> restart_faults() {
         },
         {
             .name = "new-alias-on-reboot",
-            .access = flag_field<&FaultSet::new_alias_on_reboot>(),
+            .order = 280,
             .summary = "every restart reserves a different alias",
             .rule_broken = "none broken: CAN: an alias is reserved afresh at every start-up and "
                            "any free alias may be taken (fact sheet 1.4, 1.5); OpenLcbCLib comes "
@@ -80,8 +73,49 @@ std::vector<FaultDecl> restart_faults() {
                            "careful one follows the node ID (AMD, Initialization Complete, "
                            "Verified Node ID) and sees nothing wrong",
             .verdict = Verdict::kNone,
+            .hooks = {.stack_config = next_alias_on_restart},
         },
     };
+}
+
+// Commands refused.
+std::vector<FaultDecl> refusals() {
+    return {
+        {
+            .name = "reset-rejected",
+            .order = 250,
+            .summary = "Reset/Reboot rejected with 0x1041; the node does not restart",
+            .rule_broken = "none broken by itself: Reset/Reboot is an optional command, and an "
+                           "unknown command is rejected `0x1041` (fact sheet 5.2, 5.4); OpenMRN "
+                           "on Linux does this (`real-world.md` §1)",
+            .client_sees = "`20 A9` gets Datagram Rejected `0x1041` and the node does not "
+                           "restart (lock, images and alias untouched). A careful client quotes "
+                           "the code, skips what needs a reboot and sees nothing wrong",
+            .verdict = Verdict::kNone,
+            .hooks = {.request = refuse<memory::ResetReboot>},
+        },
+        {
+            .name = "lock-rejected",
+            .order = 260,
+            .summary = "Lock/Reserve rejected with 0x1041",
+            .rule_broken = "none broken by itself: Lock/Reserve is advisory, and an unknown "
+                           "command is rejected `0x1041` (fact sheet 5.4); OpenMRN on Linux does "
+                           "this (`real-world.md` §1)",
+            .client_sees = "`20 88 …` gets Datagram Rejected `0x1041`; the lock stays free. A "
+                           "careful client reports the code and works without the lock: nothing "
+                           "wrong",
+            .verdict = Verdict::kNone,
+            .hooks = {.request = refuse<memory::Lock>},
+        },
+    };
+}
+
+}  // namespace
+
+std::vector<FaultDecl> restart_faults() {
+    auto all = restarts();
+    for (FaultDecl& d : refusals()) all.push_back(std::move(d));
+    return all;
 }
 
 }  // namespace olcb::simnode

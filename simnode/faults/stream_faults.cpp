@@ -1,13 +1,43 @@
 // Stream faults: what the node does wrong as the source of a stream read.
 #include "simnode/faults/fault_families.hpp"
 
+#include "openlcb/stream_defs.hpp"
+
 namespace olcb::simnode {
+
+namespace {
+
+// Data Complete with one byte more than the stream carried.
+void count_one_more(StackHooks& hooks, FaultValue) {
+    hooks.add_outbound([](Message& msg) {
+        if (msg.mti != Mti::kStreamDataComplete) return true;
+        auto complete = stream::decode_data_complete(msg.payload);
+        if (!complete || !complete->total_bytes) return true;
+        ++*complete->total_bytes;
+        msg.payload = stream::encode(*complete);
+        return true;
+    });
+}
+
+void drop_complete(StackHooks& hooks, FaultValue) {
+    hooks.add_outbound([](const Message& msg) { return msg.mti != Mti::kStreamDataComplete; });
+}
+
+void unlimited_window(StackHooks& hooks, FaultValue) {
+    hooks.set_window([](std::uint16_t) { return StreamTransport::kUnlimitedWindow; });
+}
+
+void double_window(StackHooks& hooks, FaultValue) {
+    hooks.set_window([](std::uint16_t buffer) { return 2ULL * buffer; });
+}
+
+}  // namespace
 
 std::vector<FaultDecl> stream_faults() {
     return {
         {
             .name = "stream-wrong-count",
-            .access = flag_field<&FaultSet::stream_wrong_count>(),
+            .order = 430,
             .summary = "a stream read's Data Complete counts one byte more than the stream "
                        "carried",
             .rule_broken = "Stream: Data Complete's optional byte count is the number of bytes "
@@ -18,10 +48,11 @@ std::vector<FaultDecl> stream_faults() {
             .verdict = Verdict::kWarn,
             .category = "stream",
             .checks = {"stream.complete"},
+            .hooks = {.stack = count_one_more},
         },
         {
             .name = "stream-no-complete",
-            .access = flag_field<&FaultSet::stream_no_complete>(),
+            .order = 440,
             .summary = "a stream read never ends with Data Complete",
             .rule_broken = "Stream: a stream read ends with Data Complete (StreamTransportS "
                            "§6.4; MemCfg §4.6)",
@@ -31,10 +62,11 @@ std::vector<FaultDecl> stream_faults() {
             .verdict = Verdict::kFail,
             .category = "stream",
             .checks = {"stream.cdi-read"},
+            .hooks = {.stack = drop_complete},
         },
         {
             .name = "stream-ignore-proceed",
-            .access = flag_field<&FaultSet::stream_ignore_proceed>(),
+            .order = 450,
             .summary = "a stream read is sent whole, past the granted buffer, without waiting "
                        "for Proceed",
             .rule_broken = "Stream: the source sends at most the granted buffer, then waits for "
@@ -45,10 +77,11 @@ std::vector<FaultDecl> stream_faults() {
             .verdict = Verdict::kWarn,
             .category = "stream",
             .checks = {"stream.buffer-negotiation"},
+            .hooks = {.stack = unlimited_window},
         },
         {
             .name = "stream-exceed-buffer",
-            .access = flag_field<&FaultSet::stream_exceed_buffer>(),
+            .order = 460,
             .summary = "a stream read sends twice the granted buffer before waiting for each "
                        "Proceed",
             .rule_broken = "Stream: the buffer the sink grants is the most the source sends per "
@@ -59,6 +92,7 @@ std::vector<FaultDecl> stream_faults() {
             .verdict = Verdict::kWarn,
             .category = "stream",
             .checks = {"stream.buffer-negotiation"},
+            .hooks = {.stack = double_window},
         },
     };
 }

@@ -5,6 +5,14 @@ namespace olcb::simnode {
 
 namespace {
 
+// slow-reply holds back the first reply datagram and then every this-many-th: like firmware
+// that stalls now and then (a flash erase), and a client's run stays bounded in time.
+constexpr std::uint64_t kSlowReplyEvery = 32;
+
+void hold_reply(AnswerPlan& plan, FaultValue v) {
+    if (plan.index % kSlowReplyEvery == 0) plan.delay = std::chrono::milliseconds(v.value);
+}
+
 void apply_latency(FaultSet& f, FaultValue v) {
     f.latency = std::chrono::milliseconds(v.value);
     f.latency_jitter = std::chrono::milliseconds(v.jitter);
@@ -21,8 +29,8 @@ std::vector<FaultDecl> timing_faults() {
     return {
         {
             .name = "slow-reply",
+            .order = 190,
             .param = {ParamKind::kNumber, "MS", 1200, 1, kMaxDelayMs},
-            .access = ms_field<&FaultSet::slow_reply>(),
             .summary = "reply datagrams sent MS milliseconds late",
             .doc_parameter = "`MS`, default 1200",
             .rule_broken = "MsgNet timing: replies within 750 ms (fact sheet 3.3)",
@@ -33,9 +41,11 @@ std::vector<FaultDecl> timing_faults() {
             .verdict = Verdict::kFail,
             .category = "memory",
             .checks = {"memory.reply-latency"},
+            .hooks = {.answer = hold_reply},
         },
         {
             .name = "latency",
+            .order = 320,
             .param = {ParamKind::kMsJitter, "MS[:JITTER]", 200, 0, kMaxDelayMs},
             .access = {apply_latency, read_latency},
             .summary = "every answer sent MS ms (plus 0..JITTER ms, random) after its request, "

@@ -10,6 +10,7 @@ std::vector<FaultDecl> stored_writes() {
     return {
         {
             .name = "write-dropped",
+            .order = 120,
             .access = flag_field<&FaultSet::write_dropped>(),
             .summary = "writes acknowledged but not stored",
             .rule_broken = "MemCfg write: Write Reply OK means the data was stored (fact sheet "
@@ -22,6 +23,7 @@ std::vector<FaultDecl> stored_writes() {
         },
         {
             .name = "write-not-persisted",
+            .order = 130,
             .access = flag_field<&FaultSet::write_not_persisted>(),
             .summary = "writes kept in RAM only: lost on reboot",
             .rule_broken = "MemCfg + CDI: configuration is non-volatile (survives Reset/Reboot, "
@@ -35,6 +37,7 @@ std::vector<FaultDecl> stored_writes() {
         },
         {
             .name = "readonly-writable",
+            .order = 140,
             .access = flag_field<&FaultSet::readonly_writable>(),
             .summary = "writes to spaces 0xFF and 252 accepted",
             .rule_broken = "MemCfg: 0xFF and 252 are read-only, writes get `0x1083` (fact sheet "
@@ -47,6 +50,7 @@ std::vector<FaultDecl> stored_writes() {
         },
         {
             .name = "reboot-on-write",
+            .order = 240,
             .param = {ParamKind::kNumber, "N", 1, 1, kMaxCount},
             .access = count_field<&FaultSet::reboot_on_write>(),
             .summary = "the Nth stored write restarts the node without its Write Reply (once)",
@@ -70,6 +74,7 @@ std::vector<FaultDecl> crossing_writes() {
     return {
         {
             .name = "write-past-end-spills",
+            .order = 340,
             .access = flag_field<&FaultSet::write_past_end_spills>(),
             .summary = "writes crossing a space's end accepted; 251's excess bytes land in 253 "
                        "at 0x80, past its first 128 bytes (251 is the start of 253's file, as on "
@@ -92,6 +97,7 @@ std::vector<FaultDecl> crossing_writes() {
         },
         {
             .name = "write-past-end-grows",
+            .order = 350,
             .access = flag_field<&FaultSet::write_past_end_grows>(),
             .summary = "writes crossing a space's end accepted; the excess bytes are kept beside "
                        "the image (FILE.past-end) where no read reaches them, as OpenMRN's "
@@ -112,6 +118,7 @@ std::vector<FaultDecl> crossing_writes() {
         },
         {
             .name = "mask-ignored",
+            .order = 360,
             .param = {ParamKind::kNumber, "MS", 5000, 1, kMaxDelayMs},
             .access = ms_field<&FaultSet::mask_ignored>(),
             .summary = "Write Under Mask stores the data bytes whole, ignoring the masks; then "

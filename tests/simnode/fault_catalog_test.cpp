@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "simnode/faults/fault_families.hpp"
+
 namespace olcb::simnode {
 namespace {
 
@@ -38,7 +40,11 @@ TEST(FaultCatalogTest, EveryDeclarationIsComplete) {
         EXPECT_FALSE(d.summary.empty()) << d.name;
         EXPECT_FALSE(d.rule_broken.empty()) << d.name;
         EXPECT_FALSE(d.client_sees.empty()) << d.name;
-        EXPECT_TRUE(d.access.apply && d.access.read) << d.name;
+        EXPECT_EQ(d.access.apply == nullptr, d.access.read == nullptr) << d.name;
+        // A fault kept by name has no field the node reads: its hooks are all it does.
+        const FaultHooks& h = d.hooks;
+        const bool hooked = h.stack_config || h.stack || h.snip || h.request || h.reply || h.answer;
+        EXPECT_TRUE(d.access.apply != nullptr || hooked) << d.name << " would change nothing";
         // Only a fault a careful client copes with may lack a category.
         EXPECT_TRUE(!d.category.empty() || d.verdict == Verdict::kNone) << d.name;
         EXPECT_EQ(d.param.kind == ParamKind::kNone, d.doc_parameter.empty()) << d.name;
@@ -54,11 +60,36 @@ TEST(FaultCatalogTest, EachFaultSetsAndReadsBackOnlyItsOwnFields) {
         const auto one = parse_faults({std::string(d.name)}, error);
         ASSERT_TRUE(one) << error;
         EXPECT_FALSE(one->none()) << d.name;
-        EXPECT_NE(d.access.read(*one), FaultValue{}) << d.name;
+        EXPECT_NE(fault_value(*one, d), FaultValue{}) << d.name;
         for (const FaultDecl& other : fault_decls()) {
-            if (other.name != d.name) EXPECT_EQ(other.access.read(*one), FaultValue{}) << d.name;
+            if (other.name != d.name) {
+                EXPECT_EQ(fault_value(*one, other), FaultValue{}) << d.name;
+            }
         }
     }
+}
+
+TEST(FaultCatalogTest, OrdersAreUniqueAndTheCatalogueIsSortedByThem) {
+    std::set<int> orders;
+    int last = 0;
+    for (const FaultDecl& d : fault_decls()) {
+        EXPECT_TRUE(orders.insert(d.order).second) << d.name << ": order " << d.order << " taken";
+        EXPECT_GT(d.order, last) << d.name;
+        last = d.order;
+    }
+}
+
+TEST(FaultCatalogTest, EveryFamilyFileIsInTheGeneratedList) {
+    std::size_t files = 0;
+    const auto dir = std::filesystem::path(OLCB_SOURCE_DIR) / "simnode/faults";
+    for (const auto& e : std::filesystem::directory_iterator(dir)) {
+        if (e.path().stem().string().ends_with("_faults") && e.path().extension() == ".cpp")
+            ++files;
+    }
+    EXPECT_EQ(fault_families().size(), files);
+    std::size_t declared = 0;
+    for (const FaultFamily family : fault_families()) declared += family().size();
+    EXPECT_EQ(declared, fault_decls().size());
 }
 
 TEST(FaultCatalogTest, ParametersAndCategoriesReadAsBefore) {

@@ -215,6 +215,7 @@ TEST_F(FaultTest, SlowReply) {
 }
 
 TEST_F(FaultTest, SlowReplyHoldsBackEveryThirtySecondReply) {
+    constexpr std::uint64_t kSlowReplyEvery = 32;  // as docs/faults.md says
     start_with({"slow-reply"});
     for (std::uint64_t i = 0; i <= kSlowReplyEvery; ++i) {
         const Answer a = exchange(read_cmd(0xFD, 15, 1), 5s);

@@ -31,6 +31,14 @@ inline constexpr NodeId kNodeId{0x05'01'01'01'22'00ull};
 inline constexpr NodeId kClientId{0x02'01'0D'00'00'01ull};
 inline constexpr std::uint16_t kClientAlias = 0x12C;
 
+/// The faults parse_faults() makes of names (a test failure when they do not parse).
+inline FaultSet faults_of(const std::vector<std::string>& names) {
+    std::string error;
+    auto parsed = parse_faults(names, error);
+    EXPECT_TRUE(parsed) << error;
+    return parsed.value_or(FaultSet{});
+}
+
 /// Contents of a file below the source tree.
 inline std::string read_source_file(const std::string& relative) {
     std::ifstream in(std::string(OLCB_SOURCE_DIR) + "/" + relative, std::ios::binary);
@@ -89,10 +97,7 @@ protected:
     /// Starts a node with the default config plus faults.
     void start_with(const std::vector<std::string>& faults) {
         NodeConfig c = default_config();
-        std::string error;
-        auto parsed = parse_faults(faults, error);
-        ASSERT_TRUE(parsed) << error;
-        c.faults = *parsed;
+        c.faults = faults_of(faults);
         start(std::move(c));
     }
 

@@ -122,7 +122,7 @@ TEST_F(StreamReadTest, StreamsOffIsADatagramOnlyNode) {
 
 TEST_F(StreamReadTest, WrongCountFaultMisstatesTheTotal) {
     NodeConfig c = default_config();
-    c.faults.stream_wrong_count = true;
+    c.faults = test::faults_of({"stream-wrong-count"});
     boot(std::move(c));
     read_cdi(256);
     ASSERT_TRUE(completed_);
@@ -132,7 +132,7 @@ TEST_F(StreamReadTest, WrongCountFaultMisstatesTheTotal) {
 
 TEST_F(StreamReadTest, NoCompleteFaultNeverEnds) {
     NodeConfig c = default_config();
-    c.faults.stream_no_complete = true;
+    c.faults = test::faults_of({"stream-no-complete"});
     boot(std::move(c));
     read_cdi(256, 2s);
     EXPECT_FALSE(completed_);
@@ -141,7 +141,7 @@ TEST_F(StreamReadTest, NoCompleteFaultNeverEnds) {
 
 TEST_F(StreamReadTest, IgnoreProceedAndExceedBufferOverrunTheWindow) {
     NodeConfig c = default_config();
-    c.faults.stream_ignore_proceed = true;
+    c.faults = test::faults_of({"stream-ignore-proceed"});
     boot(std::move(c));
     read_cdi(64);
     ASSERT_TRUE(completed_);
@@ -150,7 +150,7 @@ TEST_F(StreamReadTest, IgnoreProceedAndExceedBufferOverrunTheWindow) {
 
 TEST_F(StreamReadTest, ExceedBufferSendsTwiceTheGrant) {
     NodeConfig c = default_config();
-    c.faults.stream_exceed_buffer = true;
+    c.faults = test::faults_of({"stream-exceed-buffer"});
     boot(std::move(c));
     read_cdi(64);
     ASSERT_TRUE(completed_);

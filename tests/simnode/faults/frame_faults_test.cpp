@@ -1,10 +1,11 @@
-// StackFaults: alias-conflict-ignored, burst-drops and answers-standard-frames on a NodeStack of
-// their own (the stream-* faults: stream_read_test.cpp), frames as GridConnect strings.
-#include "simnode/stack_faults.hpp"
-
+// The frame faults' stack hooks: alias-conflict-ignored, burst-drops and answers-standard-frames
+// installed by ActiveFaults on a NodeStack of their own (the stream-* faults:
+// stream_read_test.cpp), frames as GridConnect strings.
 #include <gtest/gtest.h>
 
 #include "openlcb/node/node_test_util.hpp"
+#include "simnode/faults/fault_hooks.hpp"
+#include "simnode/sim_node_test_util.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -14,23 +15,12 @@ using Strings = std::vector<std::string>;
 
 const std::string kVerified = ":X19170343N050101012200;";
 
-FaultSet faults_of(const std::string& names) {
-    std::string error;
-    auto parsed = parse_faults({names}, error);
-    EXPECT_TRUE(parsed) << error;
-    return parsed.value_or(FaultSet{});
-}
-
-class StackFaultsTest : public olcb::test::StackFixture {
+class FrameFaultsTest : public olcb::test::StackFixture {
 protected:
-    void attach(const std::string& names) {
-        faults_ = std::make_unique<StackFaults>(faults_of(names));
-        faults_->attach(stack_);
-    }
-    std::unique_ptr<StackFaults> faults_;
+    void attach(const std::string& names) { ActiveFaults(test::faults_of({names})).attach(stack_); }
 };
 
-TEST_F(StackFaultsTest, AliasConflictIgnoredIgnoresCidAndConflictOnItsActiveAlias) {
+TEST_F(FrameFaultsTest, AliasConflictIgnoredIgnoresCidAndConflictOnItsActiveAlias) {
     attach("alias-conflict-ignored");
     boot();
     inject(":X17050343N;", 10ms);
@@ -43,7 +33,7 @@ TEST_F(StackFaultsTest, AliasConflictIgnoredIgnoresCidAndConflictOnItsActiveAlia
     EXPECT_EQ(take(), (Strings{kVerified}));
 }
 
-TEST_F(StackFaultsTest, AliasConflictIgnoredStillRestartsReservationOnTentativeConflict) {
+TEST_F(FrameFaultsTest, AliasConflictIgnoredStillRestartsReservationOnTentativeConflict) {
     attach("alias-conflict-ignored");
     stack_.start(net_.now());
     inject(":X17050343N;", 10ms);  // during reservation the fault changes nothing
@@ -52,7 +42,7 @@ TEST_F(StackFaultsTest, AliasConflictIgnoredStillRestartsReservationOnTentativeC
     EXPECT_TRUE(stack_.initialized());
 }
 
-TEST_F(StackFaultsTest, BurstDropsAddressedMessagesWhileMoreThan16OtherFramesIn10Ms) {
+TEST_F(FrameFaultsTest, BurstDropsAddressedMessagesWhileMoreThan16OtherFramesIn10Ms) {
     attach("burst-drops");
     boot();
     net_.run_for(20ms);
@@ -69,7 +59,7 @@ TEST_F(StackFaultsTest, BurstDropsAddressedMessagesWhileMoreThan16OtherFramesIn1
     EXPECT_EQ(take(), Strings{kVerified}) << "10 ms later the burst is over";
 }
 
-TEST_F(StackFaultsTest, BurstDropsCountsNotTheRequestersOwnQuickTraffic) {
+TEST_F(FrameFaultsTest, BurstDropsCountsNotTheRequestersOwnQuickTraffic) {
     attach("burst-drops");
     boot();
     net_.run_for(20ms);
@@ -78,7 +68,7 @@ TEST_F(StackFaultsTest, BurstDropsCountsNotTheRequestersOwnQuickTraffic) {
     EXPECT_EQ(take(), Strings{kVerified});
 }
 
-TEST_F(StackFaultsTest, AnswersStandardFramesWithVerifiedNodeId) {
+TEST_F(FrameFaultsTest, AnswersStandardFramesWithVerifiedNodeId) {
     attach("answers-standard-frames");
     boot();
     inject(":S123N0102;");
@@ -88,7 +78,7 @@ TEST_F(StackFaultsTest, AnswersStandardFramesWithVerifiedNodeId) {
     EXPECT_TRUE(take().empty()) << "remote frames stay ignored";
 }
 
-TEST_F(StackFaultsTest, NoFaultInstallsNoHook) {
+TEST_F(FrameFaultsTest, NoFaultInstallsNoHook) {
     attach("snip-mismatch");
     boot();
     inject(":X17050343N;");
