@@ -34,7 +34,9 @@ public:
     bool be(std::size_t size, T& value) {
         if (remaining() < size) return false;
         T result = 0;
-        for (std::size_t i = 0; i < size; ++i) result = (result << 8) | bytes_[pos_++];
+        // Integer promotion widens a 16-bit T to int; the result fits T by construction.
+        for (std::size_t i = 0; i < size; ++i)
+            result = static_cast<T>((result << 8) | bytes_[pos_++]);
         value = result;
         return true;
     }
