@@ -26,22 +26,7 @@ std::vector<std::uint8_t> read_reply_payload() {
 }
 
 // The worked example's node (alias 343) and runner (alias 12C) on one network.
-class PairTest : public ::testing::Test {
-protected:
-    PairTest() : node_(test::stack_config(kNodeId)), runner_(test::stack_config(kRunnerId)) {
-        net_.add_stack(node_);
-        net_.add_stack(runner_);
-        net_.start_all();
-        EXPECT_TRUE(
-            net_.run_until([&] { return node_.initialized() && runner_.initialized(); }, 1s));
-        net_.run_for(0ms);
-        net_.clear_log();
-    }
-
-    SimNetwork net_;
-    NodeStack node_;
-    NodeStack runner_;
-};
+class PairTest : public test::PairFixture {};
 
 TEST_F(PairTest, BothStartAndLearnEachOther) {
     EXPECT_EQ(node_.alias(), 0x343);

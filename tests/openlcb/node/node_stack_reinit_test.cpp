@@ -13,21 +13,13 @@ namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::kNodeId;
-using test::kRunnerId;
 using Status = DatagramOutcome::Status;
 using Bytes = std::vector<std::uint8_t>;
 
 // The worked example's node (0x343) sends to the runner (0x12C), which never acks.
-class ReinitPairTest : public ::testing::Test {
+class ReinitPairTest : public test::PairFixture {
 protected:
-    ReinitPairTest() : node_(test::stack_config(kNodeId)), runner_(test::stack_config(kRunnerId)) {
-        net_.add_stack(node_);
-        net_.add_stack(runner_);
-        net_.start_all();
-        EXPECT_TRUE(
-            net_.run_until([&] { return node_.initialized() && runner_.initialized(); }, 1s));
-        net_.run_for(0ms);
+    ReinitPairTest() {
         node_.set_outcome_handler([this](const DatagramOutcome& o) { outcomes_.push_back(o); });
         runner_.set_datagram_handler([this](const ReceivedDatagram& d) { got_.push_back(d); });
     }
@@ -52,9 +44,6 @@ protected:
     }
     const Bytes kA = {0x20, 0x80};
     const Bytes kB = {0x20, 0x81};
-    SimNetwork net_;
-    NodeStack node_;
-    NodeStack runner_;
     std::vector<DatagramOutcome> outcomes_;
     std::vector<ReceivedDatagram> got_;
 };

@@ -76,4 +76,23 @@ protected:
     NodeStack stack_;
 };
 
+/// The worked example's node (alias 0x343) and runner (alias 0x12C) on one network, both
+/// started and past their reservation, the log cleared.
+class PairFixture : public ::testing::Test {
+protected:
+    PairFixture() : node_(stack_config(kNodeId)), runner_(stack_config(kRunnerId)) {
+        net_.add_stack(node_);
+        net_.add_stack(runner_);
+        net_.start_all();
+        EXPECT_TRUE(net_.run_until([&] { return node_.initialized() && runner_.initialized(); },
+                                   std::chrono::seconds(1)));
+        net_.run_for(std::chrono::milliseconds(0));
+        net_.clear_log();
+    }
+
+    SimNetwork net_;
+    NodeStack node_;
+    NodeStack runner_;
+};
+
 }  // namespace olcb::test
