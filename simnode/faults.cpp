@@ -125,8 +125,9 @@ std::optional<std::string> name_if_set(const FaultSet& f, const FaultDecl& d) {
 
 }  // namespace
 
-bool FaultSet::none() const {
-    return *this == FaultSet{};
+FaultValue FaultSet::value(std::string_view name) const {
+    const auto it = by_name.find(name);
+    return it == by_name.end() ? FaultValue{} : it->second;
 }
 
 const std::vector<FaultInfo>& fault_catalog() {

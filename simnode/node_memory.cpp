@@ -10,7 +10,6 @@
 #include <mutex>
 #include <utility>
 
-#include "cdi/float_codec.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/validator.hpp"
 #include "cdi/value_codec.hpp"
@@ -23,53 +22,11 @@ constexpr std::uint8_t kAcdiFixedSpace = 0xFC;
 constexpr std::uint8_t kAcdiUserSpace = 0xFB;
 constexpr const char* kUniqueIdFile = "unique-id.img";
 
-// Keeps the whole content in RAM in front of an inner space: writes stop here, reload() forgets
-// them. Backs write-not-persisted and readonly-writable.
-class RamOverlay : public memory::ForwardingSpace {
-public:
-    RamOverlay(memory::MemorySpace& inner, bool writable)
-        : ForwardingSpace(inner), writable_(writable) {
-        reload();
-    }
-    bool read_only() const override { return !writable_ && inner().read_only(); }
-    std::size_t read(std::uint32_t address, std::span<std::uint8_t> out) override {
-        return memory::read_clamped(bytes_, address, out);
-    }
-    memory::WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override {
-        if (read_only()) return memory::WriteStatus::kReadOnly;
-        if (!memory::fits(bytes_.size(), address, in.size())) {
-            return memory::WriteStatus::kOutOfBounds;
-        }
-        std::copy(in.begin(), in.end(), bytes_.begin() + address);
-        return memory::WriteStatus::kOk;
-    }
-    void reload() {
-        bytes_.assign(inner().size(), 0);
-        const std::size_t got = inner().read(0, bytes_);
-        bytes_.resize(got);
-    }
-
-private:
-    bool writable_;
-    std::vector<std::uint8_t> bytes_;
-};
-
-// write-dropped: answers like a successful write and stores nothing.
-class DropWrites : public memory::ForwardingSpace {
-public:
-    using ForwardingSpace::ForwardingSpace;
-    memory::WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override {
-        if (read_only()) return memory::WriteStatus::kReadOnly;
-        if (!memory::fits(size(), address, in.size())) return memory::WriteStatus::kOutOfBounds;
-        return memory::WriteStatus::kOk;
-    }
-};
-
-// The encoding faults: each variable lying wholly inside a write is stored mis-encoded.
+// The faults' store hooks: each variable lying wholly inside a write is stored as they say.
 class MisEncode : public memory::ForwardingSpace {
 public:
     MisEncode(memory::MemorySpace& inner, const cdi::Layout& layout, std::uint8_t space,
-              const FaultSet& faults)
+              const ActiveFaults& faults)
         : ForwardingSpace(inner), layout_(layout), space_(space), faults_(faults) {}
     memory::WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override {
         std::vector<std::uint8_t> bytes(in.begin(), in.end());
@@ -78,8 +35,8 @@ public:
             const cdi::Cursor c = layout_.find(space_, pos);
             if (c.valid() && c.address() >= address && c.address() + c.size() <= end &&
                 c.size() > 0) {
-                apply_encoding_faults(faults_, c.element(),
-                                      std::span(bytes).subspan(c.address() - address, c.size()));
+                faults_.store(c.element(),
+                              std::span(bytes).subspan(c.address() - address, c.size()));
                 pos = c.address() + c.size();
             } else {
                 ++pos;
@@ -91,12 +48,8 @@ public:
 private:
     const cdi::Layout& layout_;
     std::uint8_t space_;
-    FaultSet faults_;
+    const ActiveFaults& faults_;  // the node's, which outlives its spaces
 };
-
-bool has_encoding_fault(const FaultSet& f) {
-    return f.int_byte_order || f.string_unterminated || f.eventid_byte_order || f.float_width;
-}
 
 // One model per distinct text while any node uses it: 1,000 nodes of one CDI share one parse.
 struct ModelCache {
@@ -109,48 +62,38 @@ ModelCache& model_cache() {
     return cache;
 }
 
+// The first error of diagnostics, formatted ("" when none).
+std::string first_error(const std::vector<cdi::Diagnostic>& diagnostics) {
+    for (const auto& d : diagnostics) {
+        if (d.severity == cdi::Severity::kError) return cdi::format_diagnostic("CDI", d);
+    }
+    return "";
+}
+
+// One parse serves the model, its layout and its validation.
 std::shared_ptr<const CdiModel> build_model(const std::string& text, std::string& error) {
     auto model = std::make_shared<CdiModel>();
     model->text = text;
     const std::string_view xml(model->text.data(),
                                std::min(model->text.size(), model->text.find('\0')));
-    cdi::ParseResult parsed = cdi::parse(xml);
-    if (!parsed.document) {
-        error = "CDI does not parse";
-        for (const auto& d : parsed.diagnostics) {
-            if (d.severity == cdi::Severity::kError) {
-                error = cdi::format_diagnostic("CDI", d);
-                break;
-            }
-        }
+    cdi::ValidatedCdi checked = cdi::validate_model(xml);
+    model->first_error = first_error(checked.report.diagnostics);
+    model->valid = checked.report.ok();
+    if (!checked.document) {
+        error = model->first_error.empty() ? "CDI does not parse" : model->first_error;
         return nullptr;
     }
-    model->document = std::move(*parsed.document);
-    cdi::LayoutResult laid = cdi::build_layout(model->document);
-    if (!laid.layout) {
-        error = "CDI layout failed";
-        for (const auto& d : laid.diagnostics) {
-            if (d.severity == cdi::Severity::kError) {
-                error = cdi::format_diagnostic("CDI", d);
-                break;
-            }
-        }
+    if (!checked.layout) {
+        error = model->first_error.empty() ? "CDI layout failed" : model->first_error;
         return nullptr;
     }
-    model->layout.emplace(std::move(*laid.layout));
+    model->document = std::move(checked.document);
+    model->layout.emplace(std::move(*checked.layout));
     if (model->layout->variable_count() > kMaxVariables) {
         error = "CDI has " + std::to_string(model->layout->variable_count()) +
                 " variables after replication; at most " + std::to_string(kMaxVariables) +
                 " are supported";
         return nullptr;
-    }
-    const cdi::ValidationReport report = cdi::validate(xml);
-    model->valid = report.ok();
-    for (const auto& d : report.diagnostics) {
-        if (d.severity == cdi::Severity::kError) {
-            model->first_error = cdi::format_diagnostic("CDI", d);
-            break;
-        }
     }
     model->events = event_slots(*model->layout, kMaxEvents);
     return model;
@@ -184,12 +127,12 @@ struct NodeMemory::Slot {
     std::unique_ptr<memory::ImageSpace> image;
     std::unique_ptr<memory::RamSpace> ram;
     std::vector<std::unique_ptr<memory::MemorySpace>> wrappers;  // each wraps the previous
-    std::vector<RamOverlay*> overlays;
+    std::vector<SpaceLayer*> layers;                             // the faults' wrappers
     memory::MemorySpace* top = nullptr;
 
     // Forgets what only RAM held (a power cycle).
     void reload() const {
-        for (RamOverlay* o : overlays) o->reload();
+        for (SpaceLayer* layer : layers) layer->power_cycle();
     }
 
     memory::MemorySpace& base() const {
@@ -197,13 +140,16 @@ struct NodeMemory::Slot {
         if (image) return *image;
         return *ram;
     }
-    template <class T, class... Args>
-    T* wrap(Args&&... args) {
-        auto w = std::make_unique<T>(*top, std::forward<Args>(args)...);
-        T* raw = w.get();
+    void wrap(std::unique_ptr<memory::MemorySpace> w) {
+        top = w.get();
         wrappers.push_back(std::move(w));
-        top = raw;
-        return raw;
+    }
+    void add_layers(const std::vector<SpaceBuild::Make>& makes) {
+        for (const SpaceBuild::Make make : makes) {
+            std::unique_ptr<SpaceLayer> layer = make(*top);
+            layers.push_back(layer.get());
+            wrap(std::move(layer));
+        }
     }
 };
 
@@ -224,67 +170,8 @@ std::string image_file_name(std::uint8_t space) {
     return "space-" + std::to_string(space) + ".img";
 }
 
-std::vector<std::uint8_t> served_cdi_bytes(std::string_view text, const FaultSet& faults) {
-    std::string xml(text.substr(0, std::min(text.size(), text.find('\0'))));
-    if (faults.cdi_invalid) {
-        // Two schema violations a reader notices at once: no declaration, an unknown element.
-        if (xml.rfind("<?xml", 0) == 0) {
-            auto end = xml.find("?>");
-            end = end == std::string::npos ? 0 : end + 2;
-            while (end < xml.size() && (xml[end] == '\n' || xml[end] == '\r')) ++end;
-            xml.erase(0, end);
-        }
-        if (auto root = xml.find("<cdi"); root != std::string::npos) {
-            if (auto close = xml.find('>', root); close != std::string::npos) {
-                xml.insert(close + 1, "\n<simnodeUnknownElement/>");
-            }
-        }
-    }
-    std::vector<std::uint8_t> bytes(xml.begin(), xml.end());
-    if (!faults.cdi_unterminated) bytes.push_back(0);
-    if (faults.cdi_padding) {
-        static constexpr std::uint8_t kPadding[] = {0,   0,   0,   0,   0,   0,   0,    'P',
-                                                    'A', 'D', 'D', 'I', 'N', 'G', 0xFF, 0xFE};
-        bytes.insert(bytes.end(), std::begin(kPadding), std::end(kPadding));
-    }
-    return bytes;
-}
-
-void apply_encoding_faults(const FaultSet& faults, const cdi::Element& element,
-                           std::span<std::uint8_t> bytes) {
-    switch (element.kind) {
-        case cdi::ElementKind::kInt:
-            if (faults.int_byte_order) std::reverse(bytes.begin(), bytes.end());
-            break;
-        case cdi::ElementKind::kEventId:
-            if (faults.eventid_byte_order) std::reverse(bytes.begin(), bytes.end());
-            break;
-        case cdi::ElementKind::kString:
-            if (faults.string_unterminated) {
-                auto nul = std::find(bytes.begin(), bytes.end(), std::uint8_t{0});
-                std::fill(nul, bytes.end(), std::uint8_t{' '});
-            }
-            break;
-        case cdi::ElementKind::kFloat: {
-            if (!faults.float_width) break;
-            if (bytes.size() == 2) {
-                bytes[1] &= 0xF8;  // no smaller float: drop the three lowest mantissa bits
-                break;
-            }
-            auto value = cdi::decode_float(bytes);
-            if (!value) break;
-            const double narrowed = cdi::round_to_float_size(*value, bytes.size() / 2);
-            auto out = cdi::encode_float(narrowed, bytes.size(), cdi::CodecMode::kLenient);
-            if (out && out->size() == bytes.size())
-                std::copy(out->begin(), out->end(), bytes.begin());
-            break;
-        }
-        default:
-            break;
-    }
-}
-
-NodeMemory::NodeMemory(MemoryOptions options) : options_(std::move(options)) {}
+NodeMemory::NodeMemory(MemoryOptions options)
+    : options_(std::move(options)), faults_(options_.faults), event_policy_(faults_.events()) {}
 
 NodeMemory::~NodeMemory() = default;
 
@@ -299,7 +186,7 @@ std::unique_ptr<NodeMemory> NodeMemory::open(MemoryOptions options, std::string&
 }
 
 bool NodeMemory::has_acdi() const {
-    return options_.model->document.acdi.has_value();
+    return options_.model->document->acdi.has_value();
 }
 
 NodeMemory::Slot* NodeMemory::slot(std::uint8_t number) const {
@@ -313,7 +200,10 @@ void NodeMemory::add_constant(std::uint8_t number, std::vector<std::uint8_t> byt
     s->acdi_layout = number == kAcdiFixedSpace;
     s->constant = std::make_unique<memory::ConstantSpace>(std::move(bytes));
     s->top = s->constant.get();
-    if (options_.faults.readonly_writable) s->overlays.push_back(s->wrap<RamOverlay>(true));
+    SpaceBuild layers{number, true, {}, {}};
+    faults_.space(layers);
+    s->add_layers(layers.storage);
+    s->add_layers(layers.acknowledging);
     by_number_[number] = s.get();
     slots_.push_back(std::move(s));
 }
@@ -350,9 +240,7 @@ bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool serv
     }
     if (s->acdi_layout) {
         // The version byte is the firmware's, not the user's: set it whatever the image says.
-        const auto& acdi = *options_.model->document.acdi;
-        const auto version =
-            static_cast<std::uint8_t>(acdi.var + (options_.faults.acdi_version ? 1 : 0));
+        const std::uint8_t version = versions_.user;
         std::uint8_t stored = 0;
         if (s->top->read(0, std::span(&stored, 1)) == 1 && stored != version &&
             s->top->write(0, std::span(&version, 1)) != memory::WriteStatus::kOk) {
@@ -360,12 +248,13 @@ bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool serv
             return false;
         }
     }
-    const FaultSet& f = options_.faults;
-    if (f.write_not_persisted) s->overlays.push_back(s->wrap<RamOverlay>(false));
-    if (has_encoding_fault(f) && !s->acdi_layout && served) {
-        s->wrap<MisEncode>(*options_.model->layout, number, f);
+    SpaceBuild layers{number, false, {}, {}};
+    faults_.space(layers);
+    s->add_layers(layers.storage);
+    if (faults_.stores() && !s->acdi_layout && served) {
+        s->wrap(std::make_unique<MisEncode>(*s->top, *options_.model->layout, number, faults_));
     }
-    if (f.write_dropped) s->wrap<DropWrites>();
+    s->add_layers(layers.acknowledging);
     by_number_[number] = s.get();
     slots_.push_back(std::move(s));
     return true;
@@ -373,7 +262,12 @@ bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool serv
 
 bool NodeMemory::build(std::string& error) {
     const CdiModel& model = *options_.model;
-    const FaultSet& f = options_.faults;
+    const bool acdi = has_acdi();
+    versions_.fixed = static_cast<std::uint8_t>(acdi ? model.document->acdi->fixed
+                                                     : memory::acdi::kManufacturerVersion);
+    versions_.user =
+        static_cast<std::uint8_t>(acdi ? model.document->acdi->var : memory::acdi::kUserVersion);
+    faults_.acdi(versions_);
     // Default event IDs take Get Unique ID suffixes 0..n-1, so those never repeat them.
     model.layout->visit([this](const cdi::Cursor& c) {
         if (c.element().kind == cdi::ElementKind::kEventId && !c.element().text_default) {
@@ -381,13 +275,10 @@ bool NodeMemory::build(std::string& error) {
         }
     });
 
-    add_constant(kCdiSpace, served_cdi_bytes(model.text, f));
+    add_constant(kCdiSpace, faults_.served_cdi(model.text));
 
-    const bool acdi = has_acdi();
     memory::AcdiManufacturer fixed = options_.identity;
-    fixed.version = static_cast<std::uint8_t>(
-        (acdi ? model.document.acdi->fixed : memory::acdi::kManufacturerVersion) +
-        (f.acdi_version ? 1 : 0));
+    fixed.version = versions_.fixed;
     const auto block = memory::encode_acdi_manufacturer(fixed);
     std::vector<std::uint8_t> fixed_bytes(block.begin(), block.end());
     if (auto ext = model.layout->extent(kAcdiFixedSpace); ext && ext->end > fixed_bytes.size()) {
@@ -454,15 +345,13 @@ std::vector<std::uint8_t> NodeMemory::factory_image(std::uint8_t number) const {
         // An empty string still gets the string faults (string-unterminated pads it).
         if (!value && e.kind == cdi::ElementKind::kString) value.emplace(e.size, 0);
         if (!value || c.address() + value->size() > bytes.size()) return;
-        if (!acdi_layout) apply_encoding_faults(options_.faults, e, *value);
+        if (!acdi_layout) faults_.store(e, *value);
         std::copy(value->begin(), value->end(),
                   bytes.begin() + static_cast<std::ptrdiff_t>(c.address()));
     });
     if (number == kAcdiUserSpace) {
         memory::AcdiUser user;
-        user.version = static_cast<std::uint8_t>(
-            (has_acdi() ? options_.model->document.acdi->var : memory::acdi::kUserVersion) +
-            (options_.faults.acdi_version ? 1 : 0));
+        user.version = versions_.user;
         user.name = options_.user_name;
         user.description = options_.user_description;
         const auto block = memory::encode_acdi_user(user);
@@ -577,8 +466,8 @@ bool NodeMemory::store_unique_id_counter(std::uint32_t counter) {
 }
 
 bool NodeMemory::slot_hidden(const EventSlot& e) const {
-    // events-missing: slots 1, 3, 5... of the CDI's document order.
-    return options_.faults.events_missing && (&e - options_.model->events.data()) % 2 == 1;
+    const auto index = static_cast<std::size_t>(&e - options_.model->events.data());
+    return event_policy_.hidden != nullptr && event_policy_.hidden(index);
 }
 
 std::vector<std::pair<EventId, EventRole>> NodeMemory::events() const {

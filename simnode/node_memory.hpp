@@ -1,6 +1,6 @@
 // The memory of a simulated node, built from its CDI: space 0xFF (the CDI and one NUL), one
 // writable space per CDI segment space sized to its layout, ACDI 252/251, persisted as one image
-// per writable space, with the storage faults of FaultSet layered on top as MemorySpace wrappers.
+// per writable space; the faults' hooks change what it serves and put their layers in front.
 #pragma once
 
 #include <array>
@@ -24,6 +24,7 @@
 #include "openlcb/node_id.hpp"
 #include "simnode/event_roles.hpp"
 #include "simnode/faults.hpp"
+#include "simnode/faults/fault_hooks.hpp"
 
 namespace olcb::simnode {
 
@@ -36,8 +37,9 @@ inline constexpr std::size_t kMaxEvents = 1024;
 
 /// A parsed and laid-out CDI, shared (read-only) by every node serving the same text.
 struct CdiModel {
-    std::string text;                   ///< the CDI text as given
-    cdi::Document document;             ///< the model (the layout points into it)
+    std::string text;  ///< the CDI text as given
+    /// The model; never null (the layout points into it, so it stays where it is).
+    std::unique_ptr<const cdi::Document> document;
     std::optional<cdi::Layout> layout;  ///< addresses of every variable
     bool valid = false;                 ///< schema, semantic and layout checks found no error
     std::string first_error;            ///< the first validation error ("" when valid)
@@ -57,7 +59,7 @@ struct MemoryOptions {
     memory::AcdiManufacturer identity;      ///< space 252 strings (version taken from the CDI)
     std::string user_name;                  ///< space 251 name of a fresh image
     std::string user_description;           ///< space 251 description of a fresh image
-    FaultSet faults;                        ///< storage faults to apply
+    FaultSet faults;                        ///< the node's faults (those with memory hooks act)
 };
 
 /// File name of the image of a space ("space-253.img").
@@ -106,11 +108,12 @@ public:
     bool store_unique_id_counter(std::uint32_t counter);
     /// The CDI model.
     const CdiModel& model() const { return *options_.model; }
-    /// Event IDs and roles as the node reads them from its memory now (zero IDs skipped, and
-    /// with events-missing every second slot).
+    /// Which event IDs the node identifies, as its faults say.
+    const EventPolicy& event_policy() const { return event_policy_; }
+    /// Event IDs and roles as the node reads them from its memory now (zero IDs and the slots
+    /// the event policy hides skipped).
     std::vector<std::pair<EventId, EventRole>> events() const;
-    /// The event slots a written range touches (for re-advertising; events-missing skips every
-    /// second slot here too).
+    /// The event slots a written range touches (for re-advertising; hidden slots skipped).
     std::vector<EventSlot> events_in(std::uint8_t space, std::uint32_t address,
                                      std::uint32_t length) const;
 
@@ -124,6 +127,9 @@ private:
     bool slot_hidden(const EventSlot& e) const;
 
     MemoryOptions options_;
+    ActiveFaults faults_;
+    EventPolicy event_policy_;
+    AcdiVersions versions_;  // the ACDI version bytes, as the faults say
     std::vector<std::unique_ptr<Slot>> slots_;
     std::array<Slot*, 256> by_number_{};
     std::unique_ptr<memory::ImageFile> unique_id_image_;
@@ -131,14 +137,5 @@ private:
     std::uint32_t unique_id_counter_ = 0;
     std::uint32_t default_event_count_ = 0;
 };
-
-/// The CDI bytes a node serves in space 0xFF: text up to its first NUL plus one NUL, changed by
-/// the cdi-unterminated, cdi-padding and cdi-invalid faults.
-std::vector<std::uint8_t> served_cdi_bytes(std::string_view text, const FaultSet& faults);
-
-/// Applies the encoding faults (int/eventid byte order, unterminated strings, float width) to
-/// the stored bytes of one variable.
-void apply_encoding_faults(const FaultSet& faults, const cdi::Element& element,
-                           std::span<std::uint8_t> bytes);
 
 }  // namespace olcb::simnode

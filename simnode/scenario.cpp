@@ -20,6 +20,9 @@ namespace {
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
+// The fault the process-wide `latency` key gives every node without its own.
+constexpr std::string_view kLatency = "latency";
+
 // Keys a node group may set (top level, or a [node.NAME] section).
 constexpr std::string_view kNodeKeys[] = {
     "node-id",
@@ -506,7 +509,7 @@ private:
 
     bool read_latency(const std::string& v, const Keys&) {
         std::string why;
-        const auto parsed = parse_faults({"latency=" + v}, why);
+        const auto parsed = parse_faults({std::string(kLatency) + "=" + v}, why);
         if (!parsed) return fail("latency '" + v + "' must be MS or MS:JITTER (milliseconds)");
         latency_ = *parsed;
         scenario_.latency = v;
@@ -650,9 +653,8 @@ private:
         std::string fault_error;
         auto faults = parse_faults(fault_list, fault_error);
         if (!faults) return fail(where + ": " + fault_error);
-        if (faults->latency.count() == 0 && faults->latency_jitter.count() == 0) {
-            faults->latency = latency_.latency;
-            faults->latency_jitter = latency_.latency_jitter;
+        if (faults->value(kLatency) == FaultValue{} && latency_.value(kLatency) != FaultValue{}) {
+            faults->by_name.emplace(kLatency, latency_.value(kLatency));
         }
         g.faults = *faults;
         return true;
@@ -726,7 +728,7 @@ private:
 
     Scenario& scenario_;
     std::string& error_;
-    FaultSet latency_;  // the process-wide latency key; only its latency fields are set
+    FaultSet latency_;  // the process-wide latency key; only the latency fault is set
     std::map<std::string, std::string> cdis_;
     std::unordered_set<NodeId> ids_;
 };

@@ -31,12 +31,6 @@ NodeStackConfig stack_config_for(const NodeConfig& config, ProtocolSet served) {
     sc.streams = config.streams;
     // Incoming streams are taken (and their data dropped), as OlcbChecker's st checks expect.
     sc.stream.accept_unsolicited = true;
-    if (config.faults.latency.count() > 0 || config.faults.latency_jitter.count() > 0) {
-        // The stack would answer these at once; the node answers them itself, late.
-        sc.builtins.verify_node_id = false;
-        sc.builtins.protocol_support = false;
-        sc.builtins.reject_unknown_addressed = false;
-    }
     ActiveFaults(config.faults).stack_config(sc);
     return sc;
 }
@@ -75,7 +69,7 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     // The owner reports cdi_problem() to the user instead.
     if (!config.identity) {
         Identity id;
-        if (const auto& ident = model->document.identification) {
+        if (const auto& ident = model->document->identification) {
             id = Identity{ident->manufacturer, ident->model, ident->hardware_version,
                           ident->software_version};
         }
@@ -110,6 +104,25 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     return std::unique_ptr<SimNode>(new SimNode(std::move(config), sc, std::move(memory), served));
 }
 
+class SimNode::Life final : public NodeLife {
+public:
+    explicit Life(SimNode& node) : node_(node) {}
+    TimePoint now() const override { return node_.stack_.now(); }
+    void schedule(TimePoint at, std::function<void(TimePoint)> fn) override {
+        node_.stack_.schedule(at, std::move(fn));
+    }
+    bool initialized() const override { return node_.stack_.initialized(); }
+    void send(Message message) override { node_.stack_.send_message(std::move(message)); }
+    void abort(std::chrono::milliseconds silence) override { node_.abort_node(silence); }
+    bool watched_changed() const override { return node_.watched_changed(); }
+    void factory_reset() override { node_.factory_reset(); }
+    NodeMemory& memory() override { return *node_.memory_; }
+    void storage_error() override { ++node_.counters_.storage_errors; }
+
+private:
+    SimNode& node_;
+};
+
 SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
                  std::unique_ptr<NodeMemory> memory, ProtocolSet served)
     : config_(std::move(config)),
@@ -123,13 +136,13 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
           return c;
       }()),
       served_protocols_(served),
-      answer_delay_(config_.faults.latency, config_.faults.latency_jitter, config_.node_id.value()),
-      faults_(config_.faults) {
+      faults_(config_.faults),
+      life_(std::make_unique<Life>(*this)),
+      answer_delay_(faults_.latency().latency, faults_.latency().jitter, config_.node_id.value()) {
     faults_.attach(stack_);
     memory_->serve(server_);
     startup_events_ = memory_->events();
-    if (config_.faults.abort_on_value.count() > 0 || config_.faults.factory_reset_on_version_change)
-        find_watched();
+    if (faults_.watches()) find_watched();
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
     stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
     stack_.set_initialized_handler([this] { on_initialized(); });
@@ -256,6 +269,7 @@ bool SimNode::answer_builtin(const Message& msg) {
 }
 
 bool SimNode::answer_message(const Message& msg) {
+    if (faults_.message(*life_, msg)) return true;
     switch (msg.mti) {
         case Mti::kIdentifyEventsGlobal:
         case Mti::kIdentifyEventsAddressed:
@@ -275,11 +289,6 @@ bool SimNode::answer_message(const Message& msg) {
             return true;
         }
         case Mti::kSnipRequest: {
-            if (config_.faults.abort_on_value.count() > 0 && watched_changed()) {
-                // The firmware trips over the value while building its reply.
-                abort_node(config_.faults.abort_on_value);
-                return true;
-            }
             Message reply;
             reply.mti = Mti::kSnipReply;
             reply.destination = NodeHandle{msg.source.id, msg.source.alias};
@@ -310,7 +319,7 @@ void SimNode::advertise_all() {
 }
 
 std::vector<std::pair<EventId, EventRole>> SimNode::advertised_events() const {
-    if (config_.faults.events_stale_after_write) return startup_events_;
+    if (memory_->event_policy().frozen_at_start) return startup_events_;
     return memory_->events();  // read now, so a written event ID counts at once
 }
 
@@ -327,10 +336,7 @@ void SimNode::advertise(const EventSlot* begin, const EventSlot* end) {
 
 void SimNode::on_initialized() {
     advertise_all();
-    if (config_.faults.unsolicited_period.count() > 0 && !unsolicited_started_) {
-        unsolicited_started_ = true;
-        schedule_unsolicited(stack_.now() + config_.faults.unsolicited_period);
-    }
+    if (!std::exchange(started_, true)) faults_.started(*life_);
 }
 
 void SimNode::abort_node(std::chrono::milliseconds silence) {
@@ -352,8 +358,7 @@ void SimNode::factory_reset() {
 
 void SimNode::power_up(TimePoint now) {
     memory_->reboot();
-    // Like OpenMRN: a stored config version other than the firmware's wipes the configuration.
-    if (config_.faults.factory_reset_on_version_change && watched_changed()) factory_reset();
+    faults_.powering_up(*life_);
     server_.reset();
     startup_events_ = memory_->events();
     ++boot_generation_;
@@ -413,14 +418,6 @@ void SimNode::on_stream_event(const StreamEvent& event) {
     }
 }
 
-void SimNode::schedule_unsolicited(TimePoint at) {
-    stack_.schedule(at, [this](TimePoint now) {
-        if (stack_.initialized())
-            stack_.send_message(Message{Mti::kVerifyNodeIdGlobal, {}, {}, {}});
-        schedule_unsolicited(now + config_.faults.unsolicited_period);
-    });
-}
-
 // ---------------- datagrams ----------------
 
 void SimNode::on_datagram(const ReceivedDatagram& d) {
@@ -437,11 +434,12 @@ void SimNode::on_datagram(const ReceivedDatagram& d) {
 }
 
 void SimNode::answer_datagram(const ReceivedDatagram& d) {
-    ++counters_.datagrams;
+    DatagramTurn turn{counters_.datagrams++, std::nullopt};
+    faults_.datagram(turn);
     const std::uint16_t src = d.source_alias;
-    if (counters_.temporary_rejects < config_.faults.reject_temporary) {
+    if (turn.reject) {
         ++counters_.temporary_rejects;
-        stack_.reject_datagram(src, base::to_u16(base::ErrorCode::kBufferUnavailable));
+        stack_.reject_datagram(src, *turn.reject);
         return;
     }
     if (d.payload.empty() || d.payload[0] != memory::kDatagramType || !config_.memory_config) {
@@ -454,12 +452,17 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
         return;
     }
     const memory::SideEffects& fx = decision.effects;
-    const bool write_reboot = fx.written && reboot_on_this_write();
+    WriteTurn written{stored_writes_, false};
+    if (fx.written) {
+        ++stored_writes_;
+        faults_.written(written);
+    }
+    const bool write_reboot = written.restart;
     if (write_reboot) decision.reply.reset();  // the OK still says Reply Pending
     send_answer(src, decision);
     if (fx.stream_read) start_stream_read(src, *fx.stream_read);
-    if (std::exchange(silence_after_answer_, false)) {
-        abort_node(config_.faults.mask_ignored);
+    if (const auto silence = std::exchange(silence_after_answer_, {}); silence.count() > 0) {
+        abort_node(silence);
         return;
     }
 
@@ -481,7 +484,7 @@ void SimNode::after_write(const memory::WrittenRange& written) {
     if (!written.changed) return;
     if (written.space == memory::Space::kAcdiUser) {
         stack_.reinitialize(stack_.now());  // SNIP changed: caches must refresh
-    } else if (!config_.faults.events_stale_after_write) {
+    } else if (!memory_->event_policy().frozen_at_start) {
         const auto touched =
             memory_->events_in(memory::to_u8(written.space), written.address, written.length);
         advertise(touched.data(), touched.data() + touched.size());
@@ -506,15 +509,15 @@ memory::WriteStatus SimNode::write_memory(std::uint8_t space, std::uint32_t addr
 // which send_answer() encodes once.
 memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t> payload) {
     memory::DecodeResult asked = memory::decode(payload);
-    if (auto early = faults_.request(asked)) return std::move(*early);
+    RequestTurn turn{asked, *life_, std::nullopt, {}, {}};
+    faults_.request(turn);
+    if (turn.answer) return std::move(*turn.answer);
     memory::Source source;
     source.alias = src;
     source.node_id = stack_.alias_cache().node_of(src).value_or(NodeId{}).value();
-    const FaultSet& f = config_.faults;
-    if (f.mask_ignored.count() > 0) unmask(asked);
-    memory::Decision decision = f.write_past_end_spills || f.write_past_end_grows
-                                    ? crossing_write(source, asked)
-                                    : server_.handle(source, asked);
+    memory::Decision decision = server_.handle(source, asked);
+    if (decision.accepted && turn.accepted) turn.accepted();
+    if (decision.accepted) silence_after_answer_ = turn.silence_after;
     faults_.reply(asked, decision);
     const memory::SideEffects& fx = decision.effects;
     if (decision.accepted && fx.unique_id_counter &&
@@ -523,58 +526,6 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
         decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
     }
     return decision;
-}
-
-// mask-ignored: a Write Under Mask becomes a Write of its data bytes (the masks ignored), and
-// the node goes silent once it has answered.
-void SimNode::unmask(memory::DecodeResult& asked) {
-    const auto* masked = std::get_if<memory::WriteUnderMask>(&asked.message);
-    if (!asked.ok() || masked == nullptr) return;
-    memory::Write whole{masked->space, masked->address, {}, masked->form};
-    for (const memory::MaskedByte& b : masked->bytes) whole.data.push_back(b.value);
-    silence_after_answer_ = true;
-    asked.message = std::move(whole);
-}
-
-// write-past-end-spills and write-past-end-grows: a write crossing the end of its space stores
-// what fits and answers Write Reply OK. Spills: what lies past the end of 251 goes on into 253 at
-// 251's size (0x80), since OpenMRN's 251 is the first 128 bytes of 253's file (real-world.md 1);
-// of other spaces it is dropped. Grows: the bytes past the end are kept beside the space's image,
-// where no read reaches them, as OpenMRN's config file grows by them.
-memory::Decision SimNode::crossing_write(const memory::Source& source,
-                                         const memory::DecodeResult& asked) {
-    const auto* write = std::get_if<memory::Write>(&asked.message);
-    memory::MemorySpace* space =
-        write != nullptr ? memory_->space(memory::to_u8(write->space)) : nullptr;
-    if (space == nullptr || space->read_only() || write->address >= space->size() ||
-        write->data.size() <= space->size() - write->address) {
-        return server_.handle(source, asked);
-    }
-    const std::size_t fits = space->size() - write->address;
-    memory::Write head = *write;
-    head.data.resize(fits);
-    memory::Decision decision = server_.handle(source, memory::DecodeResult{head});
-    if (!decision.accepted) return decision;
-    const std::span<const std::uint8_t> tail = std::span(write->data).subspan(fits);
-    if (config_.faults.write_past_end_grows) {
-        if (!memory_->keep_past_end(memory::to_u8(write->space), 0, tail))
-            ++counters_.storage_errors;
-        return decision;
-    }
-    if (write->space != memory::Space::kAcdiUser) return decision;
-    memory::MemorySpace* next = memory_->space(kConfigSpace);
-    if (next == nullptr || space->size() >= next->size()) return decision;
-    const std::size_t room = next->size() - space->size();
-    const std::span<const std::uint8_t> spilled = tail.first(std::min(tail.size(), room));
-    if (next->write(space->size(), spilled) != memory::WriteStatus::kOk) ++counters_.storage_errors;
-    return decision;
-}
-
-bool SimNode::reboot_on_this_write() {
-    if (config_.faults.reboot_on_write == 0 || rebooted_on_write_) return false;
-    if (++stored_writes_ < config_.faults.reboot_on_write) return false;
-    rebooted_on_write_ = true;
-    return true;
 }
 
 void SimNode::send_answer(std::uint16_t src, memory::Decision& decision) {

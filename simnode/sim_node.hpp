@@ -66,6 +66,8 @@ struct NodeCounters {
 
 /// One simulated node.
 class SimNode {
+    class Life;  // what the faults' hooks may do to it (NodeLife)
+
 public:
     /// Loads the CDI (parse + layout; a CDI that parses and lays out but fails validation is
     /// served as it is, see cdi_problem()), opens or creates the images, builds spaces; nullptr
@@ -106,9 +108,9 @@ public:
     std::uint64_t replies() const { return replies_; }
     /// The first validation error of the served CDI ("" when it is valid).
     const std::string& cdi_problem() const { return memory().model().first_error; }
-    /// Address in space 253 of the int abort-on-value and factory-reset-on-version-change watch
-    /// (the first <int> of 253 in document order); nullopt when neither fault is set or the CDI
-    /// has no such int.
+    /// Address of the variable the faults that watch one read (watch_variable, or the first
+    /// <int> of 253 in document order); nullopt when no such fault is set or the CDI has no
+    /// such int.
     std::optional<std::uint32_t> watched_address() const;
     /// Runs the CAN login again (CID..RID, AMD, Initialization Complete) as a node does when a
     /// TCP client connects to it; memory, lock and images stay, answers still held are dropped.
@@ -136,7 +138,6 @@ private:
     void after_write(const memory::WrittenRange& written);
     memory::Decision decide(std::uint16_t src, std::span<const std::uint8_t> payload);
     void send_answer(std::uint16_t src, memory::Decision& decision);
-    bool reboot_on_this_write();
     void find_watched();
     bool watched_changed() const;
     void abort_node(std::chrono::milliseconds silence);
@@ -147,11 +148,7 @@ private:
     void advertise_all();
     void identified(EventId id, bool producer);
     void send_reply(std::uint16_t dest, std::vector<std::uint8_t> reply);
-    memory::Decision crossing_write(const memory::Source& source,
-                                    const memory::DecodeResult& asked);
-    void unmask(memory::DecodeResult& asked);
     std::vector<std::pair<EventId, EventRole>> advertised_events() const;
-    void schedule_unsolicited(TimePoint at);
     void start_stream_read(std::uint16_t src, const memory::StreamRead& read);
     void on_stream_event(const StreamEvent& event);
 
@@ -167,14 +164,15 @@ private:
     memory::MemoryConfigServer server_;
     ProtocolSet served_protocols_;
     NodeCounters counters_;
-    AnswerDelay answer_delay_;           // the latency fault
     ActiveFaults faults_;                // the faults' hooks
+    std::unique_ptr<Life> life_;         // handed to the hooks of the running node
+    AnswerDelay answer_delay_;           // as the faults' latency hooks say
     std::uint64_t replies_ = 0;          // reply datagrams sent or scheduled
+    std::uint64_t stored_writes_ = 0;    // writes stored (WriteTurn::index)
     std::uint32_t boot_generation_ = 0;  // delayed replies of an earlier boot are dropped
-    bool unsolicited_started_ = false;
-    std::uint32_t stored_writes_ = 0;    // counts writes for reboot-on-write
-    bool rebooted_on_write_ = false;     // reboot-on-write fires once per process
-    bool silence_after_answer_ = false;  // mask-ignored: go silent once this answer is out
+    bool started_ = false;               // the first Initialization Complete went out
+    // A request hook's silence once this answer is out (RequestTurn::silence_after).
+    std::chrono::milliseconds silence_after_answer_{0};
     std::uint8_t watched_space_ = 253;
     std::optional<std::uint32_t> watched_address_;  // see watched_address()
     std::vector<std::uint8_t> watched_snapshot_;    // its bytes when the node was created

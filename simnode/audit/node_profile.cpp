@@ -53,7 +53,7 @@ std::optional<VariableRef> NodeProfile::variable_at(std::uint8_t space,
         const cdi::Cursor c = cdi_->layout->find(space, address);
         if (c.valid()) return VariableRef{c.address(), c.size(), &c.element(), c.path()};
     }
-    const bool acdi = cdi_ && cdi_->document.acdi.has_value();
+    const bool acdi = cdi_ && cdi_->document->acdi.has_value();
     if (acdi && space == memory::to_u8(acdi::kUserSpace)) return acdi_user_variable(address);
     return std::nullopt;
 }

@@ -3,12 +3,20 @@
 
 namespace olcb::simnode {
 
+namespace {
+
+void versions_plus_one(AcdiVersions& v, FaultValue) {
+    ++v.fixed;
+    ++v.user;
+}
+
+}  // namespace
+
 std::vector<FaultDecl> acdi_faults() {
     return {
         {
             .name = "acdi-version",
             .order = 30,
-            .access = flag_field<&FaultSet::acdi_version>(),
             .summary = "version bytes of spaces 252/251 are fixed+1 and var+1",
             .rule_broken = "CDI 5.1.2: byte 0 of 252 is the `fixed` attribute, byte 0 of 251 the "
                            "`var` attribute (fact sheet 7)",
@@ -16,6 +24,7 @@ std::vector<FaultDecl> acdi_faults() {
             .verdict = Verdict::kFail,
             .category = "acdi",
             .checks = {"acdi.manufacturer-version", "acdi.user-version"},
+            .hooks = {.acdi = versions_plus_one},
         },
     };
 }

@@ -1,4 +1,5 @@
 // Datagram faults: how datagrams are acknowledged.
+#include "base/error_codes.hpp"
 #include "simnode/faults/fault_families.hpp"
 
 namespace olcb::simnode {
@@ -7,6 +8,10 @@ namespace {
 
 void reply_before_ok(AnswerPlan& plan, FaultValue) {
     plan.reply_first = true;
+}
+
+void busy_first(DatagramTurn& turn, FaultValue v) {
+    if (turn.index < v.value) turn.reject = base::to_u16(base::ErrorCode::kBufferUnavailable);
 }
 
 }  // namespace
@@ -30,7 +35,6 @@ std::vector<FaultDecl> datagram_faults() {
             .name = "reject-temporary",
             .order = 200,
             .param = {ParamKind::kNumber, "N", 3, 1, kMaxCount},
-            .access = count_field<&FaultSet::reject_temporary>(),
             .summary = "the first N datagrams are rejected with 0x2020, then it works",
             .doc_parameter = "`N`, default 3",
             .rule_broken = "none broken by itself: a busy node may reject with a temporary error "
@@ -40,6 +44,7 @@ std::vector<FaultDecl> datagram_faults() {
             .verdict = Verdict::kNone,
             .category = "datagram",
             .checks = {"datagram.temporary-rejects"},
+            .hooks = {.datagram = busy_first},
         },
     };
 }

@@ -3,12 +3,23 @@
 
 namespace olcb::simnode {
 
+namespace {
+
+void frozen(EventPolicy& policy, FaultValue) {
+    policy.frozen_at_start = true;
+}
+
+void odd_slots_hidden(EventPolicy& policy, FaultValue) {
+    policy.hidden = [](std::size_t slot) { return slot % 2 == 1; };
+}
+
+}  // namespace
+
 std::vector<FaultDecl> event_faults() {
     return {
         {
             .name = "events-stale-after-write",
             .order = 380,
-            .access = flag_field<&FaultSet::events_stale_after_write>(),
             .summary = "events identified as at start-up: written event IDs not identified until "
                        "a restart",
             .rule_broken = "Events: a node identifies the event IDs it holds now; a written "
@@ -21,11 +32,11 @@ std::vector<FaultDecl> event_faults() {
             .verdict = Verdict::kWarn,
             .category = "events",
             .checks = {"events.follow-write"},
+            .hooks = {.events = frozen},
         },
         {
             .name = "events-missing",
             .order = 390,
-            .access = flag_field<&FaultSet::events_missing>(),
             .summary = "every second eventid of the CDI (slots 1, 3, 5...) never identified",
             .rule_broken = "Events: a node identifies every event it produces or consumes (fact "
                            "sheet 9)",
@@ -37,6 +48,7 @@ std::vector<FaultDecl> event_faults() {
             .verdict = Verdict::kWarn,
             .category = "events",
             .checks = {"events.cdi-events-identified"},
+            .hooks = {.events = odd_slots_hidden},
         },
     };
 }

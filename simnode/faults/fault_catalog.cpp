@@ -47,13 +47,11 @@ const FaultDecl* find_fault(std::string_view name) {
 }
 
 FaultValue fault_value(const FaultSet& faults, const FaultDecl& d) {
-    if (d.access.read != nullptr) return d.access.read(faults);
     const auto it = faults.by_name.find(d.name);
     return it == faults.by_name.end() ? FaultValue{} : it->second;
 }
 
 void set_fault(FaultSet& faults, const FaultDecl& d, FaultValue v) {
-    if (d.access.apply != nullptr) return d.access.apply(faults, v);
     if (v == FaultValue{}) {
         faults.by_name.erase(std::string(d.name));
     } else {

@@ -38,13 +38,6 @@ enum class Verdict : std::uint8_t {
     kNone,        ///< nothing wrong: every check passes, exit 0
 };
 
-/// How a fault sets FaultSet and reads it back (for to_names()); left empty, the fault's value
-/// is kept in FaultSet::by_name under its name.
-struct FaultAccess {
-    void (*apply)(FaultSet&, FaultValue) = nullptr;
-    FaultValue (*read)(const FaultSet&) = nullptr;
-};
-
 /// One fault, declared once.
 struct FaultDecl {
     std::string_view name;  ///< e.g. "reject-temporary"
@@ -52,7 +45,6 @@ struct FaultDecl {
     /// order hooks run in); gaps of 10 leave room, as CheckSpec::order does for checks.
     int order = 0;
     FaultParam param;          ///< its "=..." syntax, default and bounds
-    FaultAccess access;        ///< the FaultSet field(s) it sets
     std::string_view summary;  ///< one line for --help / --list-faults
     // docs/faults.md's columns, as written there (markdown).
     std::string_view doc_parameter;  ///< "Parameter" ("" prints as "–")
@@ -66,6 +58,8 @@ struct FaultDecl {
     /// Check IDs (as reports name them) seen to flag it with the verdict's status.
     std::vector<std::string_view> checks;
     FaultHooks hooks;  ///< what it changes in the node, at which points
+    /// It reads the watched variable (NodeConfig::watch_variable), which the node then finds.
+    bool watches = false;
 };
 
 /// The value of fault d in faults ({0, 0}: off).
@@ -73,27 +67,6 @@ FaultValue fault_value(const FaultSet& faults, const FaultDecl& d);
 
 /// Sets fault d of faults to v.
 void set_fault(FaultSet& faults, const FaultDecl& d, FaultValue v);
-
-// Accessors for the common field types, so a declaration names its field once.
-template <bool FaultSet::*Field>
-constexpr FaultAccess flag_field() {
-    return {[](FaultSet& f, FaultValue v) { f.*Field = v.value != 0; },
-            [](const FaultSet& f) { return FaultValue{f.*Field ? 1U : 0U}; }};
-}
-
-template <std::uint32_t FaultSet::*Field>
-constexpr FaultAccess count_field() {
-    return {[](FaultSet& f, FaultValue v) { f.*Field = v.value; },
-            [](const FaultSet& f) { return FaultValue{f.*Field}; }};
-}
-
-template <std::chrono::milliseconds FaultSet::*Field>
-constexpr FaultAccess ms_field() {
-    return {[](FaultSet& f, FaultValue v) { f.*Field = std::chrono::milliseconds(v.value); },
-            [](const FaultSet& f) {
-                return FaultValue{static_cast<std::uint32_t>((f.*Field).count())};
-            }};
-}
 
 /// Every fault with its whole declaration, in catalogue order (docs/faults.md's rows).
 const std::vector<FaultDecl>& fault_decls();

@@ -1,5 +1,7 @@
 #include "simnode/faults/fault_hooks.hpp"
 
+#include <algorithm>
+
 #include "simnode/faults/fault_catalog.hpp"
 
 namespace olcb::simnode {
@@ -28,6 +30,18 @@ void StackHooks::install(NodeStack& stack) const {
     if (window_) stack.streams().set_window_policy(window_);
 }
 
+namespace {
+
+// Calls one hook of every fault that is on and has it, in catalogue order.
+template <class Hook, class... Args>
+void each(const auto& on, Hook FaultHooks::*point, Args&&... args) {
+    for (const auto& a : on) {
+        if (const Hook hook = a.decl->hooks.*point) hook(args..., a.value);
+    }
+}
+
+}  // namespace
+
 ActiveFaults::ActiveFaults(const FaultSet& faults) {
     for (const FaultDecl& d : fault_decls()) {
         const FaultValue v = fault_value(faults, d);
@@ -35,45 +49,99 @@ ActiveFaults::ActiveFaults(const FaultSet& faults) {
     }
 }
 
+bool ActiveFaults::watches() const {
+    return std::any_of(on_.begin(), on_.end(), [](const Active& a) { return a.decl->watches; });
+}
+
 void ActiveFaults::stack_config(NodeStackConfig& config) const {
-    for (const Active& a : on_) {
-        if (a.decl->hooks.stack_config != nullptr) a.decl->hooks.stack_config(config, a.value);
-    }
+    each(on_, &FaultHooks::stack_config, config);
 }
 
 void ActiveFaults::attach(NodeStack& stack) const {
     StackHooks hooks;
-    for (const Active& a : on_) {
-        if (a.decl->hooks.stack != nullptr) a.decl->hooks.stack(hooks, a.value);
-    }
+    each(on_, &FaultHooks::stack, hooks);
     hooks.install(stack);
 }
 
-void ActiveFaults::snip(memory::Snip& snip) const {
-    for (const Active& a : on_) {
-        if (a.decl->hooks.snip != nullptr) a.decl->hooks.snip(snip, a.value);
-    }
+AnswerLatency ActiveFaults::latency() const {
+    AnswerLatency latency;
+    each(on_, &FaultHooks::latency, latency);
+    return latency;
 }
 
-std::optional<memory::Decision> ActiveFaults::request(memory::DecodeResult& asked) const {
-    RequestTurn turn{asked, std::nullopt};
+std::vector<std::uint8_t> ActiveFaults::served_cdi(std::string_view text) const {
+    ServedCdi cdi{std::string(text.substr(0, std::min(text.size(), text.find('\0')))), true, {}};
+    each(on_, &FaultHooks::cdi, cdi);
+    std::vector<std::uint8_t> bytes(cdi.xml.begin(), cdi.xml.end());
+    if (cdi.terminated) bytes.push_back(0);
+    bytes.insert(bytes.end(), cdi.trailer.begin(), cdi.trailer.end());
+    return bytes;
+}
+
+void ActiveFaults::acdi(AcdiVersions& versions) const {
+    each(on_, &FaultHooks::acdi, versions);
+}
+
+void ActiveFaults::space(SpaceBuild& build) const {
+    each(on_, &FaultHooks::space, build);
+}
+
+bool ActiveFaults::stores() const {
+    return std::any_of(on_.begin(), on_.end(),
+                       [](const Active& a) { return a.decl->hooks.store != nullptr; });
+}
+
+void ActiveFaults::store(const cdi::Element& element, std::span<std::uint8_t> bytes) const {
+    StoredValue value{element, bytes};
+    each(on_, &FaultHooks::store, value);
+}
+
+EventPolicy ActiveFaults::events() const {
+    EventPolicy policy;
+    each(on_, &FaultHooks::events, policy);
+    return policy;
+}
+
+void ActiveFaults::started(NodeLife& life) const {
+    each(on_, &FaultHooks::started, life);
+}
+
+void ActiveFaults::powering_up(NodeLife& life) const {
+    each(on_, &FaultHooks::powering_up, life);
+}
+
+bool ActiveFaults::message(NodeLife& life, const Message& message) const {
     for (const Active& a : on_) {
-        if (a.decl->hooks.request != nullptr) a.decl->hooks.request(turn, a.value);
+        if (a.decl->hooks.message != nullptr && a.decl->hooks.message(life, message, a.value)) {
+            return true;
+        }
     }
-    return std::move(turn.answer);
+    return false;
+}
+
+void ActiveFaults::snip(memory::Snip& snip) const {
+    each(on_, &FaultHooks::snip, snip);
+}
+
+void ActiveFaults::datagram(DatagramTurn& turn) const {
+    each(on_, &FaultHooks::datagram, turn);
+}
+
+void ActiveFaults::request(RequestTurn& turn) const {
+    each(on_, &FaultHooks::request, turn);
 }
 
 void ActiveFaults::reply(const memory::DecodeResult& asked, memory::Decision& decision) const {
     ReplyTurn turn{asked, decision};
-    for (const Active& a : on_) {
-        if (a.decl->hooks.reply != nullptr) a.decl->hooks.reply(turn, a.value);
-    }
+    each(on_, &FaultHooks::reply, turn);
+}
+
+void ActiveFaults::written(WriteTurn& turn) const {
+    each(on_, &FaultHooks::written, turn);
 }
 
 void ActiveFaults::answer(AnswerPlan& plan) const {
-    for (const Active& a : on_) {
-        if (a.decl->hooks.answer != nullptr) a.decl->hooks.answer(plan, a.value);
-    }
+    each(on_, &FaultHooks::answer, plan);
 }
 
 }  // namespace olcb::simnode

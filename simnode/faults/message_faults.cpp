@@ -9,6 +9,19 @@ void no_duplicate_pcer(NodeStackConfig& config, FaultValue) {
     config.builtins.duplicate_id_pcer = false;
 }
 
+void verify_every(NodeLife& life, TimePoint at, std::chrono::milliseconds period) {
+    life.schedule(at, [&life, period](TimePoint now) {
+        if (life.initialized()) life.send(Message{Mti::kVerifyNodeIdGlobal, {}, {}, {}});
+        verify_every(life, now + period, period);
+    });
+}
+
+// From the first start-up on, through restarts.
+void verify_periodically(NodeLife& life, FaultValue v) {
+    const std::chrono::milliseconds period(v.value);
+    verify_every(life, life.now() + period, period);
+}
+
 }  // namespace
 
 std::vector<FaultDecl> message_faults() {
@@ -17,7 +30,6 @@ std::vector<FaultDecl> message_faults() {
             .name = "unsolicited-traffic",
             .order = 220,
             .param = {ParamKind::kNumber, "MS", 1000, 10, kMaxDelayMs},
-            .access = ms_field<&FaultSet::unsolicited_period>(),
             .summary = "a Verify Node ID Global every MS milliseconds",
             .doc_parameter = "`MS`, default 1000",
             .rule_broken = "architecture \"interop facts\": no traffic after start-up other than "
@@ -26,6 +38,7 @@ std::vector<FaultDecl> message_faults() {
             .verdict = Verdict::kWarn,
             .category = "message",
             .checks = {"message.no-unsolicited"},
+            .hooks = {.started = verify_periodically},
         },
         {
             .name = "duplicate-id-silent",

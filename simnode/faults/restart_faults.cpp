@@ -17,6 +17,18 @@ void next_alias_on_restart(NodeStackConfig& config, FaultValue) {
     config.new_alias_on_restart = true;
 }
 
+// The firmware trips over the value while building its SNIP reply.
+bool crash_on_snip(NodeLife& life, const Message& message, FaultValue v) {
+    if (message.mti != Mti::kSnipRequest || !life.watched_changed()) return false;
+    life.abort(std::chrono::milliseconds(v.value));
+    return true;
+}
+
+// Like OpenMRN: a stored config version other than the firmware's wipes the configuration.
+void reset_on_other_version(NodeLife& life, FaultValue) {
+    if (life.watched_changed()) life.factory_reset();
+}
+
 // Crashes and restarts.
 std::vector<FaultDecl> restarts() {
     return {
@@ -24,7 +36,6 @@ std::vector<FaultDecl> restarts() {
             .name = "abort-on-value",
             .order = 230,
             .param = {ParamKind::kNumber, "MS", 3000, 1, kMaxDelayMs},
-            .access = ms_field<&FaultSet::abort_on_value>(),
             .summary = "a SNIP request while the first 253 int was changed: silent MS ms, then a "
                        "restart",
             .doc_parameter = "`MS`, default 3000 (1..600000)",
@@ -41,11 +52,12 @@ std::vector<FaultDecl> restarts() {
                            "value at once, before anything else) never triggers: it sees nothing "
                            "wrong",
             .verdict = Verdict::kNone,
+            .hooks = {.message = crash_on_snip},
+            .watches = true,
         },
         {
             .name = "factory-reset-on-version-change",
             .order = 270,
-            .access = flag_field<&FaultSet::factory_reset_on_version_change>(),
             .summary = "a restart while the first 253 int was changed factory-resets the "
                        "configuration",
             .rule_broken = "none broken by itself: what a node does at start-up is its own "
@@ -59,6 +71,8 @@ std::vector<FaultDecl> restarts() {
                            "factory content first. A careful client never restarts the node with "
                            "a test value in place and sees nothing wrong",
             .verdict = Verdict::kNone,
+            .hooks = {.powering_up = reset_on_other_version},
+            .watches = true,
         },
         {
             .name = "new-alias-on-reboot",

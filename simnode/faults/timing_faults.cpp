@@ -13,14 +13,16 @@ void hold_reply(AnswerPlan& plan, FaultValue v) {
     if (plan.index % kSlowReplyEvery == 0) plan.delay = std::chrono::milliseconds(v.value);
 }
 
-void apply_latency(FaultSet& f, FaultValue v) {
-    f.latency = std::chrono::milliseconds(v.value);
-    f.latency_jitter = std::chrono::milliseconds(v.jitter);
+void hold_answers(AnswerLatency& latency, FaultValue v) {
+    latency.latency = std::chrono::milliseconds(v.value);
+    latency.jitter = std::chrono::milliseconds(v.jitter);
 }
 
-FaultValue read_latency(const FaultSet& f) {
-    return {static_cast<std::uint32_t>(f.latency.count()),
-            static_cast<std::uint32_t>(f.latency_jitter.count())};
+// The stack would answer these at once; the node answers them itself, late.
+void no_builtin_answers(NodeStackConfig& config, FaultValue) {
+    config.builtins.verify_node_id = false;
+    config.builtins.protocol_support = false;
+    config.builtins.reject_unknown_addressed = false;
 }
 
 }  // namespace
@@ -47,7 +49,6 @@ std::vector<FaultDecl> timing_faults() {
             .name = "latency",
             .order = 320,
             .param = {ParamKind::kMsJitter, "MS[:JITTER]", 200, 0, kMaxDelayMs},
-            .access = {apply_latency, read_latency},
             .summary = "every answer sent MS ms (plus 0..JITTER ms, random) after its request, "
                        "in order",
             .doc_parameter = "`MS[:JITTER]`, default 200 (each 0..600000, not both 0)",
@@ -67,6 +68,7 @@ std::vector<FaultDecl> timing_faults() {
                            "`latency`) gives it to every node without its own",
             .verdict = Verdict::kNone,
             .category_note = "above 750 ms: message",
+            .hooks = {.stack_config = no_builtin_answers, .latency = hold_answers},
         },
     };
 }

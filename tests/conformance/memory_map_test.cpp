@@ -218,7 +218,7 @@ TEST_F(MemoryMapRun, CleanNodeVerifiesEveryTestedVariable) {
 
 TEST_F(MemoryMapRun, LittleEndianIntsFailWithTheBytesReadBack) {
     simnode::FaultSet faults;
-    faults.int_byte_order = true;
+    faults.by_name.emplace("int-byte-order", simnode::FaultValue{1});
     const NodeReport r = run(faults);
     const MemoryMapSpace* settings = space_of(r, 253);
     ASSERT_NE(settings, nullptr);

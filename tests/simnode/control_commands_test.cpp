@@ -204,7 +204,7 @@ TEST_F(ControlCommandsTest, SetFaultsRebuildsTheNodeWithThemAndClearRemovesThem)
     EXPECT_EQ(r["restarted"], true);
     EXPECT_EQ(r["faults"], Json({"int-byte-order", "reject-temporary=2"}));
     EXPECT_TRUE(run_until([this] { return seen(kInitComplete) && initialized(kNodeId); }));
-    EXPECT_EQ(registry_.find(kNodeId)->config().faults.reject_temporary, 2u);
+    EXPECT_EQ(registry_.find(kNodeId)->config().faults.value("reject-temporary"), FaultValue{2});
     // A parameter given again replaces the old one; the rest stays.
     r = ask(Json{{"cmd", "set-faults"}, {"node", kNode}, {"faults", "reject-temporary=5"}});
     EXPECT_EQ(r["faults"], Json({"int-byte-order", "reject-temporary=5"}));

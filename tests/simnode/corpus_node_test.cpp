@@ -48,8 +48,8 @@ TEST(CorpusNode, EveryUsableCorpusCdiServesItsLayout) {
             EXPECT_EQ(s->size(), want) << "space " << ext.space;
             EXPECT_FALSE(s->read_only());
         }
-        EXPECT_EQ(node->memory().space(0xFC) != nullptr, model.document.acdi.has_value());
-        EXPECT_EQ(node->served_protocols().has(Protocol::kAcdi), model.document.acdi.has_value());
+        EXPECT_EQ(node->memory().space(0xFC) != nullptr, model.document->acdi.has_value());
+        EXPECT_EQ(node->served_protocols().has(Protocol::kAcdi), model.document->acdi.has_value());
 
         SimNetwork net;
         net.add_stack(node->stack());

@@ -155,7 +155,7 @@ TEST_F(FaultTest, WriteNotPersisted) {
     TempDir dir;
     NodeConfig c = default_config();
     c.image_dir = dir.path();
-    c.faults.write_not_persisted = true;
+    c.faults = faults_of({"write-not-persisted"});
     start(c);
     write_ok(0xFD, 15, {3});
     EXPECT_EQ(read(0xFD, 15, 1), (std::vector<std::uint8_t>{3}));

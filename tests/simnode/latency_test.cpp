@@ -15,18 +15,17 @@ TEST(LatencyFault, ParsesAndPrintsBack) {
     std::string error;
     auto f = parse_faults({"latency=120"}, error);
     ASSERT_TRUE(f) << error;
-    EXPECT_EQ(f->latency, milliseconds(120));
-    EXPECT_EQ(f->latency_jitter, milliseconds(0));
+    EXPECT_EQ(f->value("latency"), (FaultValue{120, 0}));
     EXPECT_EQ(to_names(*f), std::vector<std::string>{"latency=120"});
     f = parse_faults({"latency=120:30"}, error);
     ASSERT_TRUE(f) << error;
-    EXPECT_EQ(f->latency_jitter, milliseconds(30));
+    EXPECT_EQ(f->value("latency"), (FaultValue{120, 30}));
     EXPECT_EQ(to_names(*f), std::vector<std::string>{"latency=120:30"});
     EXPECT_EQ(parse_faults(to_names(*f), error), f);
     EXPECT_TRUE(parse_faults({"latency=0:5"}, error));
     f = parse_faults({"latency"}, error);
     ASSERT_TRUE(f) << error;
-    EXPECT_EQ(f->latency, milliseconds(200));
+    EXPECT_EQ(f->value("latency"), (FaultValue{200, 0}));
     for (const char* bad : {"latency=0", "latency=x", "latency=5:", "latency=:5", "latency=700000",
                             "latency=1:2:3"}) {
         EXPECT_FALSE(parse_faults({bad}, error)) << bad;

@@ -104,7 +104,7 @@ TEST_F(RestartFaultTest, AbortOnValueKeepsTheImageOnDisk) {
     TempDir dir;
     NodeConfig c = default_config();
     c.image_dir = dir.path();
-    c.faults.abort_on_value = std::chrono::milliseconds(100);
+    c.faults = faults_of({"abort-on-value=100"});
     start(c);
     write_ok(0xFD, kVersion, {0x80});
     send_text(":X19DE812CN0343;");
@@ -287,8 +287,8 @@ protected:
 TEST_F(ShippedScenarioTest, OpenMrnLikeCrashesOnAChangedVersionThenWipesItsSettings) {
     start(scenario_node("faults/openmrn-like.ini"));
     EXPECT_EQ(node_->cdi_problem(), "");
-    EXPECT_TRUE(node_->config().faults.factory_reset_on_version_change);
-    EXPECT_EQ(node_->config().faults.abort_on_value, std::chrono::milliseconds(3000));
+    EXPECT_EQ(node_->config().faults.value("factory-reset-on-version-change"), FaultValue{1});
+    EXPECT_EQ(node_->config().faults.value("abort-on-value"), FaultValue{3000});
     const std::string head = "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n";
     EXPECT_EQ(read(0xFF, 0, static_cast<std::uint8_t>(head.size())), bytes_of(head));
     ASSERT_EQ(node_->watched_address(), 128u) << "the Internal data Version";

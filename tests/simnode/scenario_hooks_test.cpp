@@ -33,13 +33,13 @@ TEST(ScenarioHooks, LatencyAppliesToEveryNodeWithoutItsOwn) {
     const auto s = parse(kTwoGroups, {"--latency", "100:20"}, error);
     ASSERT_TRUE(s) << error;
     ASSERT_EQ(s->nodes.size(), 3u);
-    EXPECT_EQ(s->nodes[0].faults.latency, milliseconds(100));
-    EXPECT_EQ(s->nodes[1].faults.latency_jitter, milliseconds(20));
-    EXPECT_EQ(s->nodes[2].faults.latency, milliseconds(5));
-    EXPECT_EQ(s->nodes[2].faults.latency_jitter, milliseconds(0));
+    EXPECT_EQ(s->nodes[0].faults.value("latency").value, 100u);
+    EXPECT_EQ(s->nodes[1].faults.value("latency").jitter, 20u);
+    EXPECT_EQ(s->nodes[2].faults.value("latency").value, 5u);
+    EXPECT_EQ(s->nodes[2].faults.value("latency").jitter, 0u);
     const auto file = parse(std::string("latency = 7\n") + kTwoGroups, {}, error);
     ASSERT_TRUE(file) << error;
-    EXPECT_EQ(file->nodes[0].faults.latency, milliseconds(7));
+    EXPECT_EQ(file->nodes[0].faults.value("latency").value, 7u);
     for (const char* bad : {"x", "0", "1:2:3", "-4"}) {
         EXPECT_FALSE(parse(kTwoGroups, {"--latency", bad}, error)) << bad;
         EXPECT_NE(error.find("latency"), std::string::npos) << error;

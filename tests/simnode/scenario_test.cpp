@@ -177,8 +177,8 @@ TEST(ScenarioTest, NodeGroupsAddedLaterFollowTheRunningScenario) {
     EXPECT_EQ((*nodes)[1].node_id, NodeId(0x05'01'01'01'22'11ull));
     EXPECT_EQ((*nodes)[1].image_dir, fs::path("/tmp/imgs/05.01.01.01.22.11"));
     EXPECT_EQ((*nodes)[1].user_name, "N2");
-    EXPECT_TRUE((*nodes)[0].faults.int_byte_order);
-    EXPECT_EQ((*nodes)[0].faults.latency, std::chrono::milliseconds(30)) << "the process latency";
+    EXPECT_EQ((*nodes)[0].faults.value("int-byte-order"), FaultValue{1});
+    EXPECT_EQ((*nodes)[0].faults.value("latency"), FaultValue{30}) << "the process latency";
     const std::vector<NodeKey> bad{{"listen", {"1"}}};
     EXPECT_FALSE(parse_node_group(bad, *running, error));
     EXPECT_EQ(error, "'listen' is not a node key (see docs/scenarios.md)");
