@@ -1,16 +1,14 @@
 #include "simnode/audit/audit_context.hpp"
 
-#include <cstdio>
 #include <utility>
 
+#include "base/hex.hpp"
 #include "openlcb/gridconnect.hpp"
 
 namespace olcb::simnode::audit {
 
 std::string alias_text(std::uint16_t alias) {
-    char buf[8];
-    std::snprintf(buf, sizeof buf, "0x%03X", static_cast<unsigned>(alias));
-    return buf;
+    return base::hex(alias, 3);
 }
 
 std::optional<std::size_t> AuditContext::node_index(NodeId id) const {
