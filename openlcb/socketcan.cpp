@@ -30,6 +30,24 @@ std::optional<CanFrame> from_kernel(const ::can_frame& frame) {
 }
 
 namespace {
+
+constexpr auto kSendRetry = std::chrono::milliseconds(1);
+// Room for about 8,000 frames (the kernel counts each near 1 KiB of buffer).
+constexpr int kReceiveBufferBytes = 8 << 20;
+
+// Only extended data frames enter the socket's queue: standard, remote and error frames of other
+// equipment on the bus never take the room OpenLCB's frames need. And a deep queue: a process
+// busy for a moment must not lose a stream's frames to a burst (the kernel drops silently).
+// Both best effort: without them from_kernel() still filters and the default queue still works.
+void configure_receive(int fd) {
+    const ::can_filter only_extended{CAN_EFF_FLAG, CAN_EFF_FLAG | CAN_RTR_FLAG};
+    (void)::setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FILTER, &only_extended, sizeof only_extended);
+    const int bytes = kReceiveBufferBytes;
+    if (::setsockopt(fd, SOL_SOCKET, SO_RCVBUFFORCE, &bytes, sizeof bytes) != 0) {
+        (void)::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &bytes, sizeof bytes);  // up to rmem_max
+    }
+}
+
 OpenError make_error(const std::string& interface, const char* step, int err) {
     std::string reason = std::strerror(err);
     if (err == EAFNOSUPPORT) reason = "AF_CAN not supported by this kernel";
@@ -39,7 +57,7 @@ OpenError make_error(const std::string& interface, const char* step, int err) {
 }  // namespace
 
 struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
-    explicit Impl(boost::asio::io_context& io) : stream(io) {}
+    explicit Impl(boost::asio::io_context& io) : stream(io), retry(io) {}
 
     void read() {
         stream.async_read_some(boost::asio::buffer(&in, sizeof in),
@@ -73,9 +91,11 @@ struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
                                     const boost::system::error_code& ec, std::size_t) {
                                     if (generation != self->generation) return;
                                     self->write_active = false;
+                                    if (ec == boost::asio::error::no_buffer_space) {
+                                        self->wait_for_room();
+                                        return;
+                                    }
                                     if (ec) {
-                                        // ENOBUFS: the interface queue is full; CAN has no
-                                        // retransmission for us.
                                         ++self->stats.frames_dropped;
                                     } else {
                                         ++self->stats.frames_sent;
@@ -84,15 +104,32 @@ struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
                                 });
     }
 
+    // ENOBUFS: the interface's queue is full. The frame goes first again once it has drained,
+    // so nothing is lost or reordered (the kernel gives no readiness event for this).
+    void wait_for_room() {
+        out.push_front(writing);
+        write_active = true;
+        ++stats.send_retries;
+        retry.expires_after(kSendRetry);
+        retry.async_wait([self = shared_from_this(),
+                          generation = generation](const boost::system::error_code& ec) {
+            if (ec || generation != self->generation) return;
+            self->write_active = false;
+            self->write();
+        });
+    }
+
     void close() {
         ++generation;
         boost::system::error_code ignored;
         stream.close(ignored);
+        // A pending retry finds another generation and does nothing (at most kSendRetry away).
         out.clear();
         write_active = false;
     }
 
     boost::asio::posix::stream_descriptor stream;
+    boost::asio::steady_timer retry;
     ::can_frame in{};
     ::can_frame writing{};
     std::deque<::can_frame> out;
@@ -129,6 +166,7 @@ std::optional<OpenError> SocketCanPort::open(const std::string& interface) {
         ::close(fd);
         return make_error(interface, "bind", err);
     }
+    configure_receive(fd);
     impl_->stream.assign(fd);
     impl_->stats = {};
     impl_->read();

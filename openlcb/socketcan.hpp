@@ -36,7 +36,8 @@ public:
         std::uint64_t frames_sent = 0;
         std::uint64_t frames_received = 0;
         std::uint64_t frames_ignored = 0;  ///< standard, RTR or error frames (either direction)
-        std::uint64_t frames_dropped = 0;  ///< send queue full or not open
+        std::uint64_t frames_dropped = 0;  ///< send queue full, not open, or a send error
+        std::uint64_t send_retries = 0;    ///< sends put off because the interface was full
     };
 
     /// Maximum frames waiting for the socket; more are dropped (counted).
