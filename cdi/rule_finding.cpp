@@ -1,11 +1,12 @@
 #include "cdi/rule_finding.hpp"
 
 #include <algorithm>
-#include <cstdio>
+#include <cstdint>
 #include <iterator>
 #include <optional>
 #include <utility>
 
+#include "base/hex.hpp"
 #include "base/utf8.hpp"
 #include "cdi/string_codec.hpp"
 #include "cdi/validator.hpp"
@@ -46,14 +47,7 @@ std::uint32_t line_at(std::string_view text, std::size_t offset) {
 }
 
 std::string hex_bytes(std::string_view bytes) {
-    std::string out;
-    for (const char c : bytes) {
-        char buf[4];
-        std::snprintf(buf, sizeof buf, "%s%02X", out.empty() ? "" : " ",
-                      static_cast<unsigned char>(c));
-        out += buf;
-    }
-    return out;
+    return base::hex_bytes({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
 }
 
 // CDI standard §5: "There is no byte-order mark (BOM) at the start of the string."
