@@ -29,4 +29,13 @@ std::string located(const Diagnostic& diagnostic) {
     return "line " + std::to_string(diagnostic.line) + ": " + diagnostic.message;
 }
 
+std::string quoted_excerpt(std::string_view text) {
+    constexpr std::size_t kMaxShown = 40;
+    std::string out = "'";
+    out += text.substr(0, kMaxShown);
+    if (text.size() > kMaxShown) out += "...";
+    out += "'";
+    return out;
+}
+
 }  // namespace olcb::cdi

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace olcb::cdi {
@@ -31,5 +32,9 @@ std::string format_diagnostic(const std::string& file, const Diagnostic& diagnos
 
 /// "line 4: message" ("message" when the line is 0): a diagnostic quoted inside another report.
 std::string located(const Diagnostic& diagnostic);
+
+/// The text in single quotes for a message about it, its first 40 bytes then "..." when longer:
+/// a value from the CDI or the user can be any length, a message line should not be.
+std::string quoted_excerpt(std::string_view text);
 
 }  // namespace olcb::cdi

@@ -1,5 +1,7 @@
 #include "cdi/int_codec.hpp"
 
+#include "cdi/diagnostic.hpp"
+
 namespace olcb::cdi {
 
 namespace {
@@ -8,15 +10,6 @@ using UWide = unsigned __int128;
 
 // 39 digits cover 2^127 - 1; refusing longer text bounds the work and the overflow check.
 constexpr std::size_t kMaxDecimalDigits = 39;
-
-std::string quoted(std::string_view text) {
-    constexpr std::size_t kMaxShown = 40;
-    std::string out = "'";
-    out += text.substr(0, kMaxShown);
-    if (text.size() > kMaxShown) out += "...";
-    out += "'";
-    return out;
-}
 
 }  // namespace
 
@@ -82,20 +75,22 @@ CodecResult<WideInt> parse_int_text(std::string_view text) {
         negative = digits.front() == '-';
         digits.remove_prefix(1);
     }
-    if (digits.empty()) return CodecError{quoted(text) + " is not a decimal integer"};
+    if (digits.empty()) return CodecError{quoted_excerpt(text) + " is not a decimal integer"};
     for (char c : digits) {
-        if (c < '0' || c > '9') return CodecError{quoted(text) + " is not a decimal integer"};
+        if (c < '0' || c > '9') {
+            return CodecError{quoted_excerpt(text) + " is not a decimal integer"};
+        }
     }
     while (digits.size() > 1 && digits.front() == '0') digits.remove_prefix(1);
     if (digits.size() > kMaxDecimalDigits) {
-        return CodecError{quoted(text) + " is out of the integer range"};
+        return CodecError{quoted_excerpt(text) + " is out of the integer range"};
     }
     constexpr UWide kLimit = (UWide{1} << 127) - 1;
     UWide magnitude = 0;
     for (char c : digits) {
         const auto digit = static_cast<unsigned>(c - '0');
         if (magnitude > (kLimit - digit) / 10) {
-            return CodecError{quoted(text) + " is out of the integer range"};
+            return CodecError{quoted_excerpt(text) + " is out of the integer range"};
         }
         magnitude = magnitude * 10 + digit;
     }

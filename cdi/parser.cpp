@@ -198,15 +198,6 @@ bool name_is(XmlElement node, const char (&name)[N]) {
     return std::strcmp(node.c_name(), name) == 0;
 }
 
-std::string quoted(std::string_view text) {
-    constexpr std::size_t kMaxShown = 40;
-    std::string out = "'";
-    out += text.substr(0, kMaxShown);
-    if (text.size() > kMaxShown) out += "...";
-    out += "'";
-    return out;
-}
-
 // Attributes that are namespace plumbing (xmlns, xsi:...) are never reported as unknown.
 bool is_namespace_attribute(std::string_view name) {
     return name.substr(0, 5) == "xmlns" || name.find(':') != std::string_view::npos;
@@ -367,13 +358,13 @@ std::optional<WideInt> Parser::int_value(XmlElement node, const XmlAttribute& at
                                          WideInt hi, bool* bad) {
     std::optional<WideInt> value = parse_decimal_int(attr.value);
     if (!value) {
-        error(node, "attribute " + str(attr.name) + "=" + quoted(attr.value) + " of <" +
+        error(node, "attribute " + str(attr.name) + "=" + quoted_excerpt(attr.value) + " of <" +
                         str(node.name()) + "> is not a decimal integer");
         *bad = true;
         return std::nullopt;
     }
     if (*value < lo || *value > hi) {
-        error(node, "attribute " + str(attr.name) + "=" + quoted(attr.value) + " of <" +
+        error(node, "attribute " + str(attr.name) + "=" + quoted_excerpt(attr.value) + " of <" +
                         str(node.name()) + "> is out of range " + to_string(lo) + ".." +
                         to_string(hi));
         *bad = true;
@@ -388,7 +379,7 @@ bool Parser::bool_attribute(XmlElement node, std::string_view name) {
     std::string_view text = trim_xml_space(attr->value);
     if (text == "yes" || text == "true" || text == "1") return true;
     if (text == "no" || text == "false" || text == "0") return false;
-    warning(node, "attribute " + str(name) + "=" + quoted(attr->value) + " of <" +
+    warning(node, "attribute " + str(name) + "=" + quoted_excerpt(attr->value) + " of <" +
                       str(node.name()) + "> is not yes/no/true/false/1/0; taken as false");
     return false;
 }
@@ -397,7 +388,7 @@ std::optional<WideInt> Parser::int_text(XmlElement node, XmlElement parent) {
     std::optional<WideInt> value = parse_decimal_int(node.text());
     if (!value) {
         error(node, "<" + str(node.name()) + "> of <" + str(parent.name()) +
-                        "> is not a decimal integer: " + quoted(node.text()));
+                        "> is not a decimal integer: " + quoted_excerpt(node.text()));
     }
     return value;
 }
@@ -406,7 +397,7 @@ std::optional<double> Parser::float_text(XmlElement node, XmlElement parent) {
     std::optional<double> value = parse_decimal_float(node.text());
     if (!value) {
         error(node, "<" + str(node.name()) + "> of <" + str(parent.name()) +
-                        "> is not a decimal number: " + quoted(node.text()));
+                        "> is not a decimal number: " + quoted_excerpt(node.text()));
     }
     return value;
 }
@@ -689,7 +680,7 @@ bool Parser::read_size(XmlElement node, std::optional<WideInt> size, Element& el
             return true;
         case ElementKind::kEventId:
             if (size && *size != 8) {
-                warning(node, "size=" + quoted(node.attribute("size")->value) +
+                warning(node, "size=" + quoted_excerpt(node.attribute("size")->value) +
                                   " of <eventid> ignored; an event ID is 8 bytes");
             }
             element.size = 8;
