@@ -70,6 +70,15 @@ CodecError not_in_map(const Element& e, const std::string& shown) {
                       list_properties(*e.map) + ") of " + label(e)};
 }
 
+// True when a map property, read by parse (as a value of the element's type is written), is v.
+template <typename T, typename Parse>
+bool map_has(const Map& map, const T& v, Parse parse) {
+    return std::any_of(map.entries.begin(), map.entries.end(), [&](const MapEntry& entry) {
+        const auto p = parse(trim(entry.property));
+        return p.ok() && *p == v;
+    });
+}
+
 CodecStatus check_int(const Element& e, WideInt v, std::uint64_t size) {
     const bool is_signed = e.is_signed();
     const WideInt lo = std::max(e.int_min.value_or(0), int_lowest(size, is_signed));
@@ -83,14 +92,7 @@ CodecStatus check_int(const Element& e, WideInt v, std::uint64_t size) {
         return CodecError{"value " + format_int(v) + " above max " + format_int(hi) + " of " +
                           label(e)};
     }
-    if (e.map) {
-        const bool found =
-            std::any_of(e.map->entries.begin(), e.map->entries.end(), [&](const MapEntry& entry) {
-                const auto p = parse_int_text(trim(entry.property));
-                return p.ok() && *p == v;
-            });
-        if (!found) return not_in_map(e, format_int(v));
-    }
+    if (e.map && !map_has(*e.map, v, parse_int_text)) return not_in_map(e, format_int(v));
     return {};
 }
 
@@ -112,14 +114,12 @@ CodecStatus check_float(const Element& e, double v, std::uint64_t size) {
         return CodecError{"value " + shown + " above max " + format_float(hi, size) + " of " +
                           label(e)};
     }
-    if (e.map) {
-        const bool found =
-            std::any_of(e.map->entries.begin(), e.map->entries.end(), [&](const MapEntry& entry) {
-                const auto p = parse_float_text(trim(entry.property), size);
-                return p.ok() && round_to_float_size(*p, size) == stored;
-            });
-        if (!found) return not_in_map(e, shown);
-    }
+    const auto parse_stored = [size](std::string_view text) -> CodecResult<double> {
+        auto p = parse_float_text(text, size);
+        if (!p.ok()) return p;
+        return round_to_float_size(*p, size);
+    };
+    if (e.map && !map_has(*e.map, stored, parse_stored)) return not_in_map(e, shown);
     return {};
 }
 
@@ -145,14 +145,7 @@ CodecStatus check_string(const Element& e, const std::string& v, std::uint64_t s
 }
 
 CodecStatus check_event_id(const Element& e, EventIdValue v) {
-    if (e.map) {
-        const bool found =
-            std::any_of(e.map->entries.begin(), e.map->entries.end(), [&](const MapEntry& entry) {
-                const auto p = parse_event_id(trim(entry.property));
-                return p.ok() && *p == v;
-            });
-        if (!found) return not_in_map(e, format_event_id(v));
-    }
+    if (e.map && !map_has(*e.map, v, parse_event_id)) return not_in_map(e, format_event_id(v));
     return {};
 }
 
