@@ -36,8 +36,19 @@ std::size_t read_clamped(std::span<const std::uint8_t> bytes, std::uint32_t addr
     return n;
 }
 
-ConstantSpace::ConstantSpace(std::vector<std::uint8_t> bytes, std::string description)
+VectorSpace::VectorSpace(std::vector<std::uint8_t> bytes, std::string description)
     : bytes_(std::move(bytes)), description_(std::move(description)) {}
+
+std::uint32_t VectorSpace::size() const {
+    return clamp_size(bytes_.size());
+}
+
+std::size_t VectorSpace::read(std::uint32_t address, std::span<std::uint8_t> out) {
+    return read_clamped(bytes_, address, out);
+}
+
+ConstantSpace::ConstantSpace(std::vector<std::uint8_t> bytes, std::string description)
+    : VectorSpace(std::move(bytes), std::move(description)) {}
 
 ConstantSpace ConstantSpace::from_cdi(std::string_view xml, std::string description) {
     // Clients stop reading at the first NUL, so the space ends with exactly one.
@@ -47,32 +58,16 @@ ConstantSpace ConstantSpace::from_cdi(std::string_view xml, std::string descript
     return ConstantSpace(std::move(bytes), std::move(description));
 }
 
-std::uint32_t ConstantSpace::size() const {
-    return clamp_size(bytes_.size());
-}
-
-std::size_t ConstantSpace::read(std::uint32_t address, std::span<std::uint8_t> out) {
-    return read_clamped(bytes_, address, out);
-}
-
 WriteStatus ConstantSpace::write(std::uint32_t, std::span<const std::uint8_t>) {
     return WriteStatus::kReadOnly;
 }
 
 RamSpace::RamSpace(std::vector<std::uint8_t> initial, std::string description)
-    : bytes_(std::move(initial)), description_(std::move(description)) {}
-
-std::uint32_t RamSpace::size() const {
-    return clamp_size(bytes_.size());
-}
-
-std::size_t RamSpace::read(std::uint32_t address, std::span<std::uint8_t> out) {
-    return read_clamped(bytes_, address, out);
-}
+    : VectorSpace(std::move(initial), std::move(description)) {}
 
 WriteStatus RamSpace::write(std::uint32_t address, std::span<const std::uint8_t> in) {
     if (!fits(size(), address, in.size())) return WriteStatus::kOutOfBounds;
-    std::copy(in.begin(), in.end(), bytes_.begin() + address);
+    std::copy(in.begin(), in.end(), mutable_bytes().begin() + address);
     return WriteStatus::kOk;
 }
 

@@ -44,44 +44,46 @@ public:
     virtual WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) = 0;
 };
 
-/// Read-only space holding constant bytes (CDI, ACDI 252).
-class ConstantSpace : public MemorySpace {
+/// A space whose bytes live in memory, a fixed number of them: what ConstantSpace and RamSpace
+/// share; they differ only in whether write() changes them.
+class VectorSpace : public MemorySpace {
 public:
-    /// A space holding exactly bytes.
-    explicit ConstantSpace(std::vector<std::uint8_t> bytes, std::string description = {});
-    /// A CDI space: the XML text (cut at its first NUL) followed by exactly one NUL.
-    static ConstantSpace from_cdi(std::string_view xml, std::string description = {});
-
     std::uint32_t size() const override;
-    bool read_only() const override { return true; }
     std::string_view description() const override { return description_; }
     std::size_t read(std::uint32_t address, std::span<std::uint8_t> out) override;
-    WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override;
     /// The whole content.
     std::span<const std::uint8_t> bytes() const { return bytes_; }
+
+protected:
+    VectorSpace(std::vector<std::uint8_t> bytes, std::string description);
+    /// The content, for a writable space's write().
+    std::span<std::uint8_t> mutable_bytes() { return bytes_; }
 
 private:
     std::vector<std::uint8_t> bytes_;
     std::string description_;
 };
 
+/// Read-only space holding constant bytes (CDI, ACDI 252).
+class ConstantSpace : public VectorSpace {
+public:
+    /// A space holding exactly bytes.
+    explicit ConstantSpace(std::vector<std::uint8_t> bytes, std::string description = {});
+    /// A CDI space: the XML text (cut at its first NUL) followed by exactly one NUL.
+    static ConstantSpace from_cdi(std::string_view xml, std::string description = {});
+
+    bool read_only() const override { return true; }
+    WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override;
+};
+
 /// Writable space kept in RAM only (tests, nodes without an image directory).
-class RamSpace : public MemorySpace {
+class RamSpace : public VectorSpace {
 public:
     /// A space starting with the given content; its size never changes.
     explicit RamSpace(std::vector<std::uint8_t> initial, std::string description = {});
 
-    std::uint32_t size() const override;
     bool read_only() const override { return false; }
-    std::string_view description() const override { return description_; }
-    std::size_t read(std::uint32_t address, std::span<std::uint8_t> out) override;
     WriteStatus write(std::uint32_t address, std::span<const std::uint8_t> in) override;
-    /// The whole content.
-    std::span<const std::uint8_t> bytes() const { return bytes_; }
-
-private:
-    std::vector<std::uint8_t> bytes_;
-    std::string description_;
 };
 
 /// Writable space persisted in an ImageFile: write() returns after the data is on disk.
