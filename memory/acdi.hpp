@@ -13,29 +13,33 @@
 
 namespace olcb::memory {
 
-/// Layout of the ACDI spaces (byte offsets and slot sizes, NUL included).
+/// Layout of the ACDI spaces (byte offsets and slot sizes, NUL included). A slot holds the SNIP
+/// string of the same name, so its size and the version bytes are SNIP's (memory/snip.hpp); the
+/// slots follow each other after the version byte.
 namespace acdi {
 inline constexpr Space kManufacturerSpace = Space::kAcdiManufacturer;
-inline constexpr std::size_t kManufacturerBlockSize = 125;
 inline constexpr std::size_t kManufacturerVersionOffset = 0;
 inline constexpr std::size_t kManufacturerOffset = 1;
-inline constexpr std::size_t kManufacturerSize = 41;
-inline constexpr std::size_t kModelOffset = 42;
-inline constexpr std::size_t kModelSize = 41;
-inline constexpr std::size_t kHardwareVersionOffset = 83;
-inline constexpr std::size_t kHardwareVersionSize = 21;
-inline constexpr std::size_t kSoftwareVersionOffset = 104;
-inline constexpr std::size_t kSoftwareVersionSize = 21;
-inline constexpr std::uint8_t kManufacturerVersion = 4;  ///< default of <acdi fixed=...>
+inline constexpr std::size_t kManufacturerSize = kSnipManufacturerMax;
+inline constexpr std::size_t kModelOffset = kManufacturerOffset + kManufacturerSize;
+inline constexpr std::size_t kModelSize = kSnipModelMax;
+inline constexpr std::size_t kHardwareVersionOffset = kModelOffset + kModelSize;
+inline constexpr std::size_t kHardwareVersionSize = kSnipHardwareVersionMax;
+inline constexpr std::size_t kSoftwareVersionOffset = kHardwareVersionOffset + kHardwareVersionSize;
+inline constexpr std::size_t kSoftwareVersionSize = kSnipSoftwareVersionMax;
+inline constexpr std::size_t kManufacturerBlockSize = kSoftwareVersionOffset + kSoftwareVersionSize;
+/// Default of <acdi fixed=...>.
+inline constexpr std::uint8_t kManufacturerVersion = kSnipManufacturerVersion;
 
 inline constexpr Space kUserSpace = Space::kAcdiUser;
-inline constexpr std::size_t kUserBlockSize = 128;
 inline constexpr std::size_t kUserVersionOffset = 0;
 inline constexpr std::size_t kUserNameOffset = 1;
-inline constexpr std::size_t kUserNameSize = 63;
-inline constexpr std::size_t kUserDescriptionOffset = 64;
-inline constexpr std::size_t kUserDescriptionSize = 64;
-inline constexpr std::uint8_t kUserVersion = 2;  ///< default of <acdi var=...>
+inline constexpr std::size_t kUserNameSize = kSnipUserNameMax;
+inline constexpr std::size_t kUserDescriptionOffset = kUserNameOffset + kUserNameSize;
+inline constexpr std::size_t kUserDescriptionSize = kSnipUserDescriptionMax;
+inline constexpr std::size_t kUserBlockSize = kUserDescriptionOffset + kUserDescriptionSize;
+/// Default of <acdi var=...>.
+inline constexpr std::uint8_t kUserVersion = kSnipUserVersion;
 }  // namespace acdi
 
 /// Content of space 252.

@@ -31,6 +31,11 @@ TEST(Acdi, LayoutConstantsTileTheSpaces) {
     EXPECT_EQ(acdi::kManufacturerBlockSize,
               acdi::kSoftwareVersionOffset + acdi::kSoftwareVersionSize);
     EXPECT_EQ(acdi::kManufacturerBlockSize, 125u);
+    // The offsets the standard's table gives (the layout derives them from SNIP's sizes).
+    EXPECT_EQ(acdi::kModelOffset, 42u);
+    EXPECT_EQ(acdi::kHardwareVersionOffset, 83u);
+    EXPECT_EQ(acdi::kSoftwareVersionOffset, 104u);
+    EXPECT_EQ(acdi::kUserDescriptionOffset, 64u);
     EXPECT_EQ(acdi::kUserNameOffset, 1u);
     EXPECT_EQ(acdi::kUserDescriptionOffset, acdi::kUserNameOffset + acdi::kUserNameSize);
     EXPECT_EQ(acdi::kUserBlockSize, acdi::kUserDescriptionOffset + acdi::kUserDescriptionSize);
