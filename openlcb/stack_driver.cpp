@@ -120,27 +120,26 @@ std::size_t StackDriver::drain_dirty(TimePoint now) {
     return sent;
 }
 
-// The deadline minimum is O(stacks): recompute once per burst, not per frame.
-void StackDriver::post_rearm() {
-    if (rearm_posted_) return;
-    rearm_posted_ = true;
+// One post however often this is asked before it runs, so a burst costs one step; a driver
+// destroyed meanwhile is not touched (pending is its member).
+void StackDriver::post_once(bool& pending, void (StackDriver::*step)()) {
+    if (pending) return;
+    pending = true;
     std::weak_ptr<bool> alive = alive_;
-    boost::asio::post(io_, [alive, this] {
+    boost::asio::post(io_, [alive, this, &pending, step] {
         if (alive.expired()) return;
-        rearm_posted_ = false;
-        rearm();
+        pending = false;
+        (this->*step)();
     });
 }
 
+// The deadline minimum is O(stacks): recompute once per burst, not per frame.
+void StackDriver::post_rearm() {
+    post_once(rearm_posted_, &StackDriver::rearm);
+}
+
 void StackDriver::schedule() {
-    if (posted_) return;
-    posted_ = true;
-    std::weak_ptr<bool> alive = alive_;
-    boost::asio::post(io_, [alive, this] {
-        if (alive.expired()) return;
-        posted_ = false;
-        process();
-    });
+    post_once(posted_, &StackDriver::process);
 }
 
 void StackDriver::rearm() {

@@ -69,6 +69,7 @@ private:
     void on_transport_frame(const CanFrame& frame);
     void process();
     std::size_t drain_dirty(TimePoint now);
+    void post_once(bool& pending, void (StackDriver::*step)());
     void post_rearm();
     void schedule();
     void rearm();
