@@ -3,14 +3,10 @@
 #include "conformance/checks/check_registry.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <set>
-#include <sstream>
 
-#include "conformance/conform_test_util.hpp"
-#include "conformance/run/runner.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {
@@ -125,82 +121,6 @@ TEST(CheckSelectionTest, PatternsWithACategoryNameChecks) {
     EXPECT_FALSE(is_check_pattern("*.Internal data.*"));
     EXPECT_FALSE(is_check_pattern("Settings.Trim"));
     EXPECT_FALSE(is_check_pattern("*"));
-}
-
-TEST(CheckRunTest, IdsAreUniqueInADefaultNodesProtocolChecks) {
-    testing::SimBench b;
-    CheckContext ctx;
-    auto results = b.run(ctx);
-    ASSERT_FALSE(results.empty());
-    std::set<std::string> ids;
-    for (const CheckResult& r : results) {
-        EXPECT_TRUE(ids.insert(r.id).second) << "duplicate " << r.id;
-        const CheckSpec* spec = find_check(r.id);
-        ASSERT_NE(spec, nullptr) << r.id << " is not in the registry";
-        EXPECT_EQ(r.category, spec->category) << r.id;
-    }
-}
-
-TEST(CheckRunTest, OnlyRunsTheSelectedChecks) {
-    testing::SimBench b;
-    auto node = b.start();
-    ASSERT_TRUE(node);
-    CheckContext ctx;
-    ProtocolOptions o;
-    o.selection.only = {"pip.*"};
-    const std::size_t frames = b.session->frame_mark();
-    auto results = run_protocol_checks(*b.session, *node, o, ctx);
-    ASSERT_FALSE(results.empty());
-    for (const CheckResult& r : results) EXPECT_TRUE(r.id.starts_with("pip.")) << r.id;
-    // The PIP checks still judge: they asked what they needed (SNIP, Options, the CDI).
-    for (const CheckResult& r : results) EXPECT_EQ(r.status, Status::kPass) << r.id << r.message;
-    EXPECT_GT(b.session->frame_mark(), frames);
-}
-
-}  // namespace
-}  // namespace olcb::conform
-
-namespace olcb::conform {
-namespace {
-
-// The whole run, every check of the registry (--thorough and --reboot too), in-process: no false
-// failure on the project's two scenarios.
-void expect_no_failure_in_process(const std::string& cdi_file) {
-    const std::string cdi =
-        read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios" / cdi_file);
-    testing::SimBench b({}, cdi);
-    auto node = b.start();
-    ASSERT_TRUE(node);
-    RunOptions options;
-    options.reboot = true;
-    options.selection.thorough = true;
-    options.backup_path = (std::filesystem::temp_directory_path() /
-                           ("registry_full_" + cdi_file + std::to_string(::getpid())))
-                              .string();
-    ProtocolChecks checks = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
-        ProtocolOptions o;
-        o.reboot = true;
-        o.selection = options.selection;
-        return run_protocol_checks(s, n, o, ctx);
-    };
-    std::ostringstream progress;
-    const NodeReport report = run_node(*b.session, *node, options, checks, progress);
-    std::set<std::string> ids;
-    for (const CheckResult& c : report.checks) {
-        EXPECT_NE(c.status, Status::kFail) << cdi_file << ": " << c.id << " " << c.message;
-        EXPECT_TRUE(ids.insert(c.id).second) << "duplicate " << c.id;
-    }
-    EXPECT_GT(report.checks.size(), 80u);
-    EXPECT_NE(report.restore_summary.find("byte-identical"), std::string::npos)
-        << report.restore_summary;
-}
-
-TEST(CheckRunTest, DefaultScenarioHasNoFailureInProcess) {
-    expect_no_failure_in_process("default.xml");
-}
-
-TEST(CheckRunTest, IoBoardScenarioHasNoFailureInProcess) {
-    expect_no_failure_in_process("io-board.xml");
 }
 
 }  // namespace

@@ -1,14 +1,19 @@
-// The Session follows each node by node ID (a node that restarts on a new alias is reached there)
-// and never takes a short Read Reply for the end of a space.
+// The Session finds nodes (one that starts after the tool from its Initialization Complete;
+// discovery ends once no new node appears), follows each by node ID (a node that restarts on a new
+// alias is reached there, another tool's CID probe is no restart) and never takes a short Read
+// Reply for the end of a space.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "conformance/link/session.hpp"
 #include "conformance/link/session_memory.hpp"
+#include "conformance/link_test_util.hpp"
 #include "conformance/sim_bench.hpp"
 #include "openlcb/can_defs.hpp"
 
@@ -17,6 +22,8 @@ namespace {
 
 using namespace std::chrono_literals;
 using memory::Space;
+using std::chrono::milliseconds;
+using testing::default_cdi;
 using testing::SimBench;
 
 TEST(NodeTrackTest, StartUpIsOneReservationAndOneInitialization) {
@@ -99,12 +106,76 @@ TEST(NodeTrackTest, PingAnswersForAPresentNodeOnly) {
     EXPECT_EQ(b.link->now() - before, 500ms);
 }
 
-// The bytes a well-behaved node holds in [address, address+length) of space.
-std::vector<std::uint8_t> reference(Space space, std::uint32_t address, std::uint32_t length) {
-    SimBench good;
-    auto node = good.start();
-    if (!node) return {};
-    return good.session->read_range(*node, space, address, length, false).data;
+// A simnode that starts `delay` after the tool's session (a node just powered on).
+struct LateNode {
+    SimNetwork net;
+    std::unique_ptr<simnode::SimNode> dut;
+    std::unique_ptr<Link> link;
+    std::unique_ptr<Session> session;
+
+    explicit LateNode(Duration delay) {
+        std::string error;
+        simnode::NodeConfig cfg;
+        cfg.node_id = kDut;
+        cfg.cdi = default_cdi();
+        dut = simnode::SimNode::create(cfg, error);
+        EXPECT_TRUE(dut) << error;
+        net.set_logging(false);
+        net.add_stack(dut->stack());
+        dut->stack().schedule(net.now() + delay, [this](TimePoint t) { dut->stack().start(t); });
+        link = make_sim_link(net, kTool);
+        session = std::make_unique<Session>(*link);
+        EXPECT_TRUE(session->start());
+    }
+};
+
+TEST(Discovery, ANodeStillReservingItsAliasIsFoundByNodeId) {
+    LateNode late(milliseconds(300));
+    const TimePoint asked = late.net.now();
+    auto node = late.session->find_node(kDut, std::chrono::seconds(3));
+    ASSERT_TRUE(node);
+    EXPECT_EQ(node->alias, late.dut->stack().alias());
+    EXPECT_LT(late.net.now() - asked, std::chrono::seconds(1));
+}
+
+TEST(Discovery, ANodeStartingDuringDiscoveryIsFound) {
+    LateNode late(milliseconds(700));
+    auto nodes = late.session->discover(std::chrono::seconds(3));
+    ASSERT_EQ(nodes.size(), 1u);
+    EXPECT_EQ(nodes[0].id, kDut);
+}
+
+TEST(Discovery, EndsOnceNoNewNodeAppearedForTheQuietPeriod) {
+    SimBench b;
+    ASSERT_TRUE(b.session->start());
+    const TimePoint asked = b.net.now();
+    auto nodes = b.session->discover(std::chrono::seconds(3), milliseconds(500));
+    ASSERT_EQ(nodes.size(), 1u);
+    EXPECT_LT(b.net.now() - asked, std::chrono::seconds(1));  // not the whole 3 s
+}
+
+TEST(Discovery, NothingOnTheSegmentTakesTheWholeBoundAndFindsNothing) {
+    SimNetwork net;
+    auto link = make_sim_link(net, kTool);
+    Session session(*link);
+    ASSERT_TRUE(session.start());
+    const TimePoint asked = net.now();
+    EXPECT_TRUE(session.discover(std::chrono::seconds(2)).empty());
+    EXPECT_GE(net.now() - asked, std::chrono::seconds(2));
+}
+
+TEST(NodeTrackTest, AnotherToolsCidProbeAndAmeAreNoRestart) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const NodeTrack before = b.session->track(kDut);
+    // Sent on the segment as another tool would: not through our session's inject().
+    b.link->send_frame(can::make_cid(7, NodeId{0x020112FE0001ull}, node->alias));
+    b.link->send_frame(can::make_ame(0x123));
+    b.session->wait(milliseconds(300));
+    EXPECT_EQ(b.session->track(kDut).reservations, before.reservations);
+    ASSERT_TRUE(b.reboot(*node));
+    EXPECT_EQ(b.session->track(kDut).reservations, before.reservations + 1);
 }
 
 TEST(ShortReadTest, ReadRangeGoesOnWhereAShortReplyEnded) {
@@ -114,7 +185,7 @@ TEST(ShortReadTest, ReadRangeGoesOnWhereAShortReplyEnded) {
     MemResult m = b.session->read_range(*node, Space::kAcdiManufacturer, 0, 125, false);
     ASSERT_TRUE(m.ok);
     EXPECT_EQ(m.data.size(), 125u);
-    EXPECT_EQ(m.data, reference(Space::kAcdiManufacturer, 0, 125));
+    EXPECT_EQ(m.data, testing::reference_bytes(Space::kAcdiManufacturer, 0, 125));
     ASSERT_FALSE(b.session->short_reads().empty());
     const ShortRead& first = b.session->short_reads().front();
     EXPECT_EQ(first.node, kDut);
@@ -126,19 +197,6 @@ TEST(ShortReadTest, ReadRangeGoesOnWhereAShortReplyEnded) {
     EXPECT_FALSE(first.at_end);
     EXPECT_GE(b.session->reads(kDut, 0xFC), 2u);
     EXPECT_EQ(b.session->reads(kDut, 0xFB), 0u);
-}
-
-TEST(ShortReadTest, SessionMemoryReadsTheWholeUserBlock) {
-    SimBench b({"field-reads-only"});
-    auto node = b.start();
-    ASSERT_TRUE(node);
-    SessionMemory memory(*b.session, *node);
-    AccessResult r = memory.read(0xFB, 0, 128);
-    ASSERT_TRUE(r.ok) << r.error;
-    EXPECT_EQ(r.data, reference(Space::kAcdiUser, 0, 128));
-    const std::uint64_t reads = b.session->reads(kDut, 0xFB);
-    EXPECT_GT(reads, 3u);    // 64-byte reads alone would be 2
-    EXPECT_LE(reads, 128u);  // and never more than one per byte
 }
 
 TEST(ShortReadTest, TheEndOfTheSpaceEndsAReadAndIsRecorded) {

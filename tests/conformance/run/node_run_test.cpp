@@ -1,16 +1,23 @@
-// run_node against the simnode faults that model what real nodes do to a careless tool
-// (real-world.md §1, §5), in-process on the simulated clock: the node is never killed or reset
-// by the run, a node that dies or restarts is reported as such, and its memory always ends
+// A node's run (NodeRun, through run_node) in-process on the simulated clock: every check of the
+// registry on the project's two scenarios has no false failure; against the simnode faults that
+// model what real nodes do to a careless tool (real-world.md §1, §5) the node is never killed or
+// reset by the run, a node that dies or restarts is reported as such, and its memory always ends
 // byte-identical; a node that never comes back leaves a backup that restores it later.
+#include "conformance/run/node_run.hpp"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
+#include <string>
 
 #include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
 #include "conformance/run/runner.hpp"
+#include "conformance/sim_bench.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 
@@ -332,6 +339,46 @@ TEST_F(SafetyTest, WithoutWritePastEndNoWriteCrossesAnEnd) {
     EXPECT_TRUE(dut_->memory().past_end(0xFB).empty());
     EXPECT_EQ(find(r, "memory.write-past-end.fd"), nullptr);
     EXPECT_EQ(memory(), before_);
+}
+
+// The whole run, every check of the registry (--thorough and --reboot too), in-process: no false
+// failure on the project's two scenarios.
+void expect_no_failure_in_process(const std::string& cdi_file) {
+    const std::string cdi =
+        read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios" / cdi_file);
+    testing::SimBench b({}, cdi);
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    RunOptions options;
+    options.reboot = true;
+    options.selection.thorough = true;
+    options.backup_path = (std::filesystem::temp_directory_path() /
+                           ("registry_full_" + cdi_file + std::to_string(::getpid())))
+                              .string();
+    ProtocolChecks checks = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
+        ProtocolOptions o;
+        o.reboot = true;
+        o.selection = options.selection;
+        return run_protocol_checks(s, n, o, ctx);
+    };
+    std::ostringstream progress;
+    const NodeReport report = run_node(*b.session, *node, options, checks, progress);
+    std::set<std::string> ids;
+    for (const CheckResult& c : report.checks) {
+        EXPECT_NE(c.status, Status::kFail) << cdi_file << ": " << c.id << " " << c.message;
+        EXPECT_TRUE(ids.insert(c.id).second) << "duplicate " << c.id;
+    }
+    EXPECT_GT(report.checks.size(), 80u);
+    EXPECT_NE(report.restore_summary.find("byte-identical"), std::string::npos)
+        << report.restore_summary;
+}
+
+TEST(CheckRunTest, DefaultScenarioHasNoFailureInProcess) {
+    expect_no_failure_in_process("default.xml");
+}
+
+TEST(CheckRunTest, IoBoardScenarioHasNoFailureInProcess) {
+    expect_no_failure_in_process("io-board.xml");
 }
 
 }  // namespace
