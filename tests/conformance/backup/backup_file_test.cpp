@@ -24,13 +24,12 @@ TEST(ConfigBackupFile, ReadsCommentsBlankLinesCrLfBomAndMalformedLines) {
 }
 
 TEST(ConfigBackupFile, WritesTheNodeAndEveryReadValueEscapedAndReadsThemBack) {
-    const std::vector<ConfigEntry> entries = {{"A.x", nullptr, 253, 0, 1},
-                                              {"A.y", nullptr, 253, 1, 1},
-                                              {"A.z", nullptr, 253, 2, 8}};
+    const std::vector<ConfigEntry> entries = {
+        {"A.x", nullptr, 253, 0, 1}, {"A.y", nullptr, 253, 1, 1}, {"A.z", nullptr, 253, 2, 8}};
     std::vector<ConfigValue> values(3);
     values[0].text = "7";
     values[1].error = "read failed";  // unreadable: left out, never written as empty
-    values[2].text = "a=b\\n";  // a backslash: escaped too
+    values[2].text = "a=b\\n";        // a backslash: escaped too
     const std::string text = backup_text(entries, values, "05.01.01.01.22.00");
     EXPECT_EQ(config_backup_node(text), "05.01.01.01.22.00");
     EXPECT_EQ(text.find("A.y"), std::string::npos) << text;

@@ -31,8 +31,8 @@ TEST(ConfigBackupEscape, RoundTripsEveryAwkwardString) {
 TEST(ConfigBackupValues, EightByteIntsAreWrittenSignedAndReadEitherWay) {
     testing::round_trip(testing::wide(1ull << 63, 0, 0), "W.U64=-9223372036854775808");  // 2^63
     testing::round_trip(testing::wide(~0ull, 0, 0), "W.U64=-1");                         // 2^64 - 1
-    testing::round_trip(testing::wide(0, ~0ull, 0), "W.S64=-1");                         // signed -1
-    testing::round_trip(testing::wide(0, 0, 0xFF85), "W.S16=65413");                     // 2-byte -123
+    testing::round_trip(testing::wide(0, ~0ull, 0), "W.S64=-1");      // signed -1
+    testing::round_trip(testing::wide(0, 0, 0xFF85), "W.S16=65413");  // 2-byte -123
     Cdi cdi(testing::kWideCdi);
     FakeMemory memory;
     memory.spaces[253] = std::vector<std::uint8_t>(18, 0);

@@ -10,8 +10,8 @@
 namespace olcb::conform {
 namespace {
 
-using testing::kFffd;
 using testing::expect_status;
+using testing::kFffd;
 
 TEST(AcdiUtf8, AnInvalidUserNameInSpace251Fails) {
     // What `simnode --user-name $'bad\xff\xfename'` serves: the bytes in 251 and in SNIP.

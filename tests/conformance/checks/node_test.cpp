@@ -5,6 +5,7 @@
 
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/checks/checks.hpp"
+#include "conformance/checks_test_util.hpp"
 #include "conformance/sim_bench.hpp"
 
 namespace olcb::conform {
@@ -25,9 +26,7 @@ TEST(NodeChecksTest, EntriesAreRunPhasesInTheRegistryOfTheirCategory) {
 }
 
 TEST(NodeChecksTest, AProtocolRunOnAHealthyNodeReportsNoneOfThem) {
-    testing::SimBench b;
-    CheckContext ctx;
-    const auto results = b.run(ctx);
+    const auto results = testing::protocol_results();
     ASSERT_FALSE(results.empty());
     for (const char* id : {"node.rebooted", "node.stopped-answering", "link.lost"}) {
         EXPECT_EQ(testing::find_check(results, id), nullptr) << id;

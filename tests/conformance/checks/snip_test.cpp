@@ -9,8 +9,8 @@
 namespace olcb::conform {
 namespace {
 
-using testing::kFffd;
 using testing::expect_status;
+using testing::kFffd;
 
 // SimpleNodeInformationS names no encoding (only CommonInformationTN does): a WARN that still
 // names the field and its bytes; the FAIL is snip.matches-acdi's (251 holds the valid name).

@@ -1,4 +1,5 @@
-// The JSON report: one shape for any number of nodes, valid against its schema, node text made UTF-8.
+// The JSON report: one shape for any number of nodes, valid against its schema, node text made
+// UTF-8.
 #include "conformance/report/report.hpp"
 
 #include <gtest/gtest.h>
@@ -16,9 +17,9 @@
 namespace olcb::conform {
 namespace {
 
+using std::chrono::milliseconds;
 using testing::sample;
 using testing::sample_run;
-using std::chrono::milliseconds;
 
 TEST(ToJson, RootHasOneShapeForAnyNumberOfNodes) {
     for (std::size_t n : {0u, 1u, 2u}) {
