@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -17,6 +18,7 @@
 
 #include "openlcb/can_defs.hpp"
 #include "openlcb/gridconnect.hpp"
+#include "openlcb/node_stack.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 #include "support/temp_files.hpp"
@@ -311,5 +313,131 @@ private:
 inline std::vector<std::uint8_t> bytes_of(std::string_view s) {
     return std::vector<std::uint8_t>(s.begin(), s.end());
 }
+
+/// Offsets in space 253 of scenarios/default.xml: "Enabled" (the version the restart faults
+/// watch), "Trim", "Delay (ms)", "Scale", "Label" and port 0's two event IDs.
+inline constexpr std::uint32_t kVersion = 0, kTrim = 1, kDelay = 3, kScale = 22, kLabel = 30,
+                               kPort0On = 62, kPort0Off = 70;
+/// "Delay (ms)"'s default, 250.
+inline const std::vector<std::uint8_t> kDefaultDelay{0, 0, 0, 0xFA};
+
+inline constexpr std::uint32_t kConfigSize = 179;  // scenarios/default.xml space 253: 0..178
+inline constexpr std::uint32_t kUserSize = 128;    // space 251: 0..127
+
+// An event ID of the default node's CDI: node ID + ordinal (docs/faults.md).
+inline std::vector<std::uint8_t> default_event(std::uint8_t ordinal) {
+    return {0x05, 0x01, 0x01, 0x01, 0x22, 0x00, 0x00, ordinal};
+}
+
+inline const std::vector<std::uint8_t> kNewEvent{1, 2, 3, 4, 5, 6, 7, 8};
+
+/// The default node checked against the rules OlcbChecker tests: space information, Read/Write
+/// Reply Fail codes, event identification, restarts and bursts of frames.
+class SimNodeRulesTest : public SimNodeTest {
+protected:
+    std::uint32_t highest(std::uint8_t space) {
+        const auto r = exchange({0x20, 0x84, space}).reply;
+        if (!r || r->size() < 7 || (*r)[1] != 0x87) return 0;
+        return static_cast<std::uint32_t>((*r)[3]) << 24 | (*r)[4] << 16 | (*r)[5] << 8 | (*r)[6];
+    }
+    // The error code of a Read/Write Reply Fail (0 when the reply is no failure).
+    static std::uint16_t fail_code(const Answer& a) {
+        if (!a.reply || a.reply->size() < 8) return 0;
+        const auto& r = *a.reply;
+        if ((r[1] & 0x08) == 0) return 0;  // the fail bit of read/write replies
+        const std::size_t at = (r[1] & 3) == 0 ? 7 : 6;
+        return static_cast<std::uint16_t>(r[at] << 8 | r[at + 1]);
+    }
+    // Identify Consumer (or Producer) for id; the frames the node answered.
+    std::vector<std::string> identify(const std::vector<std::uint8_t>& id, bool producer = false) {
+        take();
+        send_global(producer ? 0x914 : 0x8F4, id);
+        net_.run_for(10ms);
+        return take();
+    }
+    std::vector<std::string> identify_events_global() {
+        take();
+        send_global(0x970);
+        net_.run_for(10ms);
+        return take();
+    }
+    static std::string consumer_identified(const std::vector<std::uint8_t>& id) {
+        std::string text = ":X194C7343N";
+        static constexpr char kHex[] = "0123456789ABCDEF";
+        for (const auto b : id) {
+            text += kHex[b >> 4];
+            text += kHex[b & 0xF];
+        }
+        return text + ";";
+    }
+    void reboot() {
+        EXPECT_TRUE(exchange({0x20, 0xA9}).ok);
+        net_.run_for(1s);
+        ASSERT_TRUE(node_->stack().initialized());
+    }
+    // Sends an addressed Verify Node ID among n frames of noise, all at one instant.
+    void verify_in_burst(std::size_t n, const std::function<void(std::size_t)>& noise) {
+        for (std::size_t i = 0; i < n / 2; ++i) noise(i);
+        send_addressed(0x488);
+        for (std::size_t i = n / 2; i < n; ++i) noise(i);
+    }
+};
+
+inline constexpr NodeId kReaderId{0x02'01'0D'00'00'02ull};
+inline constexpr std::uint8_t kDid = 0x21;
+
+/// A second NodeStack with the stream transport on (the way lcc-conform reads) reading the
+/// node's memory by stream, on the same simulated bus.
+class StreamReadTest : public SimNodeTest {
+protected:
+    StreamReadTest() : reader_(reader_config()) {
+        reader_.set_datagram_handler([this](const ReceivedDatagram& d) {
+            replies_.push_back(d.payload);
+            reader_.accept_datagram(d.source_alias);
+        });
+        reader_.set_outcome_handler([this](const DatagramOutcome& o) { outcomes_.push_back(o); });
+        reader_.set_stream_handler([this](const StreamEvent& e) {
+            if (e.kind == StreamEvent::Kind::kData) {
+                data_.insert(data_.end(), e.data.begin(), e.data.end());
+            }
+            if (e.kind == StreamEvent::Kind::kOpened) stream_ = e.id;
+            if (e.kind == StreamEvent::Kind::kCompleted) completed_ = e;
+        });
+    }
+    static NodeStackConfig reader_config() {
+        NodeStackConfig c;
+        c.node_id = kReaderId;
+        c.protocols = {Protocol::kDatagram, Protocol::kStream};
+        c.streams = true;
+        return c;
+    }
+    void boot(NodeConfig config) {
+        start(std::move(config));
+        net_.add_stack(reader_);
+        reader_.start(net_.now());
+        ASSERT_TRUE(net_.run_until([this] { return reader_.initialized(); }, 1s));
+    }
+    // Reads the CDI by stream (count 0 = to the end) with our buffer `buffer`.
+    void read_cdi(std::uint16_t buffer, Duration max = 5s) {
+        reader_.expect_stream(alias(), kDid, buffer);
+        const std::vector<std::uint8_t> cmd{0x20, 0x63, 0, 0, 0, 0, 0xFF, kDid, 0, 0, 0, 0};
+        ASSERT_TRUE(reader_.send_datagram(alias(), cmd, net_.now()));
+        net_.run_until([this] { return completed_.has_value(); }, max);
+    }
+    std::vector<std::uint8_t> cdi_bytes() {
+        memory::MemorySpace* s = node_->memory().space(0xFF);
+        std::vector<std::uint8_t> out(s->size());
+        out.resize(s->read(0, out));
+        return out;
+    }
+    std::optional<StreamInfo> info() { return reader_.streams().info(stream_); }
+
+    NodeStack reader_;
+    std::vector<std::vector<std::uint8_t>> replies_;
+    std::vector<DatagramOutcome> outcomes_;
+    std::vector<std::uint8_t> data_;
+    std::uint32_t stream_ = 0;
+    std::optional<StreamEvent> completed_;
+};
 
 }  // namespace olcb::simnode::test

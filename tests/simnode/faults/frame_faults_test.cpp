@@ -1,10 +1,11 @@
-// The frame faults' stack hooks: alias-conflict-ignored, burst-drops and answers-standard-frames
-// installed by ActiveFaults on a NodeStack of their own (the stream-* faults:
-// stream_read_test.cpp), frames as GridConnect strings.
+// The frame faults: alias-conflict-ignored, burst-drops and answers-standard-frames, as stack
+// hooks installed by ActiveFaults on a NodeStack of their own (frames as GridConnect strings) and
+// on a whole SimNode against the good node.
 #include <gtest/gtest.h>
 
 #include "openlcb/node/node_test_util.hpp"
 #include "simnode/faults/fault_hooks.hpp"
+#include "simnode/faults/fault_test_util.hpp"
 #include "simnode/sim_node_test_util.hpp"
 
 namespace olcb::simnode {
@@ -89,3 +90,75 @@ TEST_F(FrameFaultsTest, NoFaultInstallsNoHook) {
 
 }  // namespace
 }  // namespace olcb::simnode
+
+namespace olcb::simnode::test {
+namespace {
+
+TEST_F(FaultTest, GoodNodeDefendsItsAlias) {
+    start(default_config());
+    take();
+    send_text(":X17050343N;");  // someone checks our alias
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X10700343N;"});
+    send_text(":X19170343N020000000001;");  // someone uses it
+    net_.run_for(10ms);
+    const auto frames = take();
+    ASSERT_FALSE(frames.empty());
+    EXPECT_EQ(frames[0], ":X10703343N050101012200;");
+}
+
+TEST_F(FaultTest, AliasConflictIgnored) {
+    start_with({"alias-conflict-ignored"});
+    take();
+    send_text(":X17050343N;");
+    net_.run_for(10ms);
+    EXPECT_TRUE(take().empty());
+    send_text(":X19170343N020000000001;");
+    net_.run_for(1s);
+    EXPECT_TRUE(take().empty());
+    EXPECT_EQ(alias(), 0x343);
+    EXPECT_TRUE(node_->stack().initialized());
+}
+
+TEST_F(SimNodeRulesTest, AnswersStandardFramesWithVerifiedNodeId) {
+    start_with({"answers-standard-frames"});
+    take();
+    send_text(":S123N0102;");
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+}
+
+TEST_F(SimNodeRulesTest, BurstDropsLosesAddressedMessagesInABurst) {
+    start_with({"burst-drops"});
+    take();
+    // Frames from a third party (another alias than the Verify's): what fills a receive buffer.
+    auto noise = [&] {
+        port_.send(can::make_frame(can::message_header(0x8F4, 0x456),
+                                   std::vector<std::uint8_t>{9, 9, 9, 9, 9, 9, 9, 9}));
+    };
+    verify_in_burst(300, [&](std::size_t) { noise(); });
+    net_.run_for(10ms);
+    EXPECT_TRUE(take().empty());
+    net_.run_for(20ms);
+    // 16 frames of another source within 10 ms: not a burst yet.
+    for (int i = 0; i < 16; ++i) noise();
+    send_addressed(0x488);
+    net_.run_for(20ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+    // 17 of them: dropped.
+    for (int i = 0; i < 17; ++i) noise();
+    send_addressed(0x488);
+    net_.run_for(20ms);
+    EXPECT_TRUE(take().empty());
+    send_addressed(0x488);
+    net_.run_for(10ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"}) << "quiet again";
+    // The requester's own quick traffic is no burst.
+    for (int i = 0; i < 40; ++i) send_global(0x8F4, {9, 9, 9, 9, 9, 9, 9, 9});
+    send_addressed(0x488);
+    net_.run_for(20ms);
+    EXPECT_EQ(take(), std::vector<std::string>{":X19170343N050101012200;"});
+}
+
+}  // namespace
+}  // namespace olcb::simnode::test

@@ -1,60 +1,14 @@
-// The faults around restarts (docs/faults.md): abort-on-value, reboot-on-write, reset-rejected,
+// The faults around restarts (docs/faults.md): abort-on-value, reset-rejected, lock-rejected,
 // factory-reset-on-version-change and new-alias-on-reboot misbehave as documented, and a good
-// node does not.
+// node does not; and the shipped fault scenarios that combine them.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-
 #include "memory/snip.hpp"
-#include "sim_node_test_util.hpp"
+#include "simnode/faults/fault_test_util.hpp"
 #include "simnode/scenario.hpp"
 
 namespace olcb::simnode::test {
 namespace {
-
-// scenarios/default.xml, space 253: "Enabled" (the first <int>, default 1) and "Delay (ms)".
-constexpr std::uint32_t kVersion = 0, kDelay = 3;
-const std::vector<std::uint8_t> kDefaultDelay{0, 0, 0, 0xFA};  // 250
-
-std::string hex3(std::uint16_t alias) {
-    char text[8];
-    std::snprintf(text, sizeof text, "%03X", alias & 0xFFFu);
-    return text;
-}
-
-class RestartFaultTest : public SimNodeTest {
-protected:
-    /// Asserts that frames[from..] are a power-up on alias: CID7..4 (carrying the node ID's
-    /// 12-bit groups), RID, AMD, Initialization Complete.
-    static void expect_startup(const std::vector<std::string>& frames, std::uint16_t alias,
-                               std::size_t from = 0) {
-        const std::string a = hex3(alias);
-        const std::vector<std::string> prefixes = {":X17050" + a + "N;",
-                                                   ":X16101" + a + "N;",
-                                                   ":X15012" + a + "N;",
-                                                   ":X14200" + a + "N;",
-                                                   ":X10700" + a + "N;",
-                                                   ":X10701" + a + "N050101012200;",
-                                                   ":X19100" + a + "N050101012200;"};
-        ASSERT_GE(frames.size(), from + prefixes.size());
-        for (std::size_t i = 0; i < prefixes.size(); ++i) {
-            EXPECT_EQ(frames[from + i], prefixes[i]) << i;
-        }
-    }
-    /// Sends Reset/Reboot, expects the OK and runs until the node is initialized again.
-    void reboot() {
-        EXPECT_TRUE(exchange({0x20, 0xA9}).ok);
-        ASSERT_TRUE(net_.run_until([this] { return node_->stack().initialized(); }, 1s));
-        net_.run_for(10ms);
-    }
-    /// Runs until the node is initialized again after a restart it began by itself.
-    void wait_restarted(Duration max) {
-        ASSERT_TRUE(net_.run_until([this] { return node_->stack().initialized(); }, max));
-        net_.run_for(10ms);
-    }
-};
-
-// ---------------- abort-on-value ----------------
 
 TEST_F(RestartFaultTest, GoodNodeAnswersSnipWhateverTheValue) {
     start(default_config());
@@ -115,48 +69,6 @@ TEST_F(RestartFaultTest, AbortOnValueKeepsTheImageOnDisk) {
     EXPECT_EQ(in.get(), 0x80);
 }
 
-// ---------------- reboot-on-write ----------------
-
-TEST_F(RestartFaultTest, GoodNodeDoesNotRestartOnWrites) {
-    start(default_config());
-    for (std::uint8_t i = 0; i < 4; ++i) write_ok(0xFD, kDelay, {0, 0, 0, i});
-    EXPECT_EQ(node_->stack().initializations(), 1u);
-}
-
-TEST_F(RestartFaultTest, RebootOnWriteRestartsAtTheNthWriteOnce) {
-    start_with({"reboot-on-write=2"});
-    write_ok(0xFD, kDelay, {0, 0, 0, 1});
-    take();
-    const Answer a = exchange(write_cmd(0xFD, kDelay, {0, 0, 0, 2}), 500ms);
-    EXPECT_TRUE(a.ok);
-    EXPECT_EQ(a.ok_flags & 0x80, 0x80) << "Reply Pending";
-    EXPECT_FALSE(a.reply) << "the Write Reply is dropped";
-    EXPECT_FALSE(a.rejected);
-    const auto frames = take();
-    ASSERT_FALSE(frames.empty());
-    EXPECT_EQ(frames[0], ":X19A28343N012C80;");
-    expect_startup(frames, 0x343, 1);
-    EXPECT_EQ(node_->stack().initializations(), 2u);
-    EXPECT_EQ(node_->counters().write_reboots, 1u);
-    EXPECT_EQ(read(0xFD, kDelay, 4), (std::vector<std::uint8_t>{0, 0, 0, 2})) << "stored";
-    write_ok(0xFD, kDelay, {0, 0, 0, 3});
-    write_ok(0xFD, kDelay, {0, 0, 0, 4});  // the 2N-th
-    EXPECT_EQ(node_->stack().initializations(), 2u) << "once per process";
-}
-
-TEST_F(RestartFaultTest, RebootOnWriteCountsOnlyStoredWrites) {
-    start_with({"reboot-on-write"});
-    EXPECT_TRUE(exchange(write_cmd(0xFF, 0, {'x'})).rejected);
-    EXPECT_TRUE(exchange(read_cmd(0xFD, 0, 1)).reply);
-    EXPECT_EQ(node_->stack().initializations(), 1u);
-    const Answer a = exchange(write_cmd(0xFD, kDelay, {0, 0, 0, 9}), 500ms);
-    EXPECT_TRUE(a.ok);
-    EXPECT_FALSE(a.reply);
-    EXPECT_EQ(node_->stack().initializations(), 2u);
-}
-
-// ---------------- reset-rejected ----------------
-
 TEST_F(RestartFaultTest, GoodNodeObeysReset) {
     start(default_config());
     reboot();
@@ -181,7 +93,29 @@ TEST_F(RestartFaultTest, ResetRejected) {
     EXPECT_NE(node_->server().lock_holder(), 0u) << "nothing a reset clears was cleared";
 }
 
-// ---------------- factory-reset-on-version-change ----------------
+TEST_F(FaultTest, GoodNodeLocksAndReportsStandardErrors) {
+    start(default_config());
+    Answer a = exchange({0x20, 0x88, 2, 1, 0x0D, 0, 0, 1});
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ(*a.reply, (std::vector<std::uint8_t>{0x20, 0x8A, 2, 1, 0x0D, 0, 0, 1}));
+    a = exchange(read_cmd(0x10, 0, 4));
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1081);
+    a = exchange(write_cmd(0xFF, 0, {'x'}));
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1083);
+    EXPECT_EQ(read(0xFC, 0, 64).size(), 64u) << "a good node fills the count asked";
+}
+
+TEST_F(FaultTest, LockRejected) {
+    start_with({"lock-rejected"});
+    const Answer a = exchange({0x20, 0x88, 2, 1, 0x0D, 0, 0, 1});
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1041);
+    EXPECT_FALSE(a.reply);
+    EXPECT_EQ(node_->server().lock_holder(), 0u);
+    EXPECT_EQ(read(0xFD, 15, 1), (std::vector<std::uint8_t>{2})) << "the rest still works";
+}
 
 TEST_F(RestartFaultTest, GoodNodeKeepsAChangedVersionOverReboot) {
     start(default_config());
@@ -234,8 +168,6 @@ TEST_F(RestartFaultTest, OpenMrnLikeAbortThenFactoryReset) {
     EXPECT_FALSE(request_snip().empty()) << "version restored by the wipe: no more aborts";
 }
 
-// ---------------- new-alias-on-reboot ----------------
-
 TEST_F(RestartFaultTest, GoodNodeComesBackOnTheSameAlias) {
     start(default_config());
     reboot();
@@ -264,8 +196,6 @@ TEST_F(RestartFaultTest, NewAliasOnRebootAppliesToEveryRestart) {
     wait_restarted(1s);
     EXPECT_NE(alias(), 0x343);
 }
-
-// ---------------- shipped scenarios ----------------
 
 class ShippedScenarioTest : public RestartFaultTest {
 protected:

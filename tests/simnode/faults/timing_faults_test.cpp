@@ -1,15 +1,45 @@
-// The latency fault: every answer of the node goes out MS (+ 0..JITTER) ms after its request, in
-// request order; the CAN login and alias defence are never held back. Simulated clock only.
+// The timing faults: slow-reply, and latency (every answer MS (+ 0..JITTER) ms after its request,
+// in request order; the CAN login and alias defence never held back). Simulated clock only.
 #include <gtest/gtest.h>
 
 #include "openlcb/can_defs.hpp"
-#include "sim_node_test_util.hpp"
-#include "simnode/answer_delay.hpp"
+#include "simnode/faults/fault_test_util.hpp"
 
 namespace olcb::simnode::test {
 namespace {
 
 using std::chrono::milliseconds;
+
+TEST_F(FaultTest, SlowReply) {
+    start_with({"slow-reply"});
+    const Answer a = exchange(read_cmd(0xFD, 15, 1), 5s);
+    ASSERT_TRUE(a.ok);
+    ASSERT_TRUE(a.reply);
+    EXPECT_GE(a.reply_at - a.ok_at, std::chrono::milliseconds(1200));
+    EXPECT_GT(a.reply_at - a.ok_at, std::chrono::milliseconds(750));
+}
+
+TEST_F(FaultTest, SlowReplyHoldsBackEveryThirtySecondReply) {
+    constexpr std::uint64_t kSlowReplyEvery = 32;  // as docs/faults.md says
+    start_with({"slow-reply"});
+    for (std::uint64_t i = 0; i <= kSlowReplyEvery; ++i) {
+        const Answer a = exchange(read_cmd(0xFD, 15, 1), 5s);
+        ASSERT_TRUE(a.reply) << i;
+        const bool slow = a.reply_at - a.ok_at >= std::chrono::milliseconds(1200);
+        EXPECT_EQ(slow, i % kSlowReplyEvery == 0) << "reply " << i;
+    }
+}
+
+TEST_F(FaultTest, SlowReplyDroppedByReboot) {
+    start_with({"slow-reply=2000"});
+    const Answer probe = exchange(read_cmd(0xFD, 15, 1), 100ms);
+    EXPECT_TRUE(probe.ok);
+    EXPECT_FALSE(probe.reply);
+    EXPECT_TRUE(exchange({0x20, 0xA9}).ok);
+    take();
+    net_.run_for(3s);
+    EXPECT_EQ(count_prefix(take(), ":X1A12C343N"), 0u);
+}
 
 TEST(LatencyFault, ParsesAndPrintsBack) {
     std::string error;
@@ -31,33 +61,6 @@ TEST(LatencyFault, ParsesAndPrintsBack) {
         EXPECT_FALSE(parse_faults({bad}, error)) << bad;
         EXPECT_NE(error.find("latency"), std::string::npos) << error;
     }
-}
-
-TEST(AnswerDelay, DeterministicBoundedAndInOrder) {
-    const TimePoint t0 = TimePoint{} + std::chrono::hours(1);
-    AnswerDelay a(milliseconds(50), milliseconds(30), 42);
-    AnswerDelay b(milliseconds(50), milliseconds(30), 42);
-    TimePoint previous{};
-    bool varied = false;
-    for (int i = 0; i < 200; ++i) {
-        const TimePoint arrived = t0 + milliseconds(i);
-        const TimePoint at = a.answer_at(arrived);
-        EXPECT_EQ(at, b.answer_at(arrived));
-        EXPECT_GE(at, previous);
-        EXPECT_GE(at, arrived + milliseconds(50));
-        EXPECT_LE(at, std::max(previous, arrived + milliseconds(80)));
-        varied = varied || (previous != TimePoint{} && at - previous != milliseconds(1));
-        previous = at;
-    }
-    EXPECT_TRUE(varied) << "no jitter seen";
-    AnswerDelay other(milliseconds(50), milliseconds(30), 43);
-    bool differs = false;
-    AnswerDelay again(milliseconds(50), milliseconds(30), 42);
-    for (int i = 0; i < 20; ++i) {
-        differs = differs || other.answer_at(t0 + std::chrono::seconds(i)) !=
-                                 again.answer_at(t0 + std::chrono::seconds(i));
-    }
-    EXPECT_TRUE(differs) << "the seed does not matter";
 }
 
 class LatencyTest : public SimNodeTest {
