@@ -1,4 +1,4 @@
-// Fault names: parsing, parameters, errors and the catalogue.
+// Fault names: parsing, parameters, errors and the catalogue (simnode/faults.cpp).
 #include <gtest/gtest.h>
 
 #include <filesystem>
