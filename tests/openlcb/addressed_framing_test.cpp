@@ -10,10 +10,7 @@ namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::gc;
-using test::texts;
-using Strings = std::vector<std::string>;
-const TimePoint t0{};
+using namespace test;
 
 Message msg(Mti mti, std::uint16_t src, std::optional<std::uint16_t> dst,
             std::vector<std::uint8_t> payload) {

@@ -8,13 +8,7 @@ namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::drain;
-using test::gc;
-using Strings = std::vector<std::string>;
-
-constexpr NodeId kNode(0x050101012200);
-constexpr NodeId kRunner(0x02010D000001);
-const TimePoint t0{};
+using namespace test;
 
 const Strings cid_343 = {":X17050343N;", ":X16101343N;", ":X15012343N;", ":X14200343N;"};
 const Strings cid_bd9 = {":X17050BD9N;", ":X16101BD9N;", ":X15012BD9N;", ":X14200BD9N;"};
@@ -27,7 +21,7 @@ std::vector<AliasEvent> events(AliasAllocator& a) {
 
 // A node that has completed reservation of 0x343 and drained its output.
 AliasAllocator permitted_node(AliasAllocatorConfig config = {}) {
-    AliasAllocator a(kNode, config);
+    AliasAllocator a(kNodeId, config);
     a.start(t0);
     a.poll(t0 + 200ms);
     drain(a);
@@ -36,7 +30,7 @@ AliasAllocator permitted_node(AliasAllocatorConfig config = {}) {
 }
 
 TEST(AliasAllocator, StartupSequenceOfWorkedExample) {
-    AliasAllocator a(kNode);
+    AliasAllocator a(kNodeId);
     EXPECT_EQ(a.state(), AliasAllocator::State::kIdle);
     EXPECT_FALSE(a.next_deadline());
     a.start(t0);
@@ -59,7 +53,7 @@ TEST(AliasAllocator, StartupSequenceOfWorkedExample) {
 }
 
 TEST(AliasAllocator, DeferredPermitSendsAmdOnRequest) {
-    AliasAllocator a(kNode, {.auto_permit = false});
+    AliasAllocator a(kNodeId, {.auto_permit = false});
     a.start(t0);
     drain(a);
     a.poll(t0 + 200ms);
@@ -81,7 +75,7 @@ TEST(AliasAllocator, CidHittingActiveAliasIsDefendedWithRid) {
 }
 
 TEST(AliasAllocator, CidHittingReservedAliasIsDefendedWithRid) {
-    AliasAllocator a(kNode, {.auto_permit = false});
+    AliasAllocator a(kNodeId, {.auto_permit = false});
     a.start(t0);
     a.poll(t0 + 200ms);
     drain(a);
@@ -105,7 +99,7 @@ TEST(AliasAllocator, NonCidHittingActiveAliasSendsAmrAndReallocates) {
 }
 
 TEST(AliasAllocator, NonCidHittingReservedAliasDropsItSilently) {
-    AliasAllocator a(kNode, {.auto_permit = false});
+    AliasAllocator a(kNodeId, {.auto_permit = false});
     a.start(t0);
     a.poll(t0 + 200ms);
     drain(a);
@@ -119,7 +113,7 @@ TEST(AliasAllocator, NonCidHittingReservedAliasDropsItSilently) {
 class TentativeConflict : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(TentativeConflict, AnyFrameWithTentativeAliasRestartsWithNextAlias) {
-    AliasAllocator a(kNode);
+    AliasAllocator a(kNodeId);
     a.start(t0);
     drain(a);
     a.on_frame(gc(GetParam()), t0 + 150ms);
@@ -139,7 +133,7 @@ INSTANTIATE_TEST_SUITE_P(Frames, TentativeConflict,
                                            ":X1A12C343N2043;"));
 
 TEST(AliasAllocator, SecondConflictMovesToThirdAlias) {
-    AliasAllocator a(kNode);
+    AliasAllocator a(kNodeId);
     a.start(t0);
     a.on_frame(gc(":X19490343N;"), t0 + 10ms);
     a.on_frame(gc(":X19490BD9N;"), t0 + 20ms);
@@ -149,7 +143,7 @@ TEST(AliasAllocator, SecondConflictMovesToThirdAlias) {
 }
 
 TEST(AliasAllocator, TransmitErrorDuringCheckRestarts) {
-    AliasAllocator a(kNode);
+    AliasAllocator a(kNodeId);
     a.start(t0);
     drain(a);
     a.on_transmit_error(t0 + 1ms);
@@ -168,7 +162,7 @@ TEST(AliasAllocator, FramesOfOtherAliasesAndNonOpenLcbFramesIgnored) {
 TEST(AliasAllocator, GlobalAmeAnsweredAndCacheCleared) {
     auto a = permitted_node();
     a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1s);
-    EXPECT_EQ(a.cache().node_of(0x12C), kRunner);
+    EXPECT_EQ(a.cache().node_of(0x12C), kRunnerId);
     a.on_frame(gc(":X1070212CN;"), t0 + 2s);
     EXPECT_EQ(drain(a), (Strings{":X10701343N050101012200;"}));
     EXPECT_EQ(a.cache().size(), 0u);
@@ -185,18 +179,18 @@ TEST(AliasAllocator, AmeWithAnotherIdSilent) {
     a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1s);
     a.on_frame(gc(":X1070212CN02010D000001;"), t0 + 2s);
     EXPECT_TRUE(drain(a).empty());
-    EXPECT_EQ(a.cache().node_of(0x12C), kRunner) << "only a global AME clears the cache";
+    EXPECT_EQ(a.cache().node_of(0x12C), kRunnerId) << "only a global AME clears the cache";
 }
 
 TEST(AliasAllocator, InhibitedNeverAnswersAme) {
-    AliasAllocator a(kNode);
+    AliasAllocator a(kNodeId);
     a.start(t0);
     drain(a);
     a.on_frame(gc(":X1070212CN;"), t0 + 10ms);
     a.on_frame(gc(":X1070212CN050101012200;"), t0 + 20ms);
     EXPECT_TRUE(drain(a).empty());
 
-    AliasAllocator idle(kNode);
+    AliasAllocator idle(kNodeId);
     idle.on_frame(gc(":X1070212CN;"), t0);
     EXPECT_TRUE(drain(idle).empty());
 }
@@ -224,7 +218,7 @@ TEST(AliasAllocator, DuplicateWithHaltSendsPcerThenStaysSilent) {
 }
 
 TEST(AliasAllocator, DuplicateWhileInhibitedHaltsWithoutPcer) {
-    AliasAllocator a(kNode, {.halt_on_duplicate = true});
+    AliasAllocator a(kNodeId, {.halt_on_duplicate = true});
     a.start(t0);
     drain(a);
     a.on_frame(gc(":X10701777N050101012200;"), t0 + 10ms);
@@ -235,7 +229,7 @@ TEST(AliasAllocator, DuplicateWhileInhibitedHaltsWithoutPcer) {
 TEST(AliasAllocator, CacheLearnsFromAmdVerifiedAndForgetsOnAmr) {
     auto a = permitted_node();
     a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1s);
-    EXPECT_EQ(a.cache().alias_of(kRunner), 0x12C);
+    EXPECT_EQ(a.cache().alias_of(kRunnerId), 0x12C);
     a.on_frame(gc(":X1070312CN02010D000001;"), t0 + 2s);
     EXPECT_FALSE(a.cache().node_of(0x12C));
     a.on_frame(gc(":X19170456N020000000002;"), t0 + 3s);
@@ -247,7 +241,7 @@ TEST(AliasAllocator, CacheLearnsFromAmdVerifiedAndForgetsOnAmr) {
 }
 
 TEST(AliasAllocator, NextAliasSkipsAliasesKnownInUse) {
-    AliasAllocator a(kNode);
+    AliasAllocator a(kNodeId);
     a.on_frame(gc(":X10701BD9N020000000009;"), t0);  // someone owns BD9
     a.start(t0);
     a.on_frame(gc(":X19490343N;"), t0 + 1ms);

@@ -7,7 +7,7 @@
 namespace olcb::can {
 namespace {
 
-using test::gc;
+using namespace test;
 
 TEST(CanDefs, MessageHeaderFields) {
     const std::uint32_t id = 0x19490343;

@@ -11,11 +11,8 @@ namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::drain;
-using test::gc;
-using Strings = std::vector<std::string>;
+using namespace test;
 using Status = DatagramOutcome::Status;
-const TimePoint t0{};
 
 std::vector<std::uint8_t> counting(std::size_t n) {
     std::vector<std::uint8_t> v(n);
@@ -209,6 +206,22 @@ DatagramSender sender(DatagramSenderConfig config = {}) {
     return s;
 }
 
+// A sender whose one datagram (payload {1}) to 0x343 went out and waits for the answer.
+DatagramSender waiting_sender() {
+    auto s = sender();
+    s.send(0x343, std::vector<std::uint8_t>{1}, t0);
+    drain(s);
+    return s;
+}
+
+// The outcome the sender reports next: a rejection with error_code.
+void expect_rejected(DatagramSender& s, std::uint16_t error_code) {
+    auto out = s.pop_outcome();
+    ASSERT_TRUE(out);
+    EXPECT_EQ(out->status, Status::kRejected);
+    EXPECT_EQ(out->error_code, error_code);
+}
+
 TEST(DatagramSender, SendsAndReportsAcceptance) {
     auto s = sender();
     const std::uint8_t read[] = {0x20, 0x43, 0, 0, 0, 0, 0x40};
@@ -235,9 +248,7 @@ TEST(DatagramSender, OkWithoutFlagsByteMeansZeroFlags) {
 }
 
 TEST(DatagramSender, AnswersForOthersIgnored) {
-    auto s = sender();
-    s.send(0x343, std::vector<std::uint8_t>{1}, t0);
-    drain(s);
+    auto s = waiting_sender();
     EXPECT_FALSE(s.on_frame(gc(":X19A28343N012D;"), t0));  // to another node
     EXPECT_FALSE(s.on_frame(gc(":X19A28344N012C;"), t0));  // from a node we did not send to
     EXPECT_FALSE(s.on_frame(gc(":X19A28343R012C;"), t0));  // remote frame
@@ -292,32 +303,20 @@ TEST(DatagramSender, PermanentRejectNotResent) {
 }
 
 TEST(DatagramSender, TruncatedRejectReadsAsZeroAndIsNotResent) {
-    auto s = sender();
-    s.send(0x343, std::vector<std::uint8_t>{1}, t0);
-    drain(s);
+    auto s = waiting_sender();
     EXPECT_TRUE(s.on_frame(gc(":X19A48343N012C;"), t0));
-    auto out = s.pop_outcome();
-    ASSERT_TRUE(out);
-    EXPECT_EQ(out->status, Status::kRejected);
-    EXPECT_EQ(out->error_code, 0);
+    expect_rejected(s, 0);
 }
 
 TEST(DatagramSender, OirForDatagramRejects) {
-    auto s = sender();
-    s.send(0x343, std::vector<std::uint8_t>{1}, t0);
-    drain(s);
+    auto s = waiting_sender();
     EXPECT_FALSE(s.on_frame(gc(":X19068343N012C10430DE8;"), t0)) << "OIR about another MTI";
     EXPECT_TRUE(s.on_frame(gc(":X19068343N012C10431C48;"), t0));
-    auto out = s.pop_outcome();
-    ASSERT_TRUE(out);
-    EXPECT_EQ(out->status, Status::kRejected);
-    EXPECT_EQ(out->error_code, 0x1043);
+    expect_rejected(s, 0x1043);
 }
 
 TEST(DatagramSender, TimeoutAfterThreeSecondsReported) {
-    auto s = sender();
-    s.send(0x343, std::vector<std::uint8_t>{1}, t0);
-    drain(s);
+    auto s = waiting_sender();
     s.poll(t0 + 2999ms);
     EXPECT_FALSE(s.pop_outcome());
     s.poll(t0 + 3s);

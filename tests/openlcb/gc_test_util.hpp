@@ -1,4 +1,5 @@
-// Test helpers: GridConnect text in, GridConnect text out.
+// Test helpers: GridConnect text in, GridConnect text out, and the fact sheet's two nodes. A test
+// of the core says `using namespace test;` for all of it.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -10,10 +11,21 @@
 #include <utility>
 #include <vector>
 
+#include "openlcb/clock.hpp"
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/message.hpp"
+#include "base/node_id.hpp"
 
 namespace olcb::test {
+
+/// Node ID of the fact sheet's node under test (first alias 0x343).
+inline constexpr NodeId kNodeId{0x05'01'01'01'22'00ull};
+/// Node ID of the fact sheet's runner (first alias 0x12C).
+inline constexpr NodeId kRunnerId{0x02'01'0D'00'00'01ull};
+/// The start of time for the sans-I/O machines, which only compare instants.
+inline const TimePoint t0{};
+/// Frames as GridConnect text, in order.
+using Strings = std::vector<std::string>;
 
 /// Frame from GridConnect text; a malformed literal fails the calling test.
 inline CanFrame gc(std::string_view text) {
@@ -25,12 +37,12 @@ inline CanFrame gc(std::string_view text) {
 /// A message from alias src, addressed to dst when given (node IDs left unknown).
 inline Message make_message(Mti mti, std::uint16_t src, std::optional<std::uint16_t> dst,
                             std::vector<std::uint8_t> payload) {
-    Message m;
-    m.mti = mti;
-    m.source.alias = src;
-    if (dst) m.destination = NodeHandle{NodeId{}, *dst};
-    m.payload = std::move(payload);
-    return m;
+    std::optional<NodeHandle> destination;
+    if (dst) destination = NodeHandle{NodeId{}, *dst};
+    return Message{.mti = mti,
+                   .source = NodeHandle{NodeId{}, src},
+                   .destination = destination,
+                   .payload = std::move(payload)};
 }
 
 /// Pops every pending frame of a machine (anything with pop_frame()) as GridConnect text.

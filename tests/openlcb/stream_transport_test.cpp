@@ -8,15 +8,15 @@
 #include <vector>
 
 #include "base/timings.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 #include "openlcb/stream_defs.hpp"
 #include "openlcb/stream_transport.hpp"
 
 namespace olcb::test {
 namespace {
 
-using Strings = std::vector<std::string>;
 using namespace std::chrono_literals;
+using namespace test;
 
 NodeStackConfig stream_config(bool unsolicited = true) {
     NodeStackConfig c = stack_config();

@@ -1,4 +1,5 @@
-// Fact sheet section 10, byte for byte: the pieces of the core reproduce every frame listed.
+// Cross-cutting, named after no unit: the fact sheet's worked examples (section 10).
+// Byte for byte: the pieces of the core reproduce every frame listed.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -14,14 +15,7 @@ namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::drain;
-using test::gc;
-using test::texts;
-using Strings = std::vector<std::string>;
-
-const NodeId kNode(0x050101012200);
-const NodeId kRunner(0x02010D000001);
-const TimePoint t0{};
+using namespace test;
 
 Strings encode(Mti mti, std::uint16_t src, std::optional<std::uint16_t> dst,
                std::vector<std::uint8_t> payload) {
@@ -36,16 +30,16 @@ std::vector<std::uint8_t> bytes_of(std::string_view s) {
 }
 
 TEST(WorkedExample, AliasArithmetic) {
-    AliasGenerator gen(kNode);
+    AliasGenerator gen(kNodeId);
     EXPECT_EQ(gen.next(), 0x343);
     EXPECT_EQ(gen.next(), 0xBD9);
     EXPECT_EQ(gen.next(), 0x60D);
     EXPECT_EQ(gen.next(), 0xC82);
-    EXPECT_EQ(AliasGenerator(kRunner).next(), 0x12C);
+    EXPECT_EQ(AliasGenerator(kRunnerId).next(), 0x12C);
 }
 
 TEST(WorkedExample, StartupFrames) {
-    AliasAllocator alloc(kNode);
+    AliasAllocator alloc(kNodeId);
     alloc.start(t0);
     EXPECT_EQ(drain(alloc),
               (Strings{":X17050343N;", ":X16101343N;", ":X15012343N;", ":X14200343N;"}));
@@ -55,11 +49,11 @@ TEST(WorkedExample, StartupFrames) {
     EXPECT_EQ(drain(alloc), (Strings{":X10700343N;", ":X10701343N050101012200;"}));
     ASSERT_EQ(alloc.pop_event()->kind, AliasEvent::Kind::kPermitted);
     // The caller now sends Initialization Complete, then its events.
-    const auto id = kNode.to_bytes();
+    const auto id = kNodeId.to_bytes();
     EXPECT_EQ(
         encode(Mti::kInitializationComplete, alloc.alias(), std::nullopt, {id.begin(), id.end()}),
         (Strings{":X19100343N050101012200;"}));
-    const auto ev = EventId(kNode, 1).to_bytes();
+    const auto ev = EventId(kNodeId, 1).to_bytes();
     EXPECT_EQ(encode(Mti::kConsumerIdentifiedUnknown, alloc.alias(), std::nullopt,
                      {ev.begin(), ev.end()}),
               (Strings{":X194C7343N0501010122000001;"}));
@@ -70,7 +64,7 @@ TEST(WorkedExample, DiscoveryAndPip) {
     auto verify = as.on_frame(gc(":X1949012CN;"), t0);
     ASSERT_TRUE(verify);
     EXPECT_EQ(verify->mti, Mti::kVerifyNodeIdGlobal);
-    const auto id = kNode.to_bytes();
+    const auto id = kNodeId.to_bytes();
     EXPECT_EQ(encode(Mti::kVerifiedNodeId, 0x343, std::nullopt, {id.begin(), id.end()}),
               (Strings{":X19170343N050101012200;"}));
 

@@ -11,37 +11,14 @@
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/in_process_bus.hpp"
 #include "openlcb/tcp_client.hpp"
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb {
 namespace {
 
-using boost::asio::ip::tcp;
 using test::frame_seq;
 using test::numbered_frame;
 using test::run_until;
-
-// A raw loopback socket: what a foreign or misbehaving client does on the wire.
-struct RawClient {
-    RawClient(boost::asio::io_context& io, std::uint16_t port) : socket(io) {
-        socket.connect(tcp::endpoint(boost::asio::ip::address_v4::loopback(), port));
-    }
-    void start_reading() {
-        socket.async_read_some(boost::asio::buffer(buf),
-                               [this](const boost::system::error_code& ec, std::size_t n) {
-                                   if (ec) {
-                                       closed = true;
-                                       return;
-                                   }
-                                   text.append(buf.data(), n);
-                                   start_reading();
-                               });
-    }
-    tcp::socket socket;
-    std::array<char, 4096> buf{};
-    std::string text;
-    bool closed = false;
-};
 
 // Per-sender received sequence numbers.
 struct Inbox {
@@ -54,22 +31,12 @@ struct Inbox {
     }
 };
 
-class TcpHubTest : public ::testing::Test {
+class TcpHubTest : public test::HubFixture {
 protected:
-    void SetUp() override {
-        hub = std::make_unique<TcpHubServer>(io, options);
-        ASSERT_FALSE(hub->listen("127.0.0.1", 0));
-        ASSERT_NE(hub->port(), 0);
-    }
+    void SetUp() override { start(); }
     std::unique_ptr<TcpClient> connect_client(Inbox& inbox) {
-        auto client = std::make_unique<TcpClient>(io, "127.0.0.1", hub->port());
-        client->set_handler([&inbox](const CanFrame& f) { inbox.take(f); });
-        client->start();
-        return client;
+        return HubFixture::connect_client([&inbox](const CanFrame& f) { inbox.take(f); });
     }
-    boost::asio::io_context io;
-    TcpHubServer::Options options;
-    std::unique_ptr<TcpHubServer> hub;
 };
 
 // Whether every client (inboxes[i] is client i, sender 3 the local endpoint) has the frames of
@@ -112,8 +79,7 @@ TEST_F(TcpHubTest, ThreeClientsSeeEachOthersFramesNeverTheirOwn) {
         for (std::uint16_t i = 0; i < 3; ++i) clients[i]->send(numbered_frame(0x100 + i, seq));
         local.send(numbered_frame(0x103, seq));
     }
-    std::vector<std::uint32_t> expected(kFrames);
-    for (std::uint32_t i = 0; i < kFrames; ++i) expected[i] = i;
+    const auto expected = test::sequence(kFrames);
     ASSERT_TRUE(run_until(io, [&] { return all_arrived(inboxes, local_inbox, kFrames); }));
     // Let any stray echo arrive before checking that none came.
     run_until(
@@ -156,7 +122,7 @@ TEST_F(TcpHubTest, TheFrameObserverNamesEachSenderAndEndedConnectionsAreReported
     const auto local_connection = hub->connection_of(local);
     ASSERT_TRUE(local_connection);
     {
-        RawClient raw(io, hub->port());
+        test::RawClient raw(io, hub->port());
         ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 1; }));
         boost::asio::write(raw.socket, boost::asio::buffer(std::string(":X19490123N;\n")));
         ASSERT_TRUE(run_until(io, [&] { return seen.size() == 1; }));
@@ -173,8 +139,8 @@ TEST_F(TcpHubTest, TheFrameObserverNamesEachSenderAndEndedConnectionsAreReported
 }
 
 TEST_F(TcpHubTest, LowercaseAndShortIdFramesAreRelayedReformatted) {
-    RawClient writer(io, hub->port());
-    RawClient reader(io, hub->port());
+    test::RawClient writer(io, hub->port());
+    test::RawClient reader(io, hub->port());
     reader.start_reading();
     ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 2; }));
     const std::string input = "garbage\r\n:x19490343n;\n  :X1a2N0a0B;:X19170343N050101012200;";
@@ -190,7 +156,7 @@ TEST_F(TcpHubTest, StalledClientIsDroppedWhileOthersKeepReceiving) {
     options.max_client_queue_bytes = std::size_t{64} * 1024;
     options.max_client_frames_per_second = 0;  // 10 MB from one client: no rate limit here
     SetUp();
-    RawClient stalled(io, hub->port());  // connects, never reads
+    test::RawClient stalled(io, hub->port());  // connects, never reads
     stalled.socket.set_option(boost::asio::socket_base::receive_buffer_size(4096));
     Inbox inbox_a(2), inbox_b(2);
     auto a = connect_client(inbox_a);
@@ -224,8 +190,8 @@ TEST_F(TcpHubTest, GarbageFloodDoesNotHarmOtherClients) {
     Inbox inbox_a(2), inbox_b(2);
     auto a = connect_client(inbox_a);
     auto b = connect_client(inbox_b);
-    RawClient noisy(io, hub->port());
-    RawClient endless(io, hub->port());
+    test::RawClient noisy(io, hub->port());
+    test::RawClient endless(io, hub->port());
     ASSERT_TRUE(run_until(
         io, [&] { return hub->client_count() == 4 && a->connected() && b->connected(); }));
 
@@ -234,7 +200,7 @@ TEST_F(TcpHubTest, GarbageFloodDoesNotHarmOtherClients) {
     for (char& c : noise) c = static_cast<char>(rng());
     std::string endless_frame = ":X19490343N" + std::string(std::size_t{10} * 1024 * 1024, 'A');
     std::size_t written = 0;
-    auto write_all = [&](RawClient& c, const std::string& text) {
+    auto write_all = [&](test::RawClient& c, const std::string& text) {
         boost::asio::async_write(c.socket, boost::asio::buffer(text),
                                  [&](const boost::system::error_code& ec, std::size_t n) {
                                      ASSERT_FALSE(ec);
@@ -269,8 +235,8 @@ TEST_F(TcpHubTest, ExtraClientsBeyondTheLimitAreRefused) {
     hub.reset();
     options.max_clients = 1;
     SetUp();
-    RawClient first(io, hub->port());
-    RawClient second(io, hub->port());
+    test::RawClient first(io, hub->port());
+    test::RawClient second(io, hub->port());
     second.start_reading();
     ASSERT_TRUE(run_until(io, [&] { return second.closed; }));
     EXPECT_EQ(hub->stats().clients_rejected, 1u);

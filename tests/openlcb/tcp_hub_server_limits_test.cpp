@@ -12,56 +12,19 @@
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/tcp_hub_server.hpp"
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb {
 namespace {
 
-using boost::asio::ip::tcp;
 using std::chrono::milliseconds;
 using test::frame_seq;
 using test::numbered_frame;
 using test::run_until;
 
-struct Raw {
-    Raw(boost::asio::io_context& io, std::uint16_t port) : socket(io) {
-        socket.connect(tcp::endpoint(boost::asio::ip::address_v4::loopback(), port));
-    }
-    void start_reading() {
-        socket.async_read_some(boost::asio::buffer(buf),
-                               [this](const boost::system::error_code& ec, std::size_t n) {
-                                   if (ec) {
-                                       closed = true;
-                                       return;
-                                   }
-                                   received += n;
-                                   start_reading();
-                               });
-    }
-    tcp::socket socket;
-    std::array<char, 4096> buf{};
-    std::size_t received = 0;
-    bool closed = false;
-};
+using Raw = test::RawClient;
 
-class TcpHubLimitsTest : public ::testing::Test {
-protected:
-    void start() {
-        hub = std::make_unique<TcpHubServer>(io, options);
-        hub->set_log_handler([this](const std::string& line) { log.push_back(line); });
-        ASSERT_FALSE(hub->listen("127.0.0.1", 0));
-    }
-    bool logged(std::string_view part) const {
-        for (const auto& l : log) {
-            if (l.find(part) != std::string::npos) return true;
-        }
-        return false;
-    }
-    boost::asio::io_context io;
-    TcpHubServer::Options options;
-    std::unique_ptr<TcpHubServer> hub;
-    std::vector<std::string> log;
-};
+class TcpHubLimitsTest : public test::HubFixture {};
 
 // A reader that takes at most 4 KiB per millisecond: slower than a flood, but it keeps up.
 struct PacedReader {
@@ -98,11 +61,7 @@ TEST_F(TcpHubLimitsTest, AFloodIsSlowedAndNoReaderIsDropped) {
     ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == kReaders + 1; }));
 
     // ~3 MB of valid frames, written as fast as the hub takes them.
-    std::string text;
-    for (std::uint32_t i = 0; i < 100'000; ++i) {
-        text += gridconnect::format(numbered_frame(0x100, i));
-        text += '\n';
-    }
+    const std::string text = test::numbered_lines(0x100, 100'000);
     bool written = false;
     boost::asio::async_write(flooder.socket, boost::asio::buffer(text),
                              [&](const boost::system::error_code& ec, std::size_t) {

@@ -6,16 +6,13 @@
 
 #include "base/error_codes.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::gc;
-using test::kNodeId;
-using test::kRunnerId;
-using Strings = std::vector<std::string>;
+using namespace test;
 
 const Strings kStartup = {
     ":X17050343N;",
@@ -80,19 +77,12 @@ TEST_F(NodeStackTest, MessagesSentBeforeInitializationFollowInitializationComple
 TEST_F(NodeStackTest, SimpleProtocolNodeUsesSimpleInitAndVerifiedMtis) {
     auto config = test::stack_config();
     config.protocols.set(Protocol::kSimpleProtocol);
-    NodeStack simple(config);
-    SimNetwork net;
-    Strings seen;
-    Transport& port = net.add_endpoint(
-        [&](const CanFrame& f, TimePoint) { seen.push_back(gridconnect::format(f)); });
-    net.add_stack(simple);
-    net.start_all();
-    net.run_for(300ms);
-    ASSERT_EQ(seen.size(), 7u);
-    EXPECT_EQ(seen.back(), ":X19101343N050101012200;");
-    port.send(gc(":X1949012CN;"));
-    net.run_for(0ms);
-    EXPECT_EQ(seen.back(), ":X19171343N050101012200;");
+    LoneStack simple(config);
+    simple.start();
+    ASSERT_EQ(simple.seen.size(), 7u);
+    EXPECT_EQ(simple.seen.back(), ":X19101343N050101012200;");
+    simple.inject(":X1949012CN;");
+    EXPECT_EQ(simple.seen.back(), ":X19171343N050101012200;");
 }
 
 TEST_F(NodeStackTest, VerifyNodeIdGlobalAndAddressed) {
@@ -334,19 +324,11 @@ TEST_F(NodeStackTest, AliasConflictSendsAmrAndTakesNextAliasWithoutNewInitComple
 TEST(NodeStackConfigTest, AliasChangeCanReinitialize) {
     auto config = test::stack_config();
     config.reinitialize_after_alias_change = true;
-    NodeStack stack(config);
-    SimNetwork net;
-    Strings seen;
-    Transport& port = net.add_endpoint(
-        [&](const CanFrame& f, TimePoint) { seen.push_back(gridconnect::format(f)); });
-    net.add_stack(stack);
-    net.start_all();
-    net.run_for(300ms);
-    seen.clear();
-    port.send(gc(":X19170343N020304050607;"));
-    net.run_for(300ms);
-    EXPECT_EQ(seen.back(), ":X19100BD9N050101012200;");
-    EXPECT_EQ(stack.initializations(), 2u);
+    LoneStack lone(config);
+    lone.start();
+    lone.inject(":X19170343N020304050607;", 300ms);
+    EXPECT_EQ(lone.seen.back(), ":X19100BD9N050101012200;");
+    EXPECT_EQ(lone.stack.initializations(), 2u);
 }
 
 TEST_F(NodeStackTest, ConflictDuringReservationRestartsSilently) {
@@ -427,30 +409,22 @@ TEST_F(NodeStackTest, QueuesAreBounded) {
 TEST_F(NodeStackTest, DuplicateNodeIdHaltsWhenConfigured) {
     auto config = test::stack_config();
     config.alias.halt_on_duplicate = true;
-    NodeStack node(config);
-    SimNetwork net;
-    Strings seen;
-    Transport& port = net.add_endpoint(
-        [&](const CanFrame& f, TimePoint) { seen.push_back(gridconnect::format(f)); });
-    net.add_stack(node);
-    net.start_all();
-    net.run_for(300ms);
-    seen.clear();
-    port.send(gc(":X10701456N050101012200;"));
-    net.run_for(0ms);
-    EXPECT_EQ(seen, (Strings{":X195B4343N0101000000000201;"}));
-    EXPECT_TRUE(node.halted());
-    EXPECT_FALSE(node.initialized());
+    LoneStack lone(config);
+    lone.start();
+    lone.seen.clear();
+    lone.inject(":X10701456N050101012200;");
+    EXPECT_EQ(lone.seen, (Strings{":X195B4343N0101000000000201;"}));
+    EXPECT_TRUE(lone.stack.halted());
+    EXPECT_FALSE(lone.stack.initialized());
     Message m;
     m.mti = Mti::kIdentifyEventsGlobal;
-    EXPECT_EQ(node.send_message(m), SendStatus::kHalted);
-    seen.clear();
-    port.send(gc(":X1949012CN;"));
-    net.run_for(1s);
-    EXPECT_TRUE(seen.empty()) << "silent until reset";
-    node.restart(net.now());
-    net.run_for(300ms);
-    EXPECT_TRUE(node.initialized());
+    EXPECT_EQ(lone.stack.send_message(m), SendStatus::kHalted);
+    lone.seen.clear();
+    lone.inject(":X1949012CN;", 1s);
+    EXPECT_TRUE(lone.seen.empty()) << "silent until reset";
+    lone.stack.restart(lone.net.now());
+    lone.net.run_for(300ms);
+    EXPECT_TRUE(lone.stack.initialized());
 }
 
 TEST_F(NodeStackTest, IgnoresNonOpenLcbFrames) {

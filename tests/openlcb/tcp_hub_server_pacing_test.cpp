@@ -13,12 +13,11 @@
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/tcp_client.hpp"
 #include "openlcb/tcp_hub_server.hpp"
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb {
 namespace {
 
-using boost::asio::ip::tcp;
 using std::chrono::steady_clock;
 using test::frame_seq;
 using test::numbered_frame;
@@ -35,28 +34,15 @@ struct Arrivals {
     }
 };
 
-std::vector<std::uint32_t> iota(std::uint32_t n) {
-    std::vector<std::uint32_t> v(n);
-    for (std::uint32_t i = 0; i < n; ++i) v[i] = i;
-    return v;
-}
-
-class TcpHubPacingTest : public ::testing::Test {
+class TcpHubPacingTest : public test::HubFixture {
 protected:
     void start(std::uint32_t bitrate) {
         options.bitrate = bitrate;
-        hub = std::make_unique<TcpHubServer>(io, options);
-        ASSERT_FALSE(hub->listen("127.0.0.1", 0));
+        HubFixture::start();
     }
     std::unique_ptr<TcpClient> client(Arrivals& into) {
-        auto c = std::make_unique<TcpClient>(io, "127.0.0.1", hub->port());
-        c->set_handler([&into](const CanFrame& f) { into.take(f); });
-        c->start();
-        return c;
+        return connect_client([&into](const CanFrame& f) { into.take(f); });
     }
-    boost::asio::io_context io;
-    TcpHubServer::Options options;
-    std::unique_ptr<TcpHubServer> hub;
 };
 
 TEST_F(TcpHubPacingTest, ABurstReachesAnotherClientNoSoonerThanItsFrameTime) {
@@ -70,7 +56,7 @@ TEST_F(TcpHubPacingTest, ABurstReachesAnotherClientNoSoonerThanItsFrameTime) {
     const auto sent = steady_clock::now();
     for (std::uint32_t i = 0; i < kFrames; ++i) a->send(numbered_frame(0x100, i));
     ASSERT_TRUE(run_until(io, [&] { return at_b.seq.size() == kFrames; }));
-    EXPECT_EQ(at_b.seq, iota(kFrames));
+    EXPECT_EQ(at_b.seq, test::sequence(kFrames));
     const auto frame = can_frame_time(8, 125000);  // 1.28 ms
     EXPECT_GE(at_b.at.back() - sent, kFrames * frame);
     EXPECT_GE(at_b.at.front() - sent, frame);
@@ -97,8 +83,8 @@ TEST_F(TcpHubPacingTest, LocalEndpointsAndClientsShareOneBus) {
     const auto sent = steady_clock::now();
     for (std::uint32_t i = 0; i < kFrames; ++i) a->send(numbered_frame(0x100, i));
     ASSERT_TRUE(run_until(io, [&] { return at_client.seq.size() == kFrames; }));
-    EXPECT_EQ(at_client.seq, iota(kFrames));
-    EXPECT_EQ(at_local.seq, iota(kFrames));
+    EXPECT_EQ(at_client.seq, test::sequence(kFrames));
+    EXPECT_EQ(at_local.seq, test::sequence(kFrames));
     const auto frame = can_frame_time(8, 125000);
     // Requests and answers take turns on one bus: 2 x 10 frames have gone over it.
     EXPECT_GE(at_client.at.back() - sent, 2 * kFrames * frame);
@@ -111,15 +97,12 @@ TEST_F(TcpHubPacingTest, AFloodWaitsInTcpNotInTheHub) {
     start(1'000'000);                          // 160 us per frame keeps the test short
     Arrivals at_reader;
     auto reader = client(at_reader);
-    tcp::socket flooder(io);
-    flooder.connect(tcp::endpoint(boost::asio::ip::address_v4::loopback(), hub->port()));
+    test::RawClient flooder(io, hub->port());
     ASSERT_TRUE(run_until(io, [&] { return reader->connected() && hub->client_count() == 2; }));
     constexpr std::uint32_t kFrames = 3000;
-    std::string text;
-    for (std::uint32_t i = 0; i < kFrames; ++i)
-        text += gridconnect::format(numbered_frame(0x100, i)) + "\n";
+    const std::string text = test::numbered_lines(0x100, kFrames);
     bool written = false;
-    boost::asio::async_write(flooder, boost::asio::buffer(text),
+    boost::asio::async_write(flooder.socket, boost::asio::buffer(text),
                              [&](const boost::system::error_code& ec, std::size_t) {
                                  EXPECT_FALSE(ec);
                                  written = true;
@@ -130,7 +113,7 @@ TEST_F(TcpHubPacingTest, AFloodWaitsInTcpNotInTheHub) {
         peak = std::max(peak, hub->stats().bus_frames_waiting);
         return written && at_reader.seq.size() == kFrames;
     }));
-    EXPECT_EQ(at_reader.seq, iota(kFrames));
+    EXPECT_EQ(at_reader.seq, test::sequence(kFrames));
     EXPECT_GE(at_reader.at.back() - sent, kFrames * can_frame_time(8, 1'000'000));
     // At most the backlog limit plus one read's worth of frames (4 KiB / 29 bytes) wait.
     EXPECT_LE(peak, options.max_client_bus_frames + 4096 / 29 + 1);
@@ -142,17 +125,13 @@ TEST_F(TcpHubPacingTest, FramesOfAClientThatLeftStillGoOutAndStopDropsTheRest) {
     Arrivals at_reader;
     auto reader = client(at_reader);
     {
-        tcp::socket gone(io);
-        gone.connect(tcp::endpoint(boost::asio::ip::address_v4::loopback(), hub->port()));
+        test::RawClient gone(io, hub->port());
         ASSERT_TRUE(run_until(io, [&] { return reader->connected() && hub->client_count() == 2; }));
-        std::string text;
-        for (std::uint32_t i = 0; i < 20; ++i)
-            text += gridconnect::format(numbered_frame(0x100, i)) + "\n";
-        boost::asio::write(gone, boost::asio::buffer(text));
+        boost::asio::write(gone.socket, boost::asio::buffer(test::numbered_lines(0x100, 20)));
         ASSERT_TRUE(run_until(io, [&] { return hub->stats().frames_received == 20; }));
     }  // closed while its frames wait for the bus
     ASSERT_TRUE(run_until(io, [&] { return at_reader.seq.size() == 20; }));
-    EXPECT_EQ(at_reader.seq, iota(20));
+    EXPECT_EQ(at_reader.seq, test::sequence(20));
     EXPECT_EQ(hub->client_count(), 1u);
 
     // Frames still waiting when the hub stops are never delivered, and nothing runs late.

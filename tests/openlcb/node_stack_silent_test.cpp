@@ -6,16 +6,14 @@
 #include <set>
 
 #include "openlcb/alias_generator.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::gc;
-using test::kNodeId;
-using Strings = std::vector<std::string>;
+using namespace test;
 
 class SilentTest : public test::StackFixture {
 protected:

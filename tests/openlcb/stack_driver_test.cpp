@@ -9,52 +9,73 @@
 #include <functional>
 
 #include "openlcb/in_process_bus.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 #include "openlcb/tcp_hub_server.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::gc;
-using test::kNodeId;
-using test::kRunnerId;
+using namespace test;
 
-// Runs io until pred() holds or limit passes; returns pred().
-bool run_io_until(boost::asio::io_context& io, const std::function<bool()>& pred,
-                  std::chrono::milliseconds limit) {
-    const auto end = std::chrono::steady_clock::now() + limit;
-    while (!pred() && std::chrono::steady_clock::now() < end) {
-        io.run_one_for(10ms);
-        if (io.stopped()) io.restart();
+// The worked example's node and runner, each on a driver of its own over its own transport.
+struct DrivenPair {
+    DrivenPair(boost::asio::io_context& io, Transport& node_port, Transport& runner_port)
+        : node_driver(io, node_port), runner_driver(io, runner_port) {
+        node_driver.attach(node);
+        runner_driver.attach(runner);
     }
-    return pred();
-}
+    /// Starts both and runs io until both are initialized.
+    bool start(boost::asio::io_context& io) {
+        node_driver.start_all();
+        runner_driver.start_all();
+        return run_until(io, [&] { return node.initialized() && runner.initialized(); }, 2s);
+    }
+    NodeStack node{stack_config(kNodeId)};
+    NodeStack runner{stack_config(kRunnerId)};
+    StackDriver node_driver;
+    StackDriver runner_driver;
+};
+
+// The node and runner on one driver over an InProcessBus whose other endpoint records what
+// leaves the driver as GridConnect text.
+struct SharedDriver {
+    SharedDriver() {
+        bus.add_endpoint([this](const CanFrame& f) { outside.push_back(gridconnect::format(f)); });
+        driver.attach(node);
+        driver.attach(runner);
+    }
+    /// Starts both and runs io until both are initialized.
+    bool start() {
+        driver.start_all();
+        return run_until(io, [&] { return node.initialized() && runner.initialized(); }, 2s);
+    }
+    boost::asio::io_context io;
+    InProcessBus bus{io};
+    std::vector<std::string> outside;
+    NodeStack node{stack_config(kNodeId)};
+    NodeStack runner{stack_config(kRunnerId)};
+    StackDriver driver{io, bus.add_endpoint()};
+};
 
 TEST(StackDriver, TwoStacksOnTwoBusPortsExchangeVerifyNodeId) {
     boost::asio::io_context io;
     InProcessBus bus(io);
-    NodeStack node(test::stack_config(kNodeId));
-    NodeStack runner(test::stack_config(kRunnerId));
-    StackDriver node_driver(io, bus.add_endpoint());
-    StackDriver runner_driver(io, bus.add_endpoint());
-    node_driver.attach(node);
-    runner_driver.attach(runner);
+    DrivenPair pair(io, bus.add_endpoint(), bus.add_endpoint());
+    auto& [node, runner, node_driver, runner_driver] = pair;
     std::vector<Message> heard;
     runner.set_message_handler([&](const Message& m) {
         if (m.mti == Mti::kVerifiedNodeId) heard.push_back(m);
         return true;
     });
     const auto started = std::chrono::steady_clock::now();
-    node_driver.start_all();
-    runner_driver.start_all();
-    ASSERT_TRUE(run_io_until(
-        io, [&] { return node.initialized() && runner.initialized(); }, 2s));
+    ASSERT_TRUE(pair.start(io));
     EXPECT_GE(std::chrono::steady_clock::now() - started, 200ms) << "RID waits 200 ms";
     Message verify;
     verify.mti = Mti::kVerifyNodeIdGlobal;
     EXPECT_EQ(runner.send_message(verify), SendStatus::kSent);  // outside any driver callback
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return !heard.empty(); }, 2s));
     EXPECT_EQ(heard[0].source, (NodeHandle{kNodeId, 0x343}));
     EXPECT_EQ(heard[0].payload, (std::vector<std::uint8_t>{5, 1, 1, 1, 0x22, 0}));
@@ -63,19 +84,10 @@ TEST(StackDriver, TwoStacksOnTwoBusPortsExchangeVerifyNodeId) {
 }
 
 TEST(StackDriver, StacksOnOneDriverShareTheSegmentAndTheTransportSeesTheirFrames) {
-    boost::asio::io_context io;
-    InProcessBus bus(io);
-    std::vector<std::string> outside;
-    bus.add_endpoint([&](const CanFrame& f) { outside.push_back(gridconnect::format(f)); });
-    NodeStack node(test::stack_config(kNodeId));
-    NodeStack runner(test::stack_config(kRunnerId));
-    StackDriver driver(io, bus.add_endpoint());
-    driver.attach(node);
-    driver.attach(runner);
+    SharedDriver shared;
+    auto& [io, bus, outside, node, runner, driver] = shared;
     EXPECT_EQ(driver.size(), 2u);
-    driver.start_all();
-    ASSERT_TRUE(run_io_until(
-        io, [&] { return node.initialized() && runner.initialized(); }, 2s));
+    ASSERT_TRUE(shared.start());
     EXPECT_EQ(node.alias_cache().alias_of(kRunnerId), 0x12C) << "saw the other stack's AMD";
     // The runner asks the node directly: the frames never leave the driver to come back.
     std::vector<Message> heard;
@@ -87,16 +99,16 @@ TEST(StackDriver, StacksOnOneDriverShareTheSegmentAndTheTransportSeesTheirFrames
     psi.mti = Mti::kProtocolSupportInquiry;
     psi.destination = NodeHandle{kNodeId, 0};
     EXPECT_EQ(runner.send_message(psi), SendStatus::kSent);
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return !heard.empty(); }, 2s));
     EXPECT_EQ(heard[0].payload, (std::vector<std::uint8_t>{0x54, 0x58, 0, 0, 0, 0}));
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return outside.size() >= 16u; }, 2s));
     EXPECT_EQ(outside[14], ":X1982812CN0343;");
     EXPECT_EQ(outside[15], ":X19668343N012C545800000000;");
     // A frame from outside reaches both stacks.
     bus.add_endpoint().send(gc(":X10702999N;"));  // global AME: both answer with AMD
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return outside.size() >= 19u; }, 2s));
     EXPECT_EQ(driver.stats().frames_in, 1u);
 }
@@ -104,12 +116,8 @@ TEST(StackDriver, StacksOnOneDriverShareTheSegmentAndTheTransportSeesTheirFrames
 TEST(StackDriver, WorksOnHubLocalEndpointsThatRelaySynchronously) {
     boost::asio::io_context io;
     TcpHubServer hub(io);
-    NodeStack node(test::stack_config(kNodeId));
-    NodeStack runner(test::stack_config(kRunnerId));
-    StackDriver node_driver(io, hub.add_local_endpoint());
-    StackDriver runner_driver(io, hub.add_local_endpoint());
-    node_driver.attach(node);
-    runner_driver.attach(runner);
+    DrivenPair pair(io, hub.add_local_endpoint(), hub.add_local_endpoint());
+    auto& [node, runner, node_driver, runner_driver] = pair;
     std::vector<ReceivedDatagram> got;
     node.set_datagram_handler([&](const ReceivedDatagram& d) {
         got.push_back(d);
@@ -117,13 +125,10 @@ TEST(StackDriver, WorksOnHubLocalEndpointsThatRelaySynchronously) {
     });
     std::vector<DatagramOutcome> outcomes;
     runner.set_outcome_handler([&](const DatagramOutcome& o) { outcomes.push_back(o); });
-    node_driver.start_all();
-    runner_driver.start_all();
-    ASSERT_TRUE(run_io_until(
-        io, [&] { return node.initialized() && runner.initialized(); }, 2s));
+    ASSERT_TRUE(pair.start(io));
     const std::vector<std::uint8_t> payload(20, 0x20);
     ASSERT_TRUE(runner.send_datagram(0x343, payload, Clock::now()).has_value());
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return !outcomes.empty(); }, 2s));
     EXPECT_EQ(outcomes[0].status, DatagramOutcome::Status::kAccepted);
     ASSERT_EQ(got.size(), 1u);
@@ -133,17 +138,17 @@ TEST(StackDriver, WorksOnHubLocalEndpointsThatRelaySynchronously) {
 TEST(StackDriver, OwnerTimerScheduledOutsideCallbacksFiresOnTime) {
     boost::asio::io_context io;
     InProcessBus bus(io);
-    NodeStack node(test::stack_config(kNodeId));
+    NodeStack node(stack_config(kNodeId));
     StackDriver driver(io, bus.add_endpoint());
     driver.attach(node);
     driver.start_all();
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return node.initialized(); }, 2s));
     io.poll();  // let the driver settle: no deadline left, timer idle
     std::optional<TimePoint> fired;
     const TimePoint due = Clock::now() + 30ms;
     node.schedule(due, [&](TimePoint now) { fired = now; });
-    ASSERT_TRUE(run_io_until(
+    ASSERT_TRUE(run_until(
         io, [&] { return fired.has_value(); }, 2s));
     EXPECT_GE(*fired, due);
 }
@@ -151,7 +156,7 @@ TEST(StackDriver, OwnerTimerScheduledOutsideCallbacksFiresOnTime) {
 TEST(StackDriver, DetachedStackIsNoLongerDriven) {
     boost::asio::io_context io;
     InProcessBus bus(io);
-    NodeStack node(test::stack_config(kNodeId));
+    NodeStack node(stack_config(kNodeId));
     {
         StackDriver driver(io, bus.add_endpoint());
         driver.attach(node);
@@ -165,18 +170,9 @@ TEST(StackDriver, DetachedStackIsNoLongerDriven) {
 }
 
 TEST(StackDriver, FlushDeliversPendingOutputAtOnce) {
-    boost::asio::io_context io;
-    InProcessBus bus(io);
-    std::vector<std::string> outside;
-    bus.add_endpoint([&](const CanFrame& f) { outside.push_back(gridconnect::format(f)); });
-    NodeStack node(test::stack_config(kNodeId));
-    NodeStack runner(test::stack_config(kRunnerId));
-    StackDriver driver(io, bus.add_endpoint());
-    driver.attach(node);
-    driver.attach(runner);
-    driver.start_all();
-    ASSERT_TRUE(run_io_until(
-        io, [&] { return node.initialized() && runner.initialized(); }, 2s));
+    SharedDriver shared;
+    auto& [io, bus, outside, node, runner, driver] = shared;
+    ASSERT_TRUE(shared.start());
     io.poll();
     ASSERT_EQ(runner.alias_cache().alias_of(kNodeId), 0x343);
     node.release(Clock::now());
@@ -185,7 +181,7 @@ TEST(StackDriver, FlushDeliversPendingOutputAtOnce) {
     driver.detach(node);
     EXPECT_FALSE(runner.alias_cache().alias_of(kNodeId)) << "the other stack saw the AMR";
     const std::string amr = ":X10703343N050101012200;";
-    EXPECT_TRUE(run_io_until(
+    EXPECT_TRUE(run_until(
         io, [&] { return std::find(outside.begin(), outside.end(), amr) != outside.end(); }, 2s))
         << "the transport got the AMR";
 }

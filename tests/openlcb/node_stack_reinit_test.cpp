@@ -7,12 +7,13 @@
 
 #include "base/timings.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
+using namespace test;
 using Status = DatagramOutcome::Status;
 using Bytes = std::vector<std::uint8_t>;
 

@@ -1,14 +1,14 @@
 // NodeStack owner timers (schedule / now).
 #include <gtest/gtest.h>
 
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using Strings = std::vector<std::string>;
+using namespace test;
 
 class NodeStackTimerTest : public test::StackFixture {
 protected:

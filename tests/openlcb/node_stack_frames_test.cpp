@@ -3,14 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "openlcb/can_defs.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using Strings = std::vector<std::string>;
+using namespace test;
 
 const std::string kPcer = ":X195B4343N0101000000000201;";
 const std::string kVerified = ":X19170343N050101012200;";
@@ -50,22 +50,15 @@ TEST_F(DuplicatePcerTest, AnotherIdOrInitializationCompleteIsNoDuplicate) {
 }
 
 TEST_F(DuplicatePcerTest, HaltOnDuplicateSendsItsOwnPcerOnly) {
-    NodeStack node(with([](NodeStackConfig& c) {
+    LoneStack lone(with([](NodeStackConfig& c) {
         c.builtins.duplicate_id_pcer = true;
         c.alias.halt_on_duplicate = true;
     }));
-    SimNetwork net;
-    Strings seen;
-    Transport& port = net.add_endpoint(
-        [&](const CanFrame& f, TimePoint) { seen.push_back(gridconnect::format(f)); });
-    net.add_stack(node);
-    net.start_all();
-    net.run_for(300ms);
-    seen.clear();
-    port.send(test::gc(":X19170456N050101012200;"));
-    net.run_for(0ms);
-    EXPECT_EQ(seen, Strings{kPcer});
-    EXPECT_TRUE(node.halted());
+    lone.start();
+    lone.seen.clear();
+    lone.inject(":X19170456N050101012200;");
+    EXPECT_EQ(lone.seen, Strings{kPcer});
+    EXPECT_TRUE(lone.stack.halted());
 }
 
 class StackFramesTest : public test::StackFixture {};

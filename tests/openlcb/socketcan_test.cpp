@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb::socketcan {
 namespace {

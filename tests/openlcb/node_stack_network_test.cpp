@@ -8,15 +8,13 @@
 
 #include "base/timings.hpp"
 #include "openlcb/datagram_defs.hpp"
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::kNodeId;
-using test::kRunnerId;
-using Strings = std::vector<std::string>;
+using namespace test;
 using Status = DatagramOutcome::Status;
 
 std::vector<std::uint8_t> read_reply_payload() {

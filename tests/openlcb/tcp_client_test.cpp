@@ -10,7 +10,7 @@
 
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/tcp_hub_server.hpp"
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb {
 namespace {

@@ -6,12 +6,13 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "openlcb/gridconnect.hpp"
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 #include "support/pty_relay.hpp"
 #include "support/temp_files.hpp"
 
@@ -43,6 +44,23 @@ void point(const fs::path& link, const fs::path& target) {
     fs::create_symlink(target, temp);
     fs::rename(temp, link);
 }
+
+// A pty behind the symlink <dir>/ttyUSB0, as udev names an adapter: unplug() takes both away
+// (the path never points at a freed pts number), plug() brings a fresh pty under the same path.
+struct UsbAdapter {
+    UsbAdapter() { plug(); }
+    void plug() {
+        pty = std::make_unique<PtyPair>();
+        point(link, pty->slave_path());
+    }
+    void unplug() {
+        pty->close();
+        fs::remove(link);
+    }
+    TempDir dir;
+    fs::path link = dir.path() / "ttyUSB0";
+    std::unique_ptr<PtyPair> pty;
+};
 
 struct Transition {
     bool up;
@@ -170,10 +188,8 @@ TEST(SerialPort, HardwareFlowControlAndOtherBaudRatesOpenOnAPty) {
 
 TEST(SerialPort, ReopensTheSamePathAfterTheDeviceWentAway) {
     boost::asio::io_context io;
-    TempDir dir;
-    const auto link = dir.path() / "ttyUSB0";
-    auto pty = std::make_unique<PtyPair>();
-    point(link, pty->slave_path());
+    UsbAdapter adapter;
+    const fs::path& link = adapter.link;
 
     SerialPort port(io, link.string(), fast_reopen());
     std::vector<Transition> transitions;
@@ -185,9 +201,7 @@ TEST(SerialPort, ReopensTheSamePathAfterTheDeviceWentAway) {
     ASSERT_EQ(port.open(), std::nullopt);
     EXPECT_TRUE(transitions.empty());  // the first open is reported by open() itself
 
-    // Unplugged: the path goes away with the device (never left pointing at a freed pts number).
-    pty->close();
-    fs::remove(link);
+    adapter.unplug();
     ASSERT_TRUE(run_until(
         io, [&] { return !transitions.empty(); }, kLimit));
     EXPECT_FALSE(port.connected());
@@ -204,8 +218,7 @@ TEST(SerialPort, ReopensTheSamePathAfterTheDeviceWentAway) {
         io, [] { return false; }, 60ms);
     EXPECT_EQ(transitions.size(), 1u);
 
-    pty = std::make_unique<PtyPair>();
-    point(link, pty->slave_path());
+    adapter.plug();
     ASSERT_TRUE(run_until(
         io, [&] { return port.connected(); }, kLimit));
     ASSERT_EQ(transitions.size(), 2u);
@@ -218,12 +231,12 @@ TEST(SerialPort, ReopensTheSamePathAfterTheDeviceWentAway) {
     EXPECT_TRUE(run_until(
         io,
         [&] {
-            got += pty->read_master();
+            got += adapter.pty->read_master();
             return got.size() >= line(numbered_frame(0x101, 2)).size();
         },
         kLimit));
     EXPECT_EQ(got, line(numbered_frame(0x101, 2)));
-    pty->write_master(line(numbered_frame(0x202, 3)));
+    adapter.pty->write_master(line(numbered_frame(0x202, 3)));
     ASSERT_TRUE(run_until(
         io, [&] { return !received.empty(); }, kLimit));
     EXPECT_EQ(received.front(), numbered_frame(0x202, 3));
@@ -231,21 +244,17 @@ TEST(SerialPort, ReopensTheSamePathAfterTheDeviceWentAway) {
 
 TEST(SerialPort, CloseStopsReopening) {
     boost::asio::io_context io;
-    TempDir dir;
-    const auto link = dir.path() / "ttyUSB0";
-    auto pty = std::make_unique<PtyPair>();
-    point(link, pty->slave_path());
+    UsbAdapter adapter;
+    const fs::path& link = adapter.link;
     SerialPort port(io, link.string(), fast_reopen());
     int downs = 0;
     port.set_connection_handler([&](bool up, const std::string&) { downs += up ? 0 : 1; });
     ASSERT_EQ(port.open(), std::nullopt);
-    pty->close();
-    fs::remove(link);
+    adapter.unplug();
     ASSERT_TRUE(run_until(
         io, [&] { return downs == 1; }, kLimit));
     port.close();
-    pty = std::make_unique<PtyPair>();
-    point(link, pty->slave_path());
+    adapter.plug();
     run_until(
         io, [] { return false; }, 100ms);
     EXPECT_FALSE(port.connected());

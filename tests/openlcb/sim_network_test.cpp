@@ -11,15 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {
 
 using namespace std::chrono_literals;
-using test::gc;
-using test::kNodeId;
-using Strings = std::vector<std::string>;
+using namespace test;
 
 // Node IDs whose first TN aliases all collide: the low two 12-bit groups are equal, so they
 // cancel in the XOR and every node starts with alias 0x050 ^ 0x101 = 0x151.

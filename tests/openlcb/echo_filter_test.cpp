@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "openlcb/transport/tcp_test_util.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb {
 namespace {
