@@ -20,6 +20,7 @@
 #include "openlcb/addressed_framing.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/gridconnect.hpp"
+#include "support/memory_commands.hpp"
 
 namespace olcb::e2e {
 namespace {
@@ -193,35 +194,9 @@ private:
     std::deque<CanFrame> inbox_;
 };
 
-// Memory Configuration payloads (short form for 0xFD..0xFF).
-std::vector<std::uint8_t> mem_cmd(std::uint8_t command, std::uint8_t space, std::uint32_t a) {
-    std::vector<std::uint8_t> p{0x20,
-                                command,
-                                static_cast<std::uint8_t>(a >> 24),
-                                static_cast<std::uint8_t>(a >> 16),
-                                static_cast<std::uint8_t>(a >> 8),
-                                static_cast<std::uint8_t>(a)};
-    if (space >= 0xFD) {
-        p[1] = static_cast<std::uint8_t>(command | (space - 0xFC));
-    } else {
-        p.push_back(space);
-    }
-    return p;
-}
-std::vector<std::uint8_t> read_cmd(std::uint8_t space, std::uint32_t a, std::uint8_t count) {
-    auto p = mem_cmd(0x40, space, a);
-    p.push_back(count);
-    return p;
-}
-std::vector<std::uint8_t> write_cmd(std::uint8_t space, std::uint32_t a,
-                                    const std::vector<std::uint8_t>& data) {
-    auto p = mem_cmd(0x00, space, a);
-    p.insert(p.end(), data.begin(), data.end());
-    return p;
-}
-std::vector<std::uint8_t> update_complete_cmd() {
-    return {0x20, 0xA8};
-}
+using test_support::read_cmd;
+using test_support::update_complete_cmd;
+using test_support::write_cmd;
 
 #if defined(SIMNODE_PATH)
 

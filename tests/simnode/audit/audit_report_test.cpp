@@ -1,13 +1,11 @@
 // The client audit's files: JSON with every finding in full, JUnit XML with one testcase per
-// rule, both written through a temporary file; and docs/audit.md lists the registry exactly.
+// rule, both written through a temporary file.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
-#include <set>
-#include <sstream>
 
 #include "audit_script.hpp"
 #include "simnode/audit/audit_report.hpp"
@@ -30,7 +28,6 @@ protected:
         finish();
     }
 };
-
 TEST_F(AuditReport, TheJsonNamesRuleStandardClientNodeFramesAndTime) {
     violate();
     const json j = json::parse(audit_json(audit_.log(), {"2024-07-04T17:38:48Z", true}));
@@ -111,47 +108,6 @@ TEST(AuditFile, IsReplacedWholeAndLeavesNoTemporaryFile) {
               1);
     EXPECT_FALSE(write_file_atomically(dir.path() / "missing" / "audit.json", "x", error));
     EXPECT_NE(error.find("missing"), std::string::npos) << error;
-}
-
-// docs/audit.md: the table between <!-- rules:begin --> and <!-- rules:end -->, one row per
-// rule in registry order: | `id` | level | standard | ...
-TEST(AuditDoc, ListsEveryRuleWithItsLevelAndStandardInOrder) {
-    const std::string doc = simnode::test::read_source_file("docs/audit.md");
-    const auto begin = doc.find("<!-- rules:begin -->");
-    const auto end = doc.find("<!-- rules:end -->");
-    ASSERT_NE(begin, std::string::npos);
-    ASSERT_NE(end, std::string::npos);
-    std::istringstream table(doc.substr(begin, end - begin));
-    std::vector<std::vector<std::string>> rows;
-    for (std::string line; std::getline(table, line);) {
-        if (!line.starts_with("| `")) continue;
-        std::vector<std::string> cells;
-        std::istringstream cols(line.substr(1));
-        for (std::string cell; std::getline(cols, cell, '|');) {
-            const auto a = cell.find_first_not_of(' ');
-            const auto b = cell.find_last_not_of(' ');
-            cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
-        }
-        rows.push_back(cells);
-    }
-    ASSERT_EQ(rows.size(), rules().size());
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Rule& r = rules()[i];
-        ASSERT_GE(rows[i].size(), 5u) << i;
-        EXPECT_EQ(rows[i][0], "`" + std::string(r.name) + "`");
-        EXPECT_EQ(rows[i][1], level_name(r.level)) << r.name;
-        EXPECT_EQ(rows[i][2], r.standard) << r.name;
-    }
-}
-
-TEST(AuditRules, IdsAreUniqueAndFoundByName) {
-    std::set<std::string_view> names;
-    for (const Rule& r : rules()) {
-        EXPECT_TRUE(names.insert(r.name).second) << r.name;
-        EXPECT_EQ(&rule(r.id), &r);
-        EXPECT_EQ(find_rule(r.name), &r);
-    }
-    EXPECT_EQ(find_rule("no.such-rule"), nullptr);
 }
 
 }  // namespace

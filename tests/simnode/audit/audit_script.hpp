@@ -21,6 +21,7 @@
 #include "simnode/audit/client_audit.hpp"
 #include "simnode/sim_node.hpp"
 #include "simnode/sim_node_test_util.hpp"
+#include "support/memory_commands.hpp"
 
 namespace olcb::simnode::audit::test {
 
@@ -28,6 +29,9 @@ using namespace std::chrono_literals;
 using simnode::test::kClientAlias;
 using simnode::test::kClientId;
 using simnode::test::kNodeId;
+using test_support::read_cmd;
+using test_support::update_complete_cmd;
+using test_support::write_cmd;
 
 /// The default node's alias.
 inline constexpr std::uint16_t kNodeAlias = 0x343;
@@ -114,21 +118,6 @@ protected:
         return out;
     }
 
-    /// A memory-config read command (short form for FD..FF).
-    static std::vector<std::uint8_t> read_cmd(std::uint8_t space, std::uint32_t address,
-                                              std::uint8_t count) {
-        auto p = header(0x40, space, address);
-        p.push_back(count);
-        return p;
-    }
-    /// A memory-config write command.
-    static std::vector<std::uint8_t> write_cmd(std::uint8_t space, std::uint32_t address,
-                                               const std::vector<std::uint8_t>& data) {
-        auto p = header(0x00, space, address);
-        p.insert(p.end(), data.begin(), data.end());
-        return p;
-    }
-
     TimePoint now_{};  // before audit_: its start
     ClientAudit audit_;
 
@@ -136,21 +125,6 @@ private:
     static std::string hex(std::uint8_t b) {
         constexpr char kDigits[] = "0123456789ABCDEF";
         return {kDigits[b >> 4], kDigits[b & 15]};
-    }
-    static std::vector<std::uint8_t> header(std::uint8_t command, std::uint8_t space,
-                                            std::uint32_t a) {
-        std::vector<std::uint8_t> p{0x20,
-                                    command,
-                                    static_cast<std::uint8_t>(a >> 24),
-                                    static_cast<std::uint8_t>(a >> 16),
-                                    static_cast<std::uint8_t>(a >> 8),
-                                    static_cast<std::uint8_t>(a)};
-        if (space >= 0xFD) {
-            p[1] = static_cast<std::uint8_t>(command | (space - 0xFC));
-        } else {
-            p.push_back(space);
-        }
-        return p;
     }
     static std::vector<CanFrame> datagram_frames(std::uint16_t src, std::uint16_t dst,
                                                  const std::vector<std::uint8_t>& payload) {
@@ -170,6 +144,37 @@ private:
         const auto f = gridconnect::parse_frame(text);
         ASSERT_TRUE(f) << text;
         audit_.on_frame(*f, direction, connection, now_);
+    }
+};
+
+/// The alias and message rules (alias_watch_test.cpp, client_audit_test.cpp).
+class AliasRules : public AuditScript {};
+
+/// The memory and CDI rules (memory_watch_test.cpp, write_judge_test.cpp) against the default
+/// node (scenarios/default.xml: space 0xFD is 179 bytes, Enabled @0 1-byte int map 0/1, Trim @1
+/// 2-byte int -1000..1000, Mode @15 map 1/2/3, Gain @16 half float 0..4, Label @30 16-byte
+/// string, the Port group @46 (4 x 33 bytes), the action @178 value 1; 0xFB lays out the user
+/// name @1 and description @64), the client logged in.
+class MemoryRules : public AuditScript {
+protected:
+    MemoryRules() { login(); }
+
+    /// A write and the node's plain OK: each write is its own finished exchange.
+    void write(std::uint8_t space, std::uint32_t address, const std::vector<std::uint8_t>& data) {
+        client_datagram(write_cmd(space, address, data));
+        node_ok(0);
+        advance(5ms);
+    }
+    /// Update Complete and the node's plain OK.
+    void update_complete() {
+        client_datagram(update_complete_cmd());
+        node_ok(0);
+    }
+    /// s, padded with NULs (or cut) to size bytes.
+    static std::vector<std::uint8_t> text(std::string_view s, std::size_t size) {
+        std::vector<std::uint8_t> out(s.begin(), s.end());
+        out.resize(size, 0);
+        return out;
     }
 };
 

@@ -1,5 +1,5 @@
-// The alias rules of the client audit (alias.unreserved, alias.rid-too-early) and
-// message.unknown-mti, as frame scripts on a simulated clock.
+// AliasWatch (the alias rules of the client audit: alias.unreserved, alias.rid-too-early), as
+// frame scripts on a simulated clock.
 #include <gtest/gtest.h>
 
 #include "audit_script.hpp"
@@ -9,8 +9,6 @@ namespace {
 
 using ::testing::ElementsAre;
 using ::testing::IsEmpty;
-
-class AliasRules : public AuditScript {};
 
 TEST_F(AliasRules, AReservedAndMappedClientIsClean) {
     login();
@@ -122,36 +120,6 @@ TEST_F(AliasRules, RidSoonerThan200msAfterTheLastCidIsAFinding) {
 
 TEST_F(AliasRules, RidAfter200msIsClean) {
     login();
-    EXPECT_THAT(rules_found(), IsEmpty());
-}
-
-TEST_F(AliasRules, AnUnallocatedMtiIsAFindingPerMti) {
-    login();
-    client(":X194F912CN0343;");  // addressed 0x04F9 (lcc-conform's message.oir-unknown-mti)
-    client(":X194F912CN0343;");
-    client(":X1993012CN;");  // global 0x0930 (message.unknown-global-ignored)
-    const auto f = found(RuleId::kMessageUnknownMti);
-    ASSERT_EQ(f.size(), 2u);
-    EXPECT_EQ(f[0].count, 2u);
-    EXPECT_NE(f[0].message.find("0x04F9"), std::string::npos) << f[0].message;
-    ASSERT_TRUE(f[0].node);
-    EXPECT_NE(f[1].message.find("0x0930"), std::string::npos) << f[1].message;
-}
-
-TEST_F(AliasRules, EventReportWithPayloadFramesAndReservedFormatsAreJudgedRight) {
-    login();
-    client(":X19F1612CN0101000000000001;");  // PCER with payload, first frame
-    client(":X19F1512CN0102030405060708;");  // middle
-    client(":X19F1412CN09;");                // last
-    EXPECT_THAT(rules_found(), IsEmpty());
-    client(":X1E34312CN00;");  // format 6 is reserved
-    EXPECT_THAT(rules_found(), ElementsAre("message.unknown-mti"));
-}
-
-TEST_F(AliasRules, StandardAndRemoteFramesAreNotJudged) {
-    client(":S123N0102;");
-    client(":X1949012CR;");
-    finish();
     EXPECT_THAT(rules_found(), IsEmpty());
 }
 

@@ -1,6 +1,6 @@
-// The datagram and request/reply rules of the client audit, as frame scripts on a simulated
-// clock: frame sequences, one datagram at a time, resends, reply acknowledgements, requests
-// before replies (memory configuration, SNIP).
+// DatagramWatch (the datagram and request/reply rules of the client audit), as frame scripts on
+// a simulated clock: frame sequences, one datagram at a time, resends, reply acknowledgements,
+// requests before replies (memory configuration, SNIP).
 #include <gtest/gtest.h>
 
 #include "audit_script.hpp"
