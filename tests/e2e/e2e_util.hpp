@@ -444,6 +444,17 @@ inline std::filesystem::path source_path(std::string_view relative) {
     return std::filesystem::path(OLCB_SOURCE_DIR) / relative;
 }
 
+/// The simnode program on scenarios/default.ini, listening on a free loopback port, its images
+/// in images_dir, plus extra options; nullptr when it could not be started.
+inline std::unique_ptr<Child> spawn_default_simnode(const std::string& program,
+                                                   const std::string& images_dir,
+                                                   const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{"--scenario", source_path("scenarios/default.ini").string(),
+                                  "--listen", "127.0.0.1:0", "--image-dir", images_dir};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return Child::spawn(program, args);
+}
+
 /// A TCP connection to 127.0.0.1:port (a raw hub client); -1 when refused.
 inline int connect_to(std::uint16_t port) {
     const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);

@@ -34,9 +34,7 @@ bool closed_by_peer(int fd, milliseconds timeout) {
 #ifdef SIMNODE_PATH
 TEST(SimnodeHub, AFloodDoesNotStarveAWellBehavedTool) {
     TempDir images("simnode-hub-flood");
-    auto child =
-        Child::spawn(SIMNODE_PATH, {"--scenario", source_path("scenarios/default.ini").string(),
-                                    "--listen", "127.0.0.1:0", "--image-dir", images.str()});
+    auto child = spawn_default_simnode(SIMNODE_PATH, images.str());
     ASSERT_TRUE(child);
     const auto port = child->wait_listening();
     ASSERT_TRUE(port) << child->output();
@@ -114,9 +112,7 @@ TEST(SimnodeHub, AFloodDoesNotStarveAWellBehavedTool) {
 TEST(SimnodeHub, ConnectionsBeyondThePerAddressLimitAreRefused) {
     TempDir images("simnode-hub-limit");
     auto child =
-        Child::spawn(SIMNODE_PATH, {"--scenario", source_path("scenarios/default.ini").string(),
-                                    "--listen", "127.0.0.1:0", "--image-dir", images.str(),
-                                    "--max-clients-per-address", "2"});
+        spawn_default_simnode(SIMNODE_PATH, images.str(), {"--max-clients-per-address", "2"});
     ASSERT_TRUE(child);
     const auto port = child->wait_listening();
     ASSERT_TRUE(port) << child->output();

@@ -138,9 +138,7 @@ TEST(SimnodeLoad, ThirtyTwoClientsDownloadTheCdiWhileVerifyStaysFast) {
     expected.push_back(0);
 
     TempDir images("simnode-load");
-    auto child =
-        Child::spawn(SIMNODE_PATH, {"--scenario", source_path("scenarios/default.ini").string(),
-                                    "--listen", "127.0.0.1:0", "--image-dir", images.str()});
+    auto child = spawn_default_simnode(SIMNODE_PATH, images.str());
     ASSERT_TRUE(child);
     const auto port = child->wait_listening();
     ASSERT_TRUE(port) << child->output();
