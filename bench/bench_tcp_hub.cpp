@@ -44,16 +44,41 @@ CanFrame bench_frame(std::uint16_t alias, std::uint32_t seq) {
     return f;
 }
 
+// Runs io until done() or the limit; returns done().
+bool run_io_within(boost::asio::io_context& io, std::chrono::milliseconds limit,
+                   const std::function<bool()>& done) {
+    const auto deadline = std::chrono::steady_clock::now() + limit;
+    while (!done() && std::chrono::steady_clock::now() < deadline) {
+        if (io.stopped()) io.restart();
+        io.run_one_for(std::chrono::milliseconds(1));
+    }
+    return done();
+}
+
+// Runs io until done(), at most 30 s; returns done().
+bool run_io(boost::asio::io_context& io, const std::function<bool()>& done) {
+    return run_io_within(io, std::chrono::seconds(30), done);
+}
+
+// Runs io for d.
+void run_io_for(boost::asio::io_context& io, std::chrono::milliseconds d) {
+    run_io_within(io, d, [] { return false; });
+}
+
+// Listens on a free loopback port; false, the benchmark skipped, when the hub cannot.
+bool listen_or_skip(TcpHubServer& hub, benchmark::State& state) {
+    if (!hub.listen("127.0.0.1", 0)) return true;
+    state.SkipWithError("cannot listen on 127.0.0.1");
+    return false;
+}
+
 // Each of three clients sends N frames per iteration; the iteration ends when every client has
 // received the 2N frames of the other two. Items = frames sent (each is delivered twice).
 void bm_tcp_hub_three_clients(benchmark::State& state) {
     const auto n = static_cast<std::uint32_t>(state.range(0));
     boost::asio::io_context io;
     TcpHubServer hub(io);
-    if (hub.listen("127.0.0.1", 0)) {
-        state.SkipWithError("cannot listen on 127.0.0.1");
-        return;
-    }
+    if (!listen_or_skip(hub, state)) return;
     std::vector<std::unique_ptr<TcpClient>> clients;
     std::vector<std::uint64_t> received(3, 0);
     for (std::size_t i = 0; i < received.size(); ++i) {
@@ -61,15 +86,7 @@ void bm_tcp_hub_three_clients(benchmark::State& state) {
         clients.back()->set_handler([&received, i](const CanFrame&) { ++received[i]; });
         clients.back()->start();
     }
-    auto wait = [&](auto done) {
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-        while (!done() && std::chrono::steady_clock::now() < deadline) {
-            if (io.stopped()) io.restart();
-            io.run_one_for(std::chrono::milliseconds(10));
-        }
-        return done();
-    };
-    if (!wait([&] {
+    if (!run_io(io, [&] {
             return hub.client_count() == 3 && clients[0]->connected() && clients[1]->connected() &&
                    clients[2]->connected();
         })) {
@@ -82,7 +99,7 @@ void bm_tcp_hub_three_clients(benchmark::State& state) {
             for (std::uint16_t c = 0; c < 3; ++c) clients[c]->send(bench_frame(0x100 + c, seq));
         }
         target += std::uint64_t{2} * n;
-        if (!wait([&] {
+        if (!run_io(io, [&] {
                 return received[0] >= target && received[1] >= target && received[2] >= target;
             })) {
             state.SkipWithError("frames lost");
@@ -116,27 +133,6 @@ void bm_in_process_bus_three_ports(benchmark::State& state) {
 }
 BENCHMARK(bm_in_process_bus_three_ports)->Arg(1000);
 
-// Runs io until done() or the limit; returns done().
-bool run_io_within(boost::asio::io_context& io, std::chrono::milliseconds limit,
-                   const std::function<bool()>& done) {
-    const auto deadline = std::chrono::steady_clock::now() + limit;
-    while (!done() && std::chrono::steady_clock::now() < deadline) {
-        if (io.stopped()) io.restart();
-        io.run_one_for(std::chrono::milliseconds(1));
-    }
-    return done();
-}
-
-// Runs io until done(), at most 30 s; returns done().
-bool run_io(boost::asio::io_context& io, const std::function<bool()>& done) {
-    return run_io_within(io, std::chrono::seconds(30), done);
-}
-
-// Runs io for d.
-void run_io_for(boost::asio::io_context& io, std::chrono::milliseconds d) {
-    run_io_within(io, d, [] { return false; });
-}
-
 // A sender whose whole burst fits in its output queue (the default 256 KiB is ~9,000 frames).
 TcpClientOptions big_queue() {
     TcpClientOptions o;
@@ -150,10 +146,7 @@ void bm_tcp_hub_one_to_another(benchmark::State& state) {
     const auto n = static_cast<std::uint32_t>(state.range(0));
     boost::asio::io_context io;
     TcpHubServer hub(io);
-    if (hub.listen("127.0.0.1", 0)) {
-        state.SkipWithError("cannot listen on 127.0.0.1");
-        return;
-    }
+    if (!listen_or_skip(hub, state)) return;
     TcpClient sender(io, "127.0.0.1", hub.port(), big_queue());
     TcpClient receiver(io, "127.0.0.1", hub.port());
     std::uint64_t received = 0;
