@@ -447,10 +447,11 @@ inline std::filesystem::path source_path(std::string_view relative) {
 /// The simnode program on scenarios/default.ini, listening on a free loopback port, its images
 /// in images_dir, plus extra options; nullptr when it could not be started.
 inline std::unique_ptr<Child> spawn_default_simnode(const std::string& program,
-                                                   const std::string& images_dir,
-                                                   const std::vector<std::string>& extra = {}) {
-    std::vector<std::string> args{"--scenario", source_path("scenarios/default.ini").string(),
-                                  "--listen", "127.0.0.1:0", "--image-dir", images_dir};
+                                                    const std::string& images_dir,
+                                                    const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{"--scenario",  source_path("scenarios/default.ini").string(),
+                                  "--listen",    "127.0.0.1:0",
+                                  "--image-dir", images_dir};
     args.insert(args.end(), extra.begin(), extra.end());
     return Child::spawn(program, args);
 }

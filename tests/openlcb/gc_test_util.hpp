@@ -11,10 +11,10 @@
 #include <utility>
 #include <vector>
 
+#include "base/node_id.hpp"
 #include "openlcb/clock.hpp"
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/message.hpp"
-#include "base/node_id.hpp"
 
 namespace olcb::test {
 

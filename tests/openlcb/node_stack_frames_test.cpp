@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "openlcb/can_defs.hpp"
-#include "openlcb/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {

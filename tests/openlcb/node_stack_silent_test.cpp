@@ -6,8 +6,8 @@
 #include <set>
 
 #include "openlcb/alias_generator.hpp"
-#include "openlcb/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {

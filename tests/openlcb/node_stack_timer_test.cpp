@@ -1,8 +1,8 @@
 // NodeStack owner timers (schedule / now).
 #include <gtest/gtest.h>
 
-#include "openlcb/node_test_util.hpp"
 #include "openlcb/node_stack.hpp"
+#include "openlcb/node_test_util.hpp"
 
 namespace olcb {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "openlcb/in_process_bus.hpp"
 #include "openlcb/node_test_util.hpp"
-#include "openlcb/tcp_test_util.hpp"
 #include "openlcb/tcp_hub_server.hpp"
+#include "openlcb/tcp_test_util.hpp"
 
 namespace olcb {
 namespace {
@@ -30,7 +30,8 @@ struct DrivenPair {
     bool start(boost::asio::io_context& io) {
         node_driver.start_all();
         runner_driver.start_all();
-        return run_until(io, [&] { return node.initialized() && runner.initialized(); }, 2s);
+        return run_until(
+            io, [&] { return node.initialized() && runner.initialized(); }, 2s);
     }
     NodeStack node{stack_config(kNodeId)};
     NodeStack runner{stack_config(kRunnerId)};
@@ -49,7 +50,8 @@ struct SharedDriver {
     /// Starts both and runs io until both are initialized.
     bool start() {
         driver.start_all();
-        return run_until(io, [&] { return node.initialized() && runner.initialized(); }, 2s);
+        return run_until(
+            io, [&] { return node.initialized() && runner.initialized(); }, 2s);
     }
     boost::asio::io_context io;
     InProcessBus bus{io};

@@ -74,8 +74,8 @@ inline std::vector<std::uint32_t> sequence(std::uint32_t n) {
 /// A raw loopback socket: what a foreign or misbehaving client does on the wire.
 struct RawClient {
     RawClient(boost::asio::io_context& io, std::uint16_t port) : socket(io) {
-        socket.connect(boost::asio::ip::tcp::endpoint(boost::asio::ip::address_v4::loopback(),
-                                                      port));
+        socket.connect(
+            boost::asio::ip::tcp::endpoint(boost::asio::ip::address_v4::loopback(), port));
     }
     /// Reads until the peer closes, appending to text; closed is set then.
     void start_reading() {
