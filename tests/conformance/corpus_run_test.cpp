@@ -13,6 +13,7 @@
 #include "conformance/link/session.hpp"
 #include "conformance/report/report.hpp"
 #include "conformance/run/runner.hpp"
+#include "conformance/sim_bench.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 #include "support/report_schema.hpp"
@@ -64,19 +65,12 @@ TEST_P(CorpusRun, OnlyTheCdisOwnFaultsFail) {
     config.node_id = kDut;
     config.cdi = read_text(dir / "cdi" / file);
     std::string error;
-    auto dut = simnode::SimNode::create(config, error);
+    auto bench = testing::SimBench::serve(config, error);
     // A CDI that can't be parsed or laid out can't be served: that is the CDI's own fault.
-    if (!dut) GTEST_SKIP() << file << " can't be served: " << error;
-
-    SimNetwork net;
-    net.set_logging(false);
-    net.add_stack(dut->stack());
-    dut->stack().start(net.now());
-    auto link = make_sim_link(net, kTool);
-    Session session(*link);
-    ASSERT_TRUE(session.start());
-    auto node = session.find_node(kDut);
+    if (!bench) GTEST_SKIP() << file << " can't be served: " << error;
+    auto node = bench->start();
     ASSERT_TRUE(node);
+    Session& session = *bench->session;
 
     RunOptions options;
     options.sample = 1;

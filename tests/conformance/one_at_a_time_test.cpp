@@ -13,6 +13,7 @@
 #include "conformance/checks/protocol_checks.hpp"
 #include "conformance/conform_test_util.hpp"
 #include "conformance/run/runner.hpp"
+#include "conformance/sim_bench.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/sim_node.hpp"
 
@@ -124,10 +125,11 @@ TEST(OneVariableAtATime, ProvedOnEveryFrameOfAFullRun) {
     config.cdi = read_text(fs::path(OLCB_SOURCE_DIR) / "scenarios" / "default.xml");
     config.user_name = "simnode default";
     std::string error;
-    auto dut = simnode::SimNode::create(config, error);
-    ASSERT_TRUE(dut) << error;
+    auto bench = testing::SimBench::serve(config, error, true);
+    ASSERT_TRUE(bench) << error;
+    const simnode::SimNode& dut = *bench->dut;
     std::vector<Variable> vars;
-    const auto& layout = *dut->memory().model().layout;
+    const auto& layout = *dut.memory().model().layout;
     for (cdi::Cursor c = layout.begin(); c.valid(); c.next()) {
         vars.push_back({static_cast<std::uint8_t>(c.space()),
                         static_cast<std::uint32_t>(c.address()),
@@ -135,16 +137,12 @@ TEST(OneVariableAtATime, ProvedOnEveryFrameOfAFullRun) {
                         c.element().kind == cdi::ElementKind::kEventId});
     }
     std::map<std::uint8_t, std::vector<std::uint8_t>> mem;
-    for (std::uint8_t sp : {251, 253}) mem[sp] = dut->memory().read(sp, 0, 1024);
+    for (std::uint8_t sp : {251, 253}) mem[sp] = dut.memory().read(sp, 0, 1024);
 
-    SimNetwork net;
-    net.add_stack(dut->stack());
-    dut->stack().start(net.now());
-    auto link = make_sim_link(net, kTool);
-    Session session(*link);
-    ASSERT_TRUE(session.start());
-    auto node = session.find_node(kDut);
+    auto node = bench->start();
     ASSERT_TRUE(node);
+    Session& session = *bench->session;
+    const SimNetwork& net = bench->net;
     const std::size_t first = net.log().size();
     RunOptions options;
     options.sample = 0;

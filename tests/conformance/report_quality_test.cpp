@@ -16,6 +16,7 @@
 #include "conformance/link/session.hpp"
 #include "conformance/report/report.hpp"
 #include "conformance/run/runner.hpp"
+#include "conformance/sim_bench.hpp"
 #include "openlcb/sim_network.hpp"
 #include "simnode/scenario.hpp"
 #include "simnode/sim_node.hpp"
@@ -56,20 +57,15 @@ NodeReport run_scenario(const fs::path& ini_path, RunOptions options, bool* unch
     if (!scenario || scenario->nodes.empty()) return {};
     simnode::NodeConfig config = scenario->nodes.front();
     config.image_dir.clear();
-    auto dut = simnode::SimNode::create(config, error);
-    EXPECT_TRUE(dut) << error;
-    if (!dut) return {};
-    SimNetwork net;
-    net.set_logging(false);
-    net.add_stack(dut->stack());
-    dut->stack().start(net.now());
-    auto link = make_sim_link(net, kTool);
-    Session session(*link);
-    EXPECT_TRUE(session.start());
-    auto node = session.find_node(config.node_id);
+    auto bench = testing::SimBench::serve(config, error);
+    EXPECT_TRUE(bench) << error;
+    if (!bench) return {};
+    auto node = bench->start();
     EXPECT_TRUE(node) << ini_path;
     if (!node) return {};
-    const std::vector<std::uint8_t> before = writable_bytes(*dut);
+    simnode::SimNode& dut = *bench->dut;
+    Session& session = *bench->session;
+    const std::vector<std::uint8_t> before = writable_bytes(dut);
     options.sample = 1;
     options.node_wait = std::chrono::seconds(5);
     options.selection.thorough = options.selection.thorough || wants_thorough(ini);
@@ -87,7 +83,7 @@ NodeReport run_scenario(const fs::path& ini_path, RunOptions options, bool* unch
         },
         progress);
     fs::remove(options.backup_path);
-    if (unchanged) *unchanged = writable_bytes(*dut) == before;
+    if (unchanged) *unchanged = writable_bytes(dut) == before;
     return report;
 }
 

@@ -29,6 +29,11 @@ inline std::string default_cdi() {
     return read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios/default.xml");
 }
 
+/// The io-board scenario's CDI text.
+inline std::string io_board_cdi() {
+    return read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios/io-board.xml");
+}
+
 /// One simnode (kDut) and the runner's session (kTool) on a simulated segment.
 struct SimBench {
     SimNetwork net;
@@ -51,17 +56,22 @@ struct SimBench {
         if (fs) cfg.faults = *fs;
         dut = simnode::SimNode::create(cfg, error);
         EXPECT_TRUE(dut) << error;
-        net.set_logging(false);
-        net.add_stack(dut->stack());
-        dut->stack().start(net.now());
-        link = make_sim_link(net, kTool);
-        session = std::make_unique<Session>(*link);
+        if (dut) attach(false);
+    }
+
+    /// The node config makes on the segment (frames logged when logging); nullptr with error
+    /// set when simnode refuses the config (a CDI it cannot serve).
+    static std::unique_ptr<SimBench> serve(const simnode::NodeConfig& config, std::string& error,
+                                           bool logging = false) {
+        auto dut = simnode::SimNode::create(config, error);
+        if (!dut) return nullptr;
+        return std::unique_ptr<SimBench>(new SimBench(std::move(dut), logging));
     }
 
     /// Starts our node and finds the node under test.
     std::optional<NodeInfo> start() {
         EXPECT_TRUE(session->start());
-        auto node = session->find_node(kDut);
+        auto node = session->find_node(dut->node_id());
         EXPECT_TRUE(node);
         return node;
     }
@@ -80,6 +90,19 @@ struct SimBench {
         session->command(node, kReset);
         return link->run_until([&] { return session->track(node.id).initializations > before; },
                                std::chrono::seconds(2));
+    }
+
+private:
+    SimBench(std::unique_ptr<simnode::SimNode> node, bool logging) : dut(std::move(node)) {
+        attach(logging);
+    }
+
+    void attach(bool logging) {
+        net.set_logging(logging);
+        net.add_stack(dut->stack());
+        dut->stack().start(net.now());
+        link = make_sim_link(net, kTool);
+        session = std::make_unique<Session>(*link);
     }
 };
 

@@ -15,24 +15,15 @@ using testing::kFffd;
 
 TEST(AcdiUtf8, AnInvalidUserNameInSpace251Fails) {
     // What `simnode --user-name $'bad\xff\xfename'` serves: the bytes in 251 and in SNIP.
-    SimNetwork net;
     simnode::NodeConfig cfg;
     cfg.node_id = kDut;
     cfg.cdi = testing::default_cdi();
     cfg.user_name = "bad\xff\xfename";
     std::string error;
-    auto dut = simnode::SimNode::create(cfg, error);
-    ASSERT_TRUE(dut) << error;
-    net.set_logging(false);
-    net.add_stack(dut->stack());
-    dut->stack().start(net.now());
-    auto link = make_sim_link(net, kTool);
-    Session session(*link);
-    ASSERT_TRUE(session.start());
-    auto node = session.find_node(kDut);
-    ASSERT_TRUE(node);
+    auto bench = testing::SimBench::serve(cfg, error);
+    ASSERT_TRUE(bench) << error;
     CheckContext ctx;
-    const auto results = run_protocol_checks(session, *node, ProtocolOptions{}, ctx);
+    const auto results = bench->run(ctx);
     const CheckResult& acdi = expect_status(results, "acdi.utf8", Status::kFail);
     EXPECT_EQ(acdi.seen, std::string("space 251 @1 user name \"bad") + kFffd + kFffd +
                              "name\" (bytes 62 61 64 FF FE 6E 61 6D 65)");

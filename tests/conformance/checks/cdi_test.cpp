@@ -34,22 +34,12 @@ std::optional<std::vector<CheckResult>> served_by_simnode(const std::string& tex
     simnode::NodeConfig config;
     config.node_id = kDut;
     config.cdi = text;
-    auto dut = simnode::SimNode::create(config, refused);
-    if (!dut) return std::nullopt;
-    SimNetwork net;
-    net.set_logging(false);
-    net.add_stack(dut->stack());
-    dut->stack().start(net.now());
-    auto link = make_sim_link(net, kTool);
-    Session session(*link);
-    EXPECT_TRUE(session.start());
-    auto node = session.find_node(kDut);
-    if (!node) {
-        ADD_FAILURE() << "simnode not found";
-        return std::vector<CheckResult>{};
-    }
+    auto bench = testing::SimBench::serve(config, refused);
+    if (!bench) return std::nullopt;
+    auto node = bench->start();
+    if (!node) return std::vector<CheckResult>{};
     CheckContext ctx;
-    return run_protocol_checks(session, *node, cdi_checks_only(), ctx);
+    return run_protocol_checks(*bench->session, *node, cdi_checks_only(), ctx);
 }
 
 // The cdi.* checks against a bare node serving the bytes before text's first NUL, and a NUL, in

@@ -17,11 +17,8 @@ using testing::contains;
 using testing::dump;
 using testing::expect_status;
 using testing::find_check;
+using testing::io_board_cdi;
 using testing::SimBench;
-
-std::string io_board_cdi() {
-    return read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios/io-board.xml");
-}
 
 struct Ran {
     std::vector<CheckResult> results;
