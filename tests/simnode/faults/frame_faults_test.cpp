@@ -3,7 +3,7 @@
 // on a whole SimNode against the good node.
 #include <gtest/gtest.h>
 
-#include "openlcb/node/node_test_util.hpp"
+#include "openlcb/node_test_util.hpp"
 #include "simnode/faults/fault_hooks.hpp"
 #include "simnode/faults/fault_test_util.hpp"
 #include "simnode/sim_node_test_util.hpp"
