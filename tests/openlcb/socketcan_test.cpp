@@ -1,6 +1,10 @@
 #include "openlcb/socketcan.hpp"
 
 #include <gtest/gtest.h>
+#include <linux/can/raw.h>
+#include <net/if.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <vector>
 
@@ -104,6 +108,44 @@ TEST(SocketCanPort, LiveVcan0FramesReachOtherSocketsNotTheSender) {
     EXPECT_EQ(got_b, std::vector<CanFrame>{f});
     EXPECT_TRUE(got_a.empty());
     EXPECT_EQ(a.stats().frames_ignored, 1u);
+}
+
+// Other equipment's standard, remote and error-less frames stay in the kernel: the port's queue
+// holds OpenLCB's frames only (what keeps a stream whole while cangen floods the bus).
+TEST(SocketCanPort, LiveVcan0ForeignFramesNeverReachThePort) {
+    boost::asio::io_context io;
+    SocketCanPort port(io);
+    if (const auto error = port.open("vcan0")) {
+        GTEST_SKIP() << error->message;
+    }
+    std::vector<CanFrame> got;
+    port.set_handler([&](const CanFrame& f) { got.push_back(f); });
+    const int raw = ::socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
+    ASSERT_GE(raw, 0);
+    sockaddr_can address{};
+    address.can_family = AF_CAN;
+    address.can_ifindex = static_cast<int>(::if_nametoindex("vcan0"));
+    ASSERT_EQ(::bind(raw, reinterpret_cast<const sockaddr*>(&address), sizeof address), 0);
+    const auto frame = [](canid_t id, std::uint8_t dlc) {
+        ::can_frame f{};
+        f.can_id = id;
+        f.can_dlc = dlc;
+        return f;
+    };
+    const ::can_frame standard = frame(0x123, 2);
+    const ::can_frame remote = frame(0x19490343 | CAN_EFF_FLAG | CAN_RTR_FLAG, 0);
+    const ::can_frame openlcb = frame(0x19490343 | CAN_EFF_FLAG, 0);
+    for (const ::can_frame& f : {standard, remote, standard, openlcb}) {
+        ASSERT_EQ(::write(raw, &f, sizeof f), static_cast<ssize_t>(sizeof f));
+    }
+    ::close(raw);
+    ASSERT_TRUE(test::run_until(
+        io, [&] { return !got.empty(); }, std::chrono::seconds(5)));
+    test::run_until(
+        io, [] { return false; }, std::chrono::milliseconds(50));
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_EQ(got.front().id, 0x19490343u);
+    EXPECT_EQ(port.stats().frames_ignored, 0u) << "filtered by the kernel, not by from_kernel()";
 }
 
 }  // namespace
