@@ -78,9 +78,9 @@ TEST_F(AuditTapTest, WithoutAHubTheWrappedPortAuditsWhatReachesTheNodes) {
 }
 
 TEST_F(AuditTapTest, WithAHubFramesOfOtherEndpointsAreAuditedAndTheNodesPortIsReturned) {
+    TcpHubServer hub(io_);  // before the tap: the tap, destroyed first, stops observing it
     auto tap = open_tap();
     ASSERT_TRUE(tap);
-    TcpHubServer hub(io_);
     Transport& nodes = hub.add_local_endpoint();
     Transport& bridge = hub.add_local_endpoint();
     EXPECT_EQ(&tap->attach(nodes, &hub), &nodes);
