@@ -1,4 +1,6 @@
 #include "openlcb/in_process_bus.hpp"
+
+#include "openlcb/asio.hpp"
 #include "openlcb/flag_guard.hpp"
 
 #include <algorithm>
@@ -21,10 +23,15 @@ private:
     HandlerSlot handler_;
 };
 
+struct InProcessBus::Timer {
+    explicit Timer(boost::asio::io_context& io) : timer(io) {}
+    boost::asio::steady_timer timer;
+};
+
 InProcessBus::InProcessBus() = default;
 
 InProcessBus::InProcessBus(boost::asio::io_context& io)
-    : io_(&io), timer_(std::in_place, io), epoch_(std::chrono::steady_clock::now()) {}
+    : io_(&io), timer_(std::make_unique<Timer>(io)), epoch_(std::chrono::steady_clock::now()) {}
 
 InProcessBus::~InProcessBus() = default;
 
@@ -133,8 +140,8 @@ void InProcessBus::schedule_io() {
     }
     const auto next = next_completion();
     if (!next) return;
-    timer_->expires_at(epoch_ + *next);
-    timer_->async_wait([alive, this](const boost::system::error_code& ec) {
+    timer_->timer.expires_at(epoch_ + *next);
+    timer_->timer.async_wait([alive, this](const boost::system::error_code& ec) {
         if (ec || alive.expired()) return;
         on_io_wakeup();
     });

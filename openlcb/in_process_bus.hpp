@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "openlcb/asio.hpp"
+#include "openlcb/asio_fwd.hpp"
 #include "openlcb/bus_pacer.hpp"
 #include "openlcb/can_timing.hpp"
 #include "openlcb/transport.hpp"
@@ -88,8 +88,10 @@ private:
     std::uint64_t frames_delivered_ = 0;
     bool delivering_ = false;
 
+    struct Timer;  // the steady timer of the timing model on an io_context
+
     boost::asio::io_context* io_ = nullptr;
-    std::optional<boost::asio::steady_timer> timer_;
+    std::unique_ptr<Timer> timer_;
     std::chrono::steady_clock::time_point epoch_;
     bool wakeup_posted_ = false;
     std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);

@@ -5,6 +5,8 @@
 #include <system_error>
 #include <utility>
 
+#include "openlcb/stack_driver.hpp"
+
 namespace olcb::simnode {
 
 NodeRegistry::NodeRegistry(std::vector<std::unique_ptr<SimNode>>& nodes, StackDriver& driver)

@@ -8,9 +8,12 @@
 #include <vector>
 
 #include "openlcb/node_id.hpp"
-#include "openlcb/stack_driver.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/sim_node.hpp"
+
+namespace olcb {
+class StackDriver;
+}  // namespace olcb
 
 namespace olcb::simnode {
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "openlcb/asio.hpp"
+
 namespace olcb {
 namespace {
 

@@ -11,6 +11,7 @@
 
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/in_process_bus.hpp"
+#include "openlcb/stack_driver.hpp"
 #include "simnode/sim_node_test_util.hpp"
 
 namespace olcb::simnode {
