@@ -1,5 +1,5 @@
 // Memory Configuration basics: Options, reply latency and forms, Space Info against the layout,
-// unknown spaces, Lock/Reserve and the read-only spaces refusing writes.
+// unknown spaces and commands, Lock/Reserve and the read-only spaces refusing writes.
 #include <set>
 #include <variant>
 
@@ -196,6 +196,26 @@ void memory_unknown_space(CheckRun& run, const CheckSpec& spec) {
     run.out(spec).refusal(refused, "a failure with an error code (0x1081)");
 }
 
+// No MemoryConfigurationS command byte starts with 0xB (0x80-0x8D, 0xA0-0xAB are the highest
+// assigned); OpenMRN and OpenLcbCLib reject it as unknown.
+constexpr std::uint8_t kUnassignedCommand = 0xB0;
+
+void memory_unknown_command(CheckRun& run, const CheckSpec& spec) {
+    const std::uint8_t payload[] = {memory::kDatagramType, kUnassignedCommand};
+    const MemResult& r = run.note(run.session().command(run.node(), payload));
+    const std::string what = "unknown command 20 " + hex(kUnassignedCommand, 2).substr(2);
+    if (r.rejected) {
+        const std::string code = r.error ? hex(r.error) : "no error code";
+        // The code is free: 0x1041 is only suggested.
+        const bool suggested = r.error == base::to_u16(base::ErrorCode::kSubcommandUnknown);
+        return run.out(spec).pass(what + " rejected with " + code +
+                                  (suggested ? "" : " (0x1041 is the suggested code)"));
+    }
+    std::string seen = r.datagram_ok_seen ? "Datagram Received OK" : "no answer";
+    if (r.datagram_ok_seen && !r.timed_out) seen += " and a reply datagram";
+    run.out(spec).fail(what + " not rejected: " + seen, "Datagram Rejected", seen);
+}
+
 void memory_lock(CheckRun& run, const CheckSpec& spec) {
     MemResult last;
     const std::uint64_t me = run.session().tool_id().value();
@@ -315,6 +335,12 @@ std::vector<CheckSpec> memory_checks() {
          "code WARNs)",
          "", "read of an unused space (0x50 up): rejected or failed with exactly 0x1081",
          memory_unknown_space},
+        {"memory.unknown-command", 425, Category::kMemory, "MemoryConfigurationS §4.3",
+         Strength::kShall,
+         "an unknown command byte is answered with Datagram Rejected (0x1041 suggested, not "
+         "required)",
+         "", "`20 B0` (no such command): Datagram Rejected with any error code",
+         memory_unknown_command},
         {"memory.lock", 730, Category::kMemory,
          "MemoryConfigurationS §4.17, §4.18; MemoryConfigurationTN §2.4.17", Strength::kShall,
          "when implemented, Lock/Reserve is a test-and-set of a node ID and zeros release it; not "

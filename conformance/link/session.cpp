@@ -587,6 +587,8 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
     if (!scan.index) {
         result.timed_out = true;
         result.error = base::to_u16(base::ErrorCode::kTimeout);
+        // Accepted and then silent differs from never answered (memory.unknown-command).
+        result.datagram_ok_seen = oc && oc->outcome.status == DatagramOutcome::Status::kAccepted;
         return result;
     }
     const Event& ev = messages_[*scan.index];

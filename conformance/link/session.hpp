@@ -44,7 +44,7 @@ struct MemResult {
     bool rejected = false;           ///< Datagram Rejected (vs Reply Fail)
     bool timed_out = false;          ///< no answer in time
     std::vector<std::uint8_t> data;  ///< read data
-    bool datagram_ok_seen = false;   ///< Datagram Received OK arrived before the reply
+    bool datagram_ok_seen = false;   ///< Datagram Received OK arrived (before the reply, if any)
     bool reply_pending = false;      ///< its Reply Pending flag
     /// The reply timeout the OK announced (reply within 2^N s; 0 = none); the largest of a range.
     std::uint8_t reply_timeout_exponent = 0;
