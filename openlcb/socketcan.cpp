@@ -2,6 +2,7 @@
 
 #include <linux/can/raw.h>
 #include <net/if.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -32,6 +33,9 @@ std::optional<CanFrame> from_kernel(const ::can_frame& frame) {
 namespace {
 
 constexpr auto kSendRetry = std::chrono::milliseconds(1);
+// How often a port whose interface went down looks whether it is up again: the kernel tells a
+// bound socket when its interface goes down, not when it comes back.
+constexpr auto kLinkPoll = std::chrono::milliseconds(100);
 // Room for about 8,000 frames (the kernel counts each near 1 KiB of buffer).
 constexpr int kReceiveBufferBytes = 8 << 20;
 
@@ -54,10 +58,18 @@ OpenError make_error(const std::string& interface, const char* step, int err) {
     return OpenError{err, "SocketCAN " + interface + ": " + step + " failed: " + reason +
                               " (errno " + std::to_string(err) + ")"};
 }
+
+// Whether the interface fd is bound to is administratively up; nullopt when it is gone.
+std::optional<bool> interface_up(int fd, const std::string& interface) {
+    ::ifreq request{};
+    std::memcpy(request.ifr_name, interface.c_str(), interface.size());
+    if (::ioctl(fd, SIOCGIFFLAGS, &request) != 0) return std::nullopt;
+    return (request.ifr_flags & IFF_UP) != 0;
+}
 }  // namespace
 
 struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
-    explicit Impl(boost::asio::io_context& io) : stream(io), retry(io) {}
+    explicit Impl(boost::asio::io_context& io) : stream(io), retry(io), poll(io) {}
 
     void read() {
         stream.async_read_some(boost::asio::buffer(&in, sizeof in),
@@ -65,8 +77,12 @@ struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
                                    const boost::system::error_code& ec, std::size_t n) {
                                    if (generation != self->generation || !self->stream.is_open())
                                        return;
-                                   if (ec) {
-                                       self->close();
+                                   // The kernel reports a down interface once; the socket stays
+                                   // bound and its reads wait for frames until it is up again.
+                                   if (ec == boost::asio::error::network_down) {
+                                       self->link_down(ec);
+                                   } else if (ec) {
+                                       self->lost(ec);
                                        return;
                                    }
                                    if (n == sizeof self->in) {
@@ -95,7 +111,10 @@ struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
                                         self->wait_for_room();
                                         return;
                                     }
-                                    if (ec) {
+                                    if (ec == boost::asio::error::network_down) {
+                                        ++self->stats.frames_dropped;
+                                        self->link_down(ec);
+                                    } else if (ec) {
                                         ++self->stats.frames_dropped;
                                     } else {
                                         ++self->stats.frames_sent;
@@ -119,6 +138,42 @@ struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
         });
     }
 
+    void link_down(const boost::system::error_code& ec) {
+        stats.frames_dropped += out.size();
+        out.clear();
+        if (!up) return;
+        up = false;
+        ++stats.link_losses;
+        report(false, "SocketCAN " + interface + " went down (" + ec.message() + ")");
+        watch_link();
+    }
+
+    // Any other read error (the interface deleted: ENODEV) ends the port for good.
+    void lost(const boost::system::error_code& ec) {
+        const bool was_up = up;
+        up = false;
+        close();
+        if (was_up) report(false, "SocketCAN " + interface + " is gone (" + ec.message() + ")");
+    }
+
+    void report(bool now_up, const std::string& reason) {
+        if (on_connection) on_connection(now_up, reason);
+    }
+
+    void watch_link() {
+        poll.expires_after(kLinkPoll);
+        poll.async_wait([self = shared_from_this(),
+                         generation = generation](const boost::system::error_code& ec) {
+            if (ec || generation != self->generation || !self->stream.is_open()) return;
+            const std::optional<bool> now =
+                interface_up(self->stream.native_handle(), self->interface);
+            if (!now.value_or(false)) return self->watch_link();
+            self->up = true;
+            self->report(true, {});
+            self->write();
+        });
+    }
+
     void close() {
         ++generation;
         boost::system::error_code ignored;
@@ -130,6 +185,10 @@ struct SocketCanPort::Impl : std::enable_shared_from_this<SocketCanPort::Impl> {
 
     boost::asio::posix::stream_descriptor stream;
     boost::asio::steady_timer retry;
+    boost::asio::steady_timer poll;
+    std::string interface;
+    bool up = true;
+    std::function<void(bool, const std::string&)> on_connection;
     ::can_frame in{};
     ::can_frame writing{};
     std::deque<::can_frame> out;
@@ -166,7 +225,15 @@ std::optional<OpenError> SocketCanPort::open(const std::string& interface) {
         ::close(fd);
         return make_error(interface, "bind", err);
     }
+    if (!interface_up(fd, interface).value_or(false)) {
+        ::close(fd);
+        return OpenError{ENETDOWN, "SocketCAN " + interface +
+                                       ": the interface is down (ip link set " + interface +
+                                       " up)"};
+    }
     configure_receive(fd);
+    impl_->interface = interface;
+    impl_->up = true;
     impl_->stream.assign(fd);
     impl_->stats = {};
     impl_->read();
@@ -178,6 +245,13 @@ void SocketCanPort::close() {
 }
 bool SocketCanPort::is_open() const {
     return impl_->stream.is_open();
+}
+bool SocketCanPort::link_up() const {
+    return impl_->stream.is_open() && impl_->up;
+}
+void SocketCanPort::set_connection_handler(
+    std::function<void(bool up, const std::string& reason)> handler) {
+    impl_->on_connection = std::move(handler);
 }
 SocketCanPort::Stats SocketCanPort::stats() const {
     return impl_->stats;
@@ -191,7 +265,7 @@ void SocketCanPort::send(const CanFrame& frame) {
         ++impl_->stats.frames_ignored;  // OpenLCB puts only extended data frames on the bus
         return;
     }
-    if (!impl_->stream.is_open() || impl_->out.size() >= kMaxQueuedFrames) {
+    if (!impl_->stream.is_open() || !impl_->up || impl_->out.size() >= kMaxQueuedFrames) {
         ++impl_->stats.frames_dropped;
         return;
     }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,8 +37,9 @@ public:
         std::uint64_t frames_sent = 0;
         std::uint64_t frames_received = 0;
         std::uint64_t frames_ignored = 0;  ///< standard, RTR or error frames (either direction)
-        std::uint64_t frames_dropped = 0;  ///< send queue full, not open, or a send error
+        std::uint64_t frames_dropped = 0;  ///< send queue full, not open, link down, send error
         std::uint64_t send_retries = 0;    ///< sends put off because the interface was full
+        std::uint64_t link_losses = 0;     ///< times the interface went down
     };
 
     /// Maximum frames waiting for the socket; more are dropped (counted).
@@ -50,12 +52,19 @@ public:
     SocketCanPort(const SocketCanPort&) = delete;
     SocketCanPort& operator=(const SocketCanPort&) = delete;
 
-    /// Opens a raw CAN socket bound to `interface` and starts reading; the error if it fails.
+    /// Opens a raw CAN socket bound to `interface` and starts reading; the error if it fails,
+    /// an interface that is down included (errno ENETDOWN).
     std::optional<OpenError> open(const std::string& interface);
     /// Closes the socket; nothing is delivered afterwards.
     void close();
     /// True while the socket is open.
     bool is_open() const;
+    /// False from the interface going down (`ip link set IF down`, an adapter unplugged) until
+    /// it is up again; frames sent meanwhile are dropped, as on a bus without the node. The
+    /// socket stays bound and reads again once the interface is up.
+    bool link_up() const;
+    /// Called with false and the reason when the interface goes down, true when it is back.
+    void set_connection_handler(std::function<void(bool up, const std::string& reason)> handler);
     /// Counters.
     Stats stats() const;
 

@@ -40,7 +40,10 @@ private:
 class CanLink final : public RealLink {
 public:
     CanLink(std::unique_ptr<boost::asio::io_context> io, NodeId tool_id)
-        : RealLink(std::move(io), tool_id), port_(this->io()) {}
+        : RealLink(std::move(io), tool_id), port_(this->io()) {
+        port_.set_connection_handler(
+            [this](bool up, const std::string& reason) { set_up(up, reason); });
+    }
     ~CanLink() override {
         detach();
         port_.close();

@@ -271,6 +271,14 @@ private:
             std::cerr << "simnode: " << failed->message << "\n";
             return false;
         }
+        // The nodes keep running while the interface is down, as on a bus whose cable is out.
+        can_->set_connection_handler([this](bool up, const std::string& reason) {
+            if (up) {
+                say("SocketCAN " + scenario_.socketcan + ": up again");
+            } else {
+                std::cerr << "simnode: " << reason << "; waiting for it\n" << std::flush;
+            }
+        });
         Transport& port = add_port([this](const CanFrame& f) { can_->send(f); });
         can_->set_handler([&port](const CanFrame& f) { port.send(f); });
         return true;

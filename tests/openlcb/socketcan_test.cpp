@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 #include <linux/can/raw.h>
 #include <net/if.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cstring>
+#include <string>
 #include <vector>
 
 #include "openlcb/tcp_test_util.hpp"
@@ -146,6 +149,74 @@ TEST(SocketCanPort, LiveVcan0ForeignFramesNeverReachThePort) {
     ASSERT_EQ(got.size(), 1u);
     EXPECT_EQ(got.front().id, 0x19490343u);
     EXPECT_EQ(port.stats().frames_ignored, 0u) << "filtered by the kernel, not by from_kernel()";
+}
+
+// Sets an interface up or down as `ip link set IF up|down` does; false without the right
+// (CAP_NET_ADMIN: root in ci/vm) or the interface.
+bool set_link(const char* interface, bool up) {
+    const int fd = ::socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
+    if (fd < 0) return false;
+    ::ifreq request{};
+    std::strncpy(request.ifr_name, interface, IFNAMSIZ - 1);
+    bool ok = ::ioctl(fd, SIOCGIFFLAGS, &request) == 0;
+    if (ok) {
+        request.ifr_flags =
+            static_cast<short>(up ? (request.ifr_flags | IFF_UP) : (request.ifr_flags & ~IFF_UP));
+        ok = ::ioctl(fd, SIOCSIFFLAGS, &request) == 0;
+    }
+    ::close(fd);
+    return ok;
+}
+
+// vcan1 is the live tests' own interface for taking down: ci/vm brings it up for them.
+TEST(SocketCanPort, LiveVcan1DownAtOpenIsOneClearError) {
+    if (!set_link("vcan1", false)) GTEST_SKIP() << "vcan1 cannot be set down here";
+    boost::asio::io_context io;
+    SocketCanPort port(io);
+    const auto error = port.open("vcan1");
+    ASSERT_TRUE(set_link("vcan1", true));
+    ASSERT_TRUE(error);
+    EXPECT_EQ(error->errno_value, ENETDOWN);
+    EXPECT_EQ(error->message, "SocketCAN vcan1: the interface is down (ip link set vcan1 up)");
+    EXPECT_FALSE(port.is_open());
+}
+
+// Down mid-run: reported once with the reason, frames dropped meanwhile; up again: reported, and
+// frames flow both ways on the same socket.
+TEST(SocketCanPort, LiveVcan1DownAndUpIsReportedAndFramesFlowAgain) {
+    boost::asio::io_context io;
+    SocketCanPort a(io);
+    SocketCanPort b(io);
+    if (const auto error = a.open("vcan1")) GTEST_SKIP() << error->message;
+    ASSERT_FALSE(b.open("vcan1"));
+    std::vector<std::string> events;
+    a.set_connection_handler([&](bool up, const std::string& reason) {
+        events.push_back(up ? "up" : "down: " + reason);
+    });
+    std::vector<CanFrame> got;
+    b.set_handler([&](const CanFrame& f) { got.push_back(f); });
+    if (!set_link("vcan1", false)) GTEST_SKIP() << "vcan1 cannot be set down here";
+    const bool down_seen = test::run_until(
+        io, [&] { return !events.empty(); }, std::chrono::seconds(5));
+    CanFrame f;
+    f.id = 0x19490343;
+    a.send(f);
+    const auto dropped = a.stats().frames_dropped;
+    const bool link_was_down = !a.link_up();
+    ASSERT_TRUE(set_link("vcan1", true));
+    ASSERT_TRUE(down_seen);
+    EXPECT_TRUE(link_was_down);
+    EXPECT_EQ(dropped, 1u);
+    EXPECT_EQ(events.front(), "down: SocketCAN vcan1 went down (Network is down)");
+    ASSERT_TRUE(test::run_until(
+        io, [&] { return events.size() == 2; }, std::chrono::seconds(5)));
+    EXPECT_EQ(events.back(), "up");
+    EXPECT_TRUE(a.link_up());
+    EXPECT_EQ(a.stats().link_losses, 1u);
+    a.send(f);
+    ASSERT_TRUE(test::run_until(
+        io, [&] { return !got.empty(); }, std::chrono::seconds(5)));
+    EXPECT_EQ(got, std::vector<CanFrame>{f});
 }
 
 }  // namespace
