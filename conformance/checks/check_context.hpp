@@ -31,7 +31,7 @@ struct SpaceInfo {
 };
 
 /// What run_protocol_checks() learned (empty members: not learned), and the run's inputs
-/// (timing, progress callbacks) and outcome (lost_after, not_run).
+/// (timing, progress callbacks) and outcome (lost_after, link_lost_during, not_run).
 struct CheckContext {
     std::optional<ProtocolSet> pip;           ///< Protocol Support Reply
     std::optional<memory::Snip> snip;         ///< decoded SNIP reply
@@ -48,9 +48,11 @@ struct CheckContext {
     std::optional<RunTiming> timing;
     /// Called with the bytes read so far while the CDI downloads (progress display).
     std::function<void(std::size_t)> cdi_progress;
-    /// The protocol check after which the node stopped answering ("" when it never did), and
-    /// how many selected checks were not run because of it.
+    /// The protocol check after which the node stopped answering ("" when it never did), the
+    /// one during which the link went down ("" when it stayed up), and how many selected checks
+    /// were not run because of either.
     std::string lost_after;
+    std::string link_lost_during;
     std::size_t not_run = 0;
     /// Called with each protocol check's ID as it starts (progress display).
     std::function<void(std::string_view)> check_started;

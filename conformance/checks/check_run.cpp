@@ -126,22 +126,29 @@ std::vector<std::uint8_t> CheckRun::selected_spaces(const CheckSpec& spec,
 void CheckRun::run(const CheckSpec& spec) {
     const std::size_t first = out_.size();
     const std::size_t planned = s_.ledger().entries().size();
+    const std::uint64_t losses = s_.link().losses();
     {
         WriteLedger::Origin origin(s_.ledger(), std::string(spec.id));
         if (spec.run) spec.run(*this, spec);
     }
+    // What the link lost is no evidence about the node.
+    if (s_.link().losses() != losses || !s_.link().up())
+        return not_judged(first, "not judged: the link went down during this check");
     // A write our own gate kept back proves nothing about the node: the check is not judged.
     const auto& entries = s_.ledger().entries();
     for (std::size_t i = planned; i < entries.size(); ++i) {
         if (entries[i].outcome != WriteOutcome::kNotSent) continue;
-        for (std::size_t r = first; r < out_.size(); ++r) {
-            out_[r].status = Status::kSkip;
-            out_[r].message =
-                "not judged: lcc-conform kept a write back (" + entries[i].refused_why + ")";
-            out_[r].expected.clear();
-            out_[r].seen.clear();
-        }
-        break;
+        return not_judged(
+            first, "not judged: lcc-conform kept a write back (" + entries[i].refused_why + ")");
+    }
+}
+
+void CheckRun::not_judged(std::size_t first, const std::string& why) {
+    for (std::size_t r = first; r < out_.size(); ++r) {
+        out_[r].status = Status::kSkip;
+        out_[r].message = why;
+        out_[r].expected.clear();
+        out_[r].seen.clear();
     }
 }
 

@@ -182,6 +182,9 @@ public:
     }
 
 private:
+    // Turns the results from index first on into SKIPs saying why they prove nothing.
+    void not_judged(std::size_t first, const std::string& why);
+
     // One cache entry per probe type, holding T (the result, or the results by key).
     struct Slot {
         virtual ~Slot() = default;

@@ -108,8 +108,28 @@ std::vector<CheckResult> short_read_checks(Session& session, const NodeInfo& nod
     return out;
 }
 
-std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
-                                             const ProtocolOptions& options, CheckContext& ctx) {
+namespace {
+
+// Why the checks still to come are not run ("" while they are): the node or the link went away.
+struct Stop {
+    std::string node_after;   // the check after which the node stopped answering
+    std::string link_during;  // the check during which the link went down
+
+    std::string why() const {
+        if (!link_during.empty()) return "the link went down during " + link_during;
+        if (!node_after.empty()) return "the node stopped answering after " + node_after;
+        return {};
+    }
+};
+
+// A check not run: a SKIP saying why (per-space checks have no result of their own).
+void not_run(CheckRun& run, const CheckSpec& spec, const std::string& why) {
+    if (!spec.id.ends_with(kPerSpace))
+        run.add(
+            {std::string(spec.id), spec.category, Status::kSkip, "not run: " + why, "", "", ""});
+}
+
+ProtocolOptions widened(const ProtocolOptions& options, const CheckContext& ctx) {
     // The node's measured latency widens every window; none gets shorter than asked.
     ProtocolOptions o = options;
     if (ctx.timing) {
@@ -118,25 +138,30 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
         o.quiet_window = std::max(o.quiet_window, ctx.timing->quiet);
     }
     o.cdi_progress = ctx.cdi_progress;
+    return o;
+}
+
+}  // namespace
+
+std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& node,
+                                             const ProtocolOptions& options, CheckContext& ctx) {
+    const ProtocolOptions o = widened(options, ctx);
     CheckRun run(session, node, o);
-    std::string gone;  // the check after which the node stopped answering
+    Stop stop;
+    const std::uint64_t losses = session.link().losses();
     for (const CheckSpec& spec : check_registry()) {
         if (!spec.run || !o.selection.wants(spec)) continue;
-        if (!gone.empty()) {
-            // A dead node would cost every later check its full timeout, for nothing.
+        if (const std::string why = stop.why(); !why.empty()) {
+            // A dead node or link would cost every later check its full timeout, for nothing.
             ++ctx.not_run;
-            if (!spec.id.ends_with(kPerSpace))
-                run.add({std::string(spec.id), spec.category, Status::kSkip,
-                         "not run: the node stopped answering after " + gone, "", "", ""});
+            not_run(run, spec, why);
             continue;
         }
         if (spec.exclusive) {
             if (auto other = run.other_tool()) {
-                if (!spec.id.ends_with(kPerSpace))
-                    run.add({std::string(spec.id), spec.category, Status::kSkip,
-                             "not run: another lcc-conform run (" + other->to_string() +
-                                 ") is on the segment, and this check needs the bus to itself",
-                             "", "", ""});
+                not_run(run, spec,
+                        "another lcc-conform run (" + other->to_string() +
+                            ") is on the segment, and this check needs the bus to itself");
                 continue;
             }
         }
@@ -146,10 +171,16 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
         const auto since = std::chrono::steady_clock::now();
         run.run(spec);
         run.share_duration(first, std::chrono::steady_clock::now() - since);
-        if (!heard_from(run, mark) && !session.ping(node, o.answer_window)) gone = spec.id;
+        // A silent link says nothing about the node (CheckRun left this check not judged).
+        if (session.link().losses() != losses || !session.link().up()) {
+            stop.link_during = spec.id;
+        } else if (!heard_from(run, mark) && !session.ping(node, o.answer_window)) {
+            stop.node_after = spec.id;
+        }
     }
     hand_over(run, ctx);
-    ctx.lost_after = gone;
+    ctx.lost_after = stop.node_after;
+    ctx.link_lost_during = stop.link_during;
     std::vector<CheckResult> out = run.take();
     std::erase_if(out, [&](const CheckResult& c) { return !o.selection.wants_id(c.id); });
     return out;

@@ -228,7 +228,13 @@ void NodeRun::protocol() {
     begin_task("protocol checks, reading CDI");
     report_.checks = protocol_checks_(session_, node_, ctx_);
     bar_.finish();
-    // A check not run because the node seemed gone is a hole in the verdict, never a pass.
+    // A check not run because the node or the link seemed gone is a hole in the verdict, never
+    // a pass.
+    if (!ctx_.link_lost_during.empty()) {
+        mark_incomplete(std::to_string(ctx_.not_run) +
+                        " checks not run: the link went down during " + ctx_.link_lost_during);
+        return;  // the link, not the node: link.lost and the restore's wait say the rest
+    }
     if (!ctx_.lost_after.empty())
         mark_incomplete(std::to_string(ctx_.not_run) +
                         " checks not run: the node stopped "

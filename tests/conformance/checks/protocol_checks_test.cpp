@@ -59,6 +59,62 @@ TEST(SessionTest, DiscoversAndReadsTheSimNode) {
     EXPECT_EQ(bad.error, 0x1081);
 }
 
+// A link that reports itself lost once armed and driven again; the simulated segment keeps
+// running, so only what the link reports can change a verdict.
+class LossyLink final : public Link {
+public:
+    explicit LossyLink(Link& inner) : inner_(inner) {}
+    void arm() { armed_ = true; }
+    NodeStack& stack() override { return inner_.stack(); }
+    TimePoint now() override { return inner_.now(); }
+    bool run_until(const std::function<bool()>& pred, Duration max) override {
+        if (armed_ && up_) {
+            up_ = false;
+            ++losses_;
+        }
+        return inner_.run_until(pred, max);
+    }
+    void send_frame(const CanFrame& frame) override { inner_.send_frame(frame); }
+    void set_frame_observer(FrameObserver observer) override {
+        inner_.set_frame_observer(std::move(observer));
+    }
+    bool up() override { return up_; }
+    std::uint64_t losses() override { return losses_; }
+
+private:
+    Link& inner_;
+    bool armed_ = false;
+    bool up_ = true;
+    std::uint64_t losses_ = 0;
+};
+
+// The link lost during a check: that check is not judged, the later ones are not run, and none
+// FAILs the node (the socketcan suite found events.pcer-payload-tolerated failed this way).
+TEST(ProtocolChecksTest, ALinkLostDuringACheckJudgesNothingAfterIt) {
+    Bench b;
+    LossyLink lossy(*b.link);
+    b.session.reset();
+    b.session = std::make_unique<Session>(lossy);
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    CheckContext ctx;
+    ctx.check_started = [&](std::string_view id) {
+        if (id == "memory.unknown-command") lossy.arm();
+    };
+    const auto results = run_protocol_checks(*b.session, *node, ProtocolOptions{}, ctx);
+    EXPECT_EQ(ctx.link_lost_during, "memory.unknown-command");
+    EXPECT_EQ(ctx.lost_after, "");
+    EXPECT_GT(ctx.not_run, 10u);
+    const CheckResult* during = find_check(results, "memory.unknown-command");
+    ASSERT_NE(during, nullptr);
+    EXPECT_EQ(during->status, Status::kSkip);
+    EXPECT_EQ(during->message, "not judged: the link went down during this check");
+    const CheckResult* later = find_check(results, "memory.lock");
+    ASSERT_NE(later, nullptr);
+    EXPECT_EQ(later->message, "not run: the link went down during memory.unknown-command");
+    for (const auto& r : results) EXPECT_NE(r.status, Status::kFail) << dump(results);
+}
+
 TEST(ProtocolChecksTest, DefaultNodeHasNoFailure) {
     Bench b;
     CheckContext ctx;
