@@ -260,6 +260,12 @@ bool NodeRun::writes_allowed() {
                     "nothing written by the encoding checks (see node.*)");
         return false;
     }
+    if (link_lost()) {
+        // Reading a backup through a dead link costs every variable its full timeout.
+        skip_writes("the link went down during the protocol checks",
+                    "nothing written by the encoding checks (see link.lost)");
+        return false;
+    }
     if (options_.read_only) {
         skip_writes("--read-only: no write", "nothing written (--read-only)");
         return false;
