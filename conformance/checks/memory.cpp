@@ -3,6 +3,7 @@
 #include <set>
 #include <variant>
 
+#include "base/hex.hpp"
 #include "base/timings.hpp"
 #include "conformance/checks/checks.hpp"
 
@@ -203,7 +204,7 @@ constexpr std::uint8_t kUnassignedCommand = 0xB0;
 void memory_unknown_command(CheckRun& run, const CheckSpec& spec) {
     const std::uint8_t payload[] = {memory::kDatagramType, kUnassignedCommand};
     const MemResult& r = run.note(run.session().command(run.node(), payload));
-    const std::string what = "unknown command 20 " + hex(kUnassignedCommand, 2).substr(2);
+    const std::string what = "unknown command 20 " + base::hex_digits(kUnassignedCommand, 2);
     if (r.rejected) {
         const std::string code = r.error ? hex(r.error) : "no error code";
         // The code is free: 0x1041 is only suggested.
