@@ -13,6 +13,7 @@
 #include "cdi/parser.hpp"
 #include "cdi/schema_validator.hpp"
 #include "openlcb/asio.hpp"
+#include "openlcb/can_timing.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -218,7 +219,7 @@ po::options_description testing_options() {
                           "latency=MS[:JITTER]; a node's own latency fault wins")(
         "bitrate", po::value<std::string>()->value_name("N"),
         "pace the segment (hub or in-process bus) as one CAN bus of N bit/s, "
-        "10000..1000000, e.g. 125000 (default 0 = off)")(
+        "10000..1000000, e.g. 125000 (default 0 = off; 125000 with socketcan)")(
         "start-on-connect", po::value<std::string>()->implicit_value("true")->value_name("BOOL"),
         "with listen: every node logs in again (CID..RID, AMD, Initialization Complete) "
         "whenever a TCP client connects");
@@ -753,6 +754,12 @@ std::optional<Scenario> build(const Raw& file, const Raw& cli, const fs::path& s
     scenario.image_root = top_image_dir.empty() ? default_root : top_image_dir;
     Builder builder(scenario, error);
     if (!builder.process(merged.top)) return std::nullopt;
+    // A vcan carries frames as fast as they are written, far faster than any CAN bus; a reader
+    // with the kernel's default receive queue (OpenMRN's hub -s vcan0) then loses the frames of a
+    // stream. On SocketCAN the segment runs at LCC's bit rate unless bitrate says otherwise.
+    if (!scenario.socketcan.empty() && !merged.top.contains("bitrate")) {
+        scenario.bitrate = kLccBitrate;
+    }
     if (merged.sections.empty()) {
         if (!builder.group("", merged.top, default_root)) return std::nullopt;
     } else {

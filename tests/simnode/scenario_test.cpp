@@ -127,6 +127,24 @@ TEST(ScenarioTest, EveryTransportAtOnce) {
     EXPECT_EQ(s->serial, "/dev/ttyACM0");
 }
 
+// A vcan is faster than any CAN bus: on SocketCAN the segment keeps LCC's 125 kbit/s unless
+// bitrate is given, in the file or on the command line (0 turns pacing off).
+TEST(ScenarioTest, SocketCanPacesAtLccBitrateUnlessTold) {
+    std::string error;
+    auto s = parse(kOneNode, {"--socketcan", "vcan0"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->bitrate, 125000u);
+    s = parse(kOneNode, {"--socketcan", "vcan0", "--bitrate", "0"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->bitrate, 0u);
+    s = parse(std::string("bitrate = 250000\n") + kOneNode, {"--socketcan", "vcan0"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->bitrate, 250000u);
+    s = parse(kOneNode, {"--listen", "127.0.0.1:0"}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->bitrate, 0u);  // a TCP hub alone stays unpaced
+}
+
 TEST(ScenarioTest, CountMakesConsecutiveNodeIds) {
     std::string error;
     const auto s = parse(std::string(kOneNode) + "count = 3\n", {}, error);
