@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "base/host_port.hpp"
+#include "conformance/app/log_decode.hpp"
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/checks/protocol_checks.hpp"
 #include "conformance/link/link.hpp"
@@ -170,6 +171,14 @@ void print_help(const po::options_description& opts) {
            "                     put a safety, JMRI or CSV backup back (only what differs)\n"
            "       lcc-conform diff A B                  compare two backup files\n"
            "       lcc-conform diff [--node ID] FILE     what restoring FILE would change\n"
+           "       lcc-conform decode FILE               read back a CAN log, no link needed\n"
+           "                     FILE ('-': standard input) holds candump -L or GridConnect\n"
+           "                     lines; one line per frame on stdout:\n"
+           "                       SECONDS.MICROS IFACE :X19490343N; 343 Verify Node ID ...\n"
+           "                       :X19490343N; 343 Verify Node ID ...   (GridConnect lines)\n"
+           "                     other lines (CAN FD, error frames) are skipped, each named on\n"
+           "                     stderr, then 'decode: N frames, M lines skipped'; exit 0 once\n"
+           "                     read, 2 when FILE cannot be opened (docs/decode.md)\n"
            "Without --node, backup, restore and diff use the node a backup's '# node' line\n"
            "names, else the only node on the bus (several: they are listed). docs/backup.md\n\n"
            "Checks every node found (or --node ID) and prints one line per check.\n"
@@ -517,6 +526,30 @@ bool options_usable(const po::variables_map& vm) {
     return true;
 }
 
+// The command and its FILEs (args[0] is the command): false after saying what is wrong.
+bool command_usable(const std::string& command, const std::vector<std::string>& args,
+                    const po::variables_map& vm) {
+    if (command != "check" && command != "restore" && command != "backup" && command != "diff" &&
+        command != "decode") {
+        std::cerr << "lcc-conform: unknown command '" << command << "' (see --help)\n";
+        return false;
+    }
+    if ((command == "restore" || command == "backup") && args.size() != 2) {
+        std::cerr << "lcc-conform: " << command << " wants exactly one FILE\n";
+        return false;
+    }
+    if (command == "diff" &&
+        (args.size() < 2 || args.size() > 3 || (args.size() == 3 && vm.count("node")))) {
+        std::cerr << "lcc-conform: diff wants two FILEs, or --node ID and one FILE\n";
+        return false;
+    }
+    if (command == "decode" && args.size() != 2) {
+        std::cerr << "lcc-conform: decode wants exactly one FILE ('-' for standard input)\n";
+        return false;
+    }
+    return true;
+}
+
 int main_checked(int argc, char** argv) {
     po::options_description opts("options");
     opts.add(transport_options()).add(check_options());
@@ -539,18 +572,9 @@ int main_checked(int argc, char** argv) {
     std::vector<std::string> args;
     if (vm.count("args")) args = vm["args"].as<std::vector<std::string>>();
     const std::string command = args.empty() ? "check" : args[0];
-    if (command != "check" && command != "restore" && command != "backup" && command != "diff") {
-        std::cerr << "lcc-conform: unknown command '" << command << "' (see --help)\n";
-        return kUsage;
-    }
-    if ((command == "restore" || command == "backup") && args.size() != 2) {
-        std::cerr << "lcc-conform: " << command << " wants exactly one FILE\n";
-        return kUsage;
-    }
-    if (command == "diff" &&
-        (args.size() < 2 || args.size() > 3 || (args.size() == 3 && vm.count("node")))) {
-        std::cerr << "lcc-conform: diff wants two FILEs, or --node ID and one FILE\n";
-        return kUsage;
+    if (!command_usable(command, args, vm)) return kUsage;
+    if (command == "decode") {
+        return run_decode(args[1], std::cin, std::cout, std::cerr);  // needs no link
     }
     if (command == "diff" && args.size() == 3) {
         return run_diff_files(args[1], args[2], std::cout, std::cerr);  // needs no link
