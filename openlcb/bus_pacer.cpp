@@ -50,6 +50,7 @@ std::optional<BusPacer::Duration> BusPacer::next_completion() {
 }
 
 std::optional<BusPacer::Done> BusPacer::pop(Duration now) {
+    if (!on_wire_ && now - free_at_ > kMaxCatchUp) free_at_ = now - kMaxCatchUp;
     if (!start_next_frame() || on_wire_->completed_at > now) return std::nullopt;
     std::optional<Done> done = on_wire_;
     on_wire_.reset();

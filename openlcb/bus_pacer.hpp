@@ -22,7 +22,10 @@ namespace olcb {
 /// completes at its start plus that. The next frame is chosen lazily (by next_completion() or
 /// pop()), so frames pushed at the same instant before that call all take part in the
 /// arbitration. The schedule is kept on the bus's own clock: a caller that looks late gets what
-/// completed meanwhile, and the bus time lost to its lateness is not added to later frames.
+/// completed meanwhile, and the bus time lost to its lateness is not added to later frames, up to
+/// kMaxCatchUp: a caller stalled longer (a program building 1,000 nodes before its event loop
+/// runs) would otherwise get every frame of the stall at once, a burst no bus carries, so the
+/// bus time beyond it is lost and the waiting frames follow at the bit rate.
 class BusPacer {
 public:
     /// Bus time: any monotonic clock the caller uses for every call (simulated or steady).
@@ -37,6 +40,10 @@ public:
         Duration completed_at{0};
     };
 
+    /// Most bus time a late caller's pop() makes up for (timer wake-ups late by a few ms lose
+    /// nothing; a stall of seconds is not replayed as one burst).
+    static constexpr Duration kMaxCatchUp = std::chrono::milliseconds(20);
+
     /// A bus at `bitrate` bit/s (0 is taken as 1).
     explicit BusPacer(std::uint32_t bitrate);
 
@@ -46,7 +53,8 @@ public:
     void push(Source source, const CanFrame& frame, Duration now);
     /// Completion time of the frame on the wire or next to go on it; nullopt when none waits.
     std::optional<Duration> next_completion();
-    /// The frame on the wire if it completed by `now` (the bus is then free for the next).
+    /// The frame on the wire if it completed by `now` (the bus is then free for the next). No
+    /// frame starts before now - kMaxCatchUp.
     std::optional<Done> pop(Duration now);
 
     /// Frames of `source` waiting for the bus (not counting one on the wire).

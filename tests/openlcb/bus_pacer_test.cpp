@@ -112,6 +112,21 @@ TEST(BusPacer, ALateCallerGetsWhatCompletedMeanwhileOnTheBusSchedule) {
     EXPECT_EQ(bus.queued(8), 0u);
 }
 
+// A caller stalled for a second (simnode building 1,000 nodes before its loop ran) gets only
+// kMaxCatchUp (20 ms) of bus time at once, not a second's frames as one burst; the rest follow
+// at the bit rate.
+TEST(BusPacer, AStalledCallerGetsAtMostTheCatchUpAtOnce) {
+    BusPacer bus(1'000'000);
+    for (int i = 0; i < 1000; ++i) bus.push(7, frame(0x100, 8), 0us);  // 160 us each
+    std::vector<Duration> times;
+    while (const auto done = bus.pop(1'000'000us)) times.push_back(done->completed_at);
+    ASSERT_EQ(times.size(), 125u);  // 20 ms / 160 us
+    EXPECT_EQ(times.front(), 980'160us);
+    EXPECT_EQ(times.back(), 1'000'000us);
+    EXPECT_EQ(bus.next_completion(), 1'000'160us);
+    EXPECT_EQ(bus.pending(), 875u);
+}
+
 // Tools reading 64 bytes at a time from one node, one read outstanding each: request (1 frame),
 // the node's Datagram Received OK and 9 reply frames (the last one marked by its ID), the tool's
 // Datagram Received OK. Returns the reads each tool completed within `span`.
