@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "base/hex.hpp"
+#include "base/utf8.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "memory/memory_config_defs.hpp"
 #include "openlcb/can_frame.hpp"
@@ -90,15 +91,6 @@ std::string candump_reason(std::string_view line) {
     return "not a valid candump -L frame";
 }
 
-// The log's interface name is untrusted text: no control byte of it reaches the terminal.
-std::string printable(std::string_view text) {
-    std::string out(text);
-    for (char& c : out) {
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
-    }
-    return out;
-}
-
 // The state of one decode: the monitor (aliases learnt, datagrams in progress) and the counts.
 class LogDecoder {
 public:
@@ -145,7 +137,9 @@ private:
         if (!entry) return skip(number, candump_reason(text));
         // The digits between the parentheses, as the log has them (parse() checked them).
         const std::string_view stamp = text.substr(1, text.find(')') - 1);
-        out_ << stamp << ' ' << printable(entry->interface) << ' ' << decoded(entry->frame) << '\n';
+        // The interface name is untrusted text: no control byte of it reaches the terminal.
+        out_ << stamp << ' ' << base::printable(entry->interface) << ' ' << decoded(entry->frame)
+             << '\n';
         ++counts_.frames;
     }
 
