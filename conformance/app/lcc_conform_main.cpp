@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "base/file.hpp"
 #include "base/host_port.hpp"
 #include "conformance/app/log_decode.hpp"
 #include "conformance/checks/check_registry.hpp"
@@ -209,7 +210,7 @@ public:
     // error now, not a lost report later.
     bool writable(std::string& error) const {
         for (const std::string& p : {json_, junit_, html_}) {
-            if (!p.empty() && !write_file(p, "", error)) return false;
+            if (!p.empty() && !base::write_file(p, "", error)) return false;
         }
         return true;
     }
@@ -220,15 +221,15 @@ public:
         run.connection = connection_;
         run.exit_code = code;
         std::string error;
-        if (!json_.empty() && !write_file(json_, to_json(reports, run), error)) {
+        if (!json_.empty() && !base::write_file(json_, to_json(reports, run), error)) {
             std::cerr << "lcc-conform: " << error << "\n";
             return kUsage;
         }
-        if (!junit_.empty() && !write_file(junit_, to_junit(reports, run), error)) {
+        if (!junit_.empty() && !base::write_file(junit_, to_junit(reports, run), error)) {
             std::cerr << "lcc-conform: " << error << "\n";
             return kUsage;
         }
-        if (!html_.empty() && !write_file(html_, to_html(reports, run), error)) {
+        if (!html_.empty() && !base::write_file(html_, to_html(reports, run), error)) {
             std::cerr << "lcc-conform: " << error << "\n";
             return kUsage;
         }

@@ -1,12 +1,9 @@
 #include "conformance/report/report.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <ostream>
 
 namespace olcb::conform {
@@ -31,31 +28,6 @@ Summary summarize(const std::vector<NodeReport>& reports) {
         s.skip += r.count(Status::kSkip);
     }
     return s;
-}
-
-bool write_file(const std::string& path, const std::string& text, std::string& error) {
-    // POSIX calls, so the message can say why (errno), not only that it failed.
-    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        error = "cannot open " + path + " for writing: " + std::strerror(errno);
-        return false;
-    }
-    std::size_t done = 0;
-    while (done < text.size()) {
-        const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            error = "cannot write " + path + ": " + std::strerror(n < 0 ? errno : EIO);
-            ::close(fd);
-            return false;
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    if (::close(fd) != 0) {
-        error = "cannot write " + path + ": " + std::strerror(errno);
-        return false;
-    }
-    return true;
 }
 
 bool is_terminal(int fd) {

@@ -71,9 +71,6 @@ std::string to_json(const std::vector<NodeReport>& reports, const RunInfo& run =
 /// with <system-out>. A run error is one more testsuite "lcc-conform" whose testcase has <error>.
 std::string to_junit(const std::vector<NodeReport>& reports, const RunInfo& run = {});
 
-/// Writes text to path; false with error set when the file cannot be written.
-bool write_file(const std::string& path, const std::string& text, std::string& error);
-
 /// True when file descriptor fd is a terminal (colour and progress bars only then).
 bool is_terminal(int fd);
 

@@ -192,7 +192,7 @@ int run_config_backup(Session& session, const BackupOptions& o, std::ostream& ou
     const std::string id = node.id.to_string();
     const std::string text = o.csv ? backup_csv(entries, values) : backup_text(entries, values, id);
     std::string error;
-    if (!write_file(o.path, text, error)) {
+    if (!base::write_file(o.path, text, error)) {
         err << "lcc-conform: " << error << "\n";
         return 2;
     }

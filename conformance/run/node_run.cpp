@@ -117,6 +117,7 @@ NodeReport NodeRun::run() {
     timed("unlock", &NodeRun::release_lock);
     timed("memory map", &NodeRun::map_memory);
     timed("findings", &NodeRun::findings);
+    note_unsaved_backup();
     select_results();
     note_not_tested();
     report_.elapsed = wall() - began;
@@ -551,6 +552,20 @@ void NodeRun::after_incident() {
     WriteLedger::Restoring restoring(session_.ledger());
     for (const InFlight& f : in_flight_) memory_.write(f.space, f.address, f.original);
     in_flight_.clear();
+}
+
+void NodeRun::note_unsaved_backup() {
+    // The gate kept every write the file was to cover back, so the node is safe, but the checks
+    // that write were not run: a read-only directory or a full disk once gave exit 0 and a report
+    // of SKIPs that read like a clean run.
+    const std::string& why = cover_.save_error();
+    if (why.empty()) return;
+    const std::string text =
+        "the safety backup could not be written (" + why + "), so " +
+        (session_.ledger().sent(node_.id) == 0 ? "nothing was written to the node"
+                                               : "no write after that was sent to the node");
+    mark_incomplete(text);
+    progress_ << "lcc-conform: " << report_.node_id << ": " << text << '\n' << std::flush;
 }
 
 void NodeRun::mark_incomplete(const std::string& why) {

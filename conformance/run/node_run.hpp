@@ -57,6 +57,9 @@ private:
     void after_incident();
     void restore_and_verify();
     void findings();
+    /// A backup file that could not be written kept writes back: the run is incomplete (exit
+    /// 2), and stderr says so in one line.
+    void note_unsaved_backup();
     void select_results();
     void note_slow_node();
     void map_memory();

@@ -1,11 +1,7 @@
 #include "conformance/run/safety_backup.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
+#include <cstdio>
 #include <iostream>
 #include <sstream>
 #include <string_view>
@@ -129,34 +125,9 @@ std::string SafetyBackup::to_text() const {
 }
 
 bool SafetyBackup::save(std::string& error) const {
-    std::string tmp = path_ + ".tmp";
-    std::string text = to_text();
-    int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) {
-        error = "cannot create backup file " + tmp + ": " + std::strerror(errno);
-        return false;
-    }
-    std::size_t done = 0;
-    while (done < text.size()) {
-        ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-        if (n <= 0) {
-            error = "cannot write backup file " + tmp + ": " + std::strerror(n < 0 ? errno : EIO);
-            ::close(fd);
-            return false;
-        }
-        done += static_cast<std::size_t>(n);
-    }
-    if (::fsync(fd) != 0) {
-        error = "cannot sync backup file " + tmp + " to disk: " + std::strerror(errno);
-        ::close(fd);
-        return false;
-    }
-    ::close(fd);
-    if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
-        error = "cannot store backup file " + path_ + ": " + std::strerror(errno);
-        return false;
-    }
-    return true;
+    // A fresh temporary name, created exclusively: with the fixed PATH.tmp opened O_TRUNC, a link
+    // planted there had its target overwritten with this text and renamed into place.
+    return base::write_file(path_, to_text(), error);
 }
 
 bool SafetyBackup::is_safety_backup(const std::string& text) {

@@ -56,7 +56,9 @@ public:
     /// Reads and keeps the parts of r not saved yet (saved bytes keep their first value); ""
     /// when all came, else why not (the file is not written: save() does that).
     std::string save_bytes(MemoryAccess& memory, const RangeRequest& r);
-    /// Writes the file atomically (temporary file, fsync, rename).
+    /// Writes the file atomically (base::write_file: a new temporary file created exclusively,
+    /// synced, renamed over path()); false with `error` "cannot open PATH for writing: REASON"
+    /// or "cannot write PATH: REASON".
     bool save(std::string& error) const;
     /// Loads a backup file; nullopt with `error` set when it is missing or malformed.
     static std::optional<SafetyBackup> load(const std::string& path, std::string& error);

@@ -4,6 +4,8 @@
 // RestoreGuard owns their restore. A write whose bytes cannot be saved is not sent.
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +34,9 @@ public:
     bool capture(const std::vector<RangeRequest>& ranges,
                  std::vector<std::pair<RangeRequest, std::string>>& missing, std::string& error);
 
+    /// Why the backup file could not be written, the first time it could not ("" when every
+    /// save succeeded): the writes it was to cover were kept back, so the run is not whole.
+    const std::string& save_error() const { return save_error_; }
     /// True once any byte was saved (a restore is owed).
     bool armed() const { return guard_ != nullptr; }
     /// The backup (nullptr before the first saved byte).
@@ -49,6 +54,9 @@ public:
 
 private:
     SafetyBackup& ensure_backup();
+    /// Writes the backup file unless it already holds every range; the first failure is kept in
+    /// save_error_.
+    bool save(std::string& error);
     void arm();
 
     Session& session_;
@@ -58,6 +66,9 @@ private:
     SessionMemory memory_;
     std::unique_ptr<SafetyBackup> backup_;
     std::unique_ptr<RestoreGuard> guard_;
+    std::string save_error_;
+    /// How many of the backup's ranges the file holds (none saved yet: never equal).
+    std::size_t saved_ranges_ = std::numeric_limits<std::size_t>::max();
 };
 
 }  // namespace olcb::conform

@@ -5,6 +5,8 @@
 // command works afterwards; the image files are byte-identical whenever the run says so.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -237,6 +239,88 @@ TEST(LccConformSafety, WritePastEndIsItsOwnOptionAndItsByteIsNamed) {
     for (auto it = after.begin(); it != after.end();)
         it = it->first.ends_with(".past-end") ? after.erase(it) : std::next(it);
     EXPECT_EQ(after, before);
+}
+
+// ---- hostile files: links planted where lcc-conform writes, a backup that cannot be written ----
+
+// lcc-conform with args: exit code and stdout, its stderr in the file `err`.
+std::pair<int, std::string> conform_stderr_to(const fs::path& err,
+                                              const std::vector<std::string>& args) {
+    std::vector<std::string> sh = {"-c", "err=$1; shift; exec \"$0\" \"$@\" 2>\"$err\"",
+                                   LCC_CONFORM_PATH, err.string()};
+    sh.insert(sh.end(), args.begin(), args.end());
+    return run_program("/bin/sh", sh, milliseconds(120000));
+}
+
+// A link planted at BACKUP.tmp, the fixed temporary name of the older lcc-conform, had its target
+// overwritten by a --backup run and by `backup FILE` (as root: any file of the system).
+TEST(LccConformSafety, LinksPlantedWhereItWritesAreNeverWrittenThrough) {
+    Simnode n(source_path("scenarios/default.ini"));
+    ASSERT_NE(n.port, 0);
+    TempDir out("lcc-conform-safety-out");
+    TempDir elsewhere("lcc-conform-safety-target");
+    const fs::path target = elsewhere.path() / "precious.txt";
+    const std::string precious = "not lcc-conform's to write\n";
+    std::ofstream(target, std::ios::binary) << precious;
+    const fs::path backup = out.path() / "safety.txt";
+    fs::create_symlink(target, backup.string() + ".tmp");
+    const auto before = snapshot_images(n.images.path());
+    auto [code, text] = conform({"--connect", n.connect(), "--node", kNode, "--backup",
+                                 backup.string(), "--only", "encoding.*"});
+    EXPECT_EQ(code, 0) << text;
+    EXPECT_EQ(status_of(text, "encoding.restore"), "PASS") << text;
+    EXPECT_EQ(read_text(target), precious);
+    EXPECT_EQ(fs::read_symlink(backup.string() + ".tmp"), target) << "left as it was";
+    EXPECT_EQ(settled_images(n.images.path(), before), before);
+    // `backup FILE`, with a link at FILE.tmp, then at FILE itself (rename replaces the link).
+    const fs::path config = out.path() / "config.txt";
+    fs::create_symlink(target, config.string() + ".tmp");
+    for (int round = 0; round < 2; ++round) {
+        if (round == 1) fs::create_symlink(target, config);
+        std::tie(code, text) =
+            conform({"--connect", n.connect(), "--node", kNode, "backup", config.string()});
+        EXPECT_EQ(code, 0) << text;
+        EXPECT_EQ(read_text(target), precious) << "round " << round;
+        EXPECT_FALSE(fs::is_symlink(config));
+        EXPECT_NE(read_text(config).find("\n# node 05.01.01.01.22.00\n"), std::string::npos)
+            << read_text(config);
+        fs::remove(config);
+    }
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(out.path())) left.push_back(e.path().filename());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"config.txt.tmp", "safety.txt.tmp"}))
+        << "no temporary file of lcc-conform's own is left";
+}
+
+// A backup file that cannot be written (a read-only directory, a full disk; /dev/null/x stops
+// root too): nothing is written to the node, exit 2 with one line on stderr, and the reports say
+// incomplete. It used to exit 0 with a report of SKIPs.
+TEST(LccConformSafety, ABackupThatCannotBeWrittenWritesNothingAndExits2) {
+    Simnode n(source_path("scenarios/default.ini"));
+    ASSERT_NE(n.port, 0);
+    TempDir out("lcc-conform-safety-out");
+    const fs::path err = out.path() / "stderr.txt";
+    const fs::path json = out.path() / "r.json";
+    const auto before = snapshot_images(n.images.path());
+    const auto [code, text] =
+        conform_stderr_to(err, {"--connect", n.connect(), "--node", kNode, "--backup",
+                                "/dev/null/safety.txt", "--json", json.string()});
+    EXPECT_EQ(code, 2) << text << read_text(err);
+    const std::string why =
+        "the safety backup could not be written (cannot open /dev/null/safety.txt for writing: "
+        "Not a directory), so nothing was written to the node";
+    EXPECT_NE(read_text(err).find("\nlcc-conform: " + std::string(kNode) + ": " + why + "\n"),
+              std::string::npos)
+        << read_text(err);
+    EXPECT_NE(text.find("INCOMPLETE: " + why + "\n"), std::string::npos) << text;
+    EXPECT_EQ(text.find("PASS  encoding."), std::string::npos) << text;
+    const auto j = read_report(json);
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j["run"]["exit_code"], 2);
+    EXPECT_TRUE(j["nodes"][0]["incomplete"].get<bool>());
+    EXPECT_EQ(j["nodes"][0]["writes"]["sent"], 0);
+    EXPECT_EQ(snapshot_images(n.images.path()), before);
 }
 
 }  // namespace

@@ -4,7 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
 #include "conformance/backup_test_util.hpp"
+#include "conformance/sim_bench.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -36,6 +43,31 @@ TEST_F(ConfigBackupTest, ReadFailuresAreListedAndTheVariableLeftOut) {
     EXPECT_NE(errors[0].find("seg3.child0"), std::string::npos);
     EXPECT_EQ(text.find("seg3.child0="), std::string::npos);
     EXPECT_NE(text.find("Main.Enabled=0"), std::string::npos);
+}
+
+// `lcc-conform backup FILE` opened FILE with O_TRUNC: a link planted at FILE had its target
+// overwritten. Now the file is replaced (base::write_file): links at FILE or at FILE.tmp are
+// never written through.
+TEST(RunConfigBackup, PlantedLinksAtTheFileAndItsTemporaryNameAreNotWrittenThrough) {
+    namespace fs = std::filesystem;
+    test_support::TempDir dir("config-backup-links");
+    const fs::path outside = dir.path() / "outside.txt";
+    testing::SimBench bench;
+    ASSERT_TRUE(bench.start());
+    for (const std::string name : {"at-path.txt", "at-tmp.txt"}) {
+        { std::ofstream(outside, std::ios::binary) << "precious\n"; }
+        const fs::path file = dir.path() / name;
+        fs::create_symlink(outside,
+                           name == "at-path.txt" ? file : fs::path(file.string() + ".tmp"));
+        std::ostringstream out, err;
+        EXPECT_EQ(run_config_backup(*bench.session, {"", file.string(), false}, out, err), 0)
+            << err.str();
+        EXPECT_EQ(test_support::read_text(outside), "precious\n") << name;
+        EXPECT_FALSE(fs::is_symlink(file)) << name;
+        EXPECT_NE(test_support::read_text(file).find("\nNode identity.User Name=simnode default\n"),
+                  std::string::npos)
+            << test_support::read_text(file);
+    }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -29,7 +30,10 @@ using Memory = std::map<std::uint8_t, std::vector<std::uint8_t>>;
 
 class SafetyTest : public ::testing::Test {
 protected:
-    void TearDown() override { fs::remove(backup_); }
+    void TearDown() override {
+        std::error_code ignored;  // a backup path that cannot exist (/dev/null/...) included
+        fs::remove(backup_, ignored);
+    }
 
     void start(const std::string& faults, const std::string& cdi_file = "default.xml") {
         simnode::NodeConfig config;
@@ -338,6 +342,31 @@ TEST_F(SafetyTest, WithoutWritePastEndNoWriteCrossesAnEnd) {
     EXPECT_TRUE(dut_->memory().past_end(0xFD).empty());
     EXPECT_TRUE(dut_->memory().past_end(0xFB).empty());
     EXPECT_EQ(find(r, "memory.write-past-end.fd"), nullptr);
+    EXPECT_EQ(memory(), before_);
+}
+
+// A backup file that cannot be written (a read-only directory, a full disk): nothing reaches the
+// node, and the run is incomplete (exit 2) with one line on stderr, never a clean run of SKIPs
+// with exit 0 as before.
+TEST_F(SafetyTest, AnUnwritableBackupWritesNothingAndMakesTheRunIncomplete) {
+    start("");
+    backup_ = "/dev/null/safety.txt";  // no file can be made there, even by root
+    const NodeReport r = run();
+    EXPECT_TRUE(r.incomplete);
+    EXPECT_EQ(exit_code({r}), 2);
+    const std::string why =
+        "the safety backup could not be written (cannot open /dev/null/safety.txt for writing: "
+        "Not a directory), so nothing was written to the node";
+    EXPECT_NE(std::find(r.incomplete_reasons.begin(), r.incomplete_reasons.end(), why),
+              r.incomplete_reasons.end())
+        << ::testing::PrintToString(r.incomplete_reasons);
+    EXPECT_NE(progress_.str().find("lcc-conform: 05.01.01.01.22.00: " + why + "\n"),
+              std::string::npos)
+        << progress_.str();
+    EXPECT_EQ(session_->ledger().sent(kDut), 0u);
+    EXPECT_EQ(r.restore.writes, 0u);
+    EXPECT_TRUE(r.restore_summary.starts_with("nothing written")) << r.restore_summary;
+    EXPECT_EQ(find(r, "encoding.restore"), nullptr);
     EXPECT_EQ(memory(), before_);
 }
 

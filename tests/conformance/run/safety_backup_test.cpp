@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <string>
 
 #include "conformance/fake_memory.hpp"
 
@@ -48,6 +50,48 @@ TEST(SafetyBackup, CaptureFailsWithoutWritingWhenReadFails) {
     EXPECT_FALSE(b.capture(mem, {{253, 0, 4}}, error));
     EXPECT_NE(error.find("0x1081"), std::string::npos) << error;
     EXPECT_FALSE(std::filesystem::exists(b.path()));
+}
+
+// The attack measured on an older commit: a link planted at PATH.tmp, the fixed temporary name,
+// had its target overwritten with the backup text (as root, any file of the system).
+TEST(SafetyBackup, SaveNeverFollowsALinkPlantedAtTheTemporaryName) {
+    namespace fs = std::filesystem;
+    const fs::path outside = temp_path("outside.txt");
+    const std::string path = temp_path("planted.txt");
+    {
+        std::ofstream f(outside, std::ios::binary);
+        f << "precious\n";
+    }
+    fs::remove(path + ".tmp");
+    fs::create_symlink(outside, path + ".tmp");
+    testing::FakeMemory mem;
+    mem.spaces[253] = {1, 2, 3, 4};
+    SafetyBackup b(path, "05.01.01.01.22.00");
+    std::string error;
+    EXPECT_TRUE(b.capture(mem, {{253, 0, 4}}, error)) << error;
+    std::ifstream in(outside, std::ios::binary);
+    const std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(kept, "precious\n");
+    EXPECT_TRUE(fs::is_symlink(path + ".tmp")) << "left as it was";
+    EXPECT_FALSE(fs::is_symlink(path));
+    std::string load_error;
+    const auto loaded = SafetyBackup::load(path, load_error);
+    ASSERT_TRUE(loaded) << load_error;
+    EXPECT_EQ(loaded->ranges(), b.ranges());
+    fs::remove(path);
+    fs::remove(path + ".tmp");
+    fs::remove(outside);
+}
+
+// A directory nobody can create a file in, root included: the error names the backup's own path,
+// and the caller writes nothing to the node.
+TEST(SafetyBackup, SaveFailsWithThePathAndWhy) {
+    testing::FakeMemory mem;
+    mem.spaces[253] = {1, 2, 3, 4};
+    SafetyBackup b("/dev/null/backup.txt", "05.01.01.01.22.00");
+    std::string error;
+    EXPECT_FALSE(b.capture(mem, {{253, 0, 4}}, error));
+    EXPECT_EQ(error, "cannot open /dev/null/backup.txt for writing: Not a directory");
 }
 
 TEST(SafetyBackup, LoadRejectsTruncatedAndMalformedFiles) {

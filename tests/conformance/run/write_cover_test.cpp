@@ -115,5 +115,49 @@ TEST_F(WriteCoverTest, TheCoverRestoresOnTheWayOut) {
     EXPECT_EQ(node_bytes(0xFD, 0, 4), before);
 }
 
+// Each save costs two fsyncs (the file, then its directory after the rename): a write over bytes
+// the file already holds does not write it again; one with new bytes does, before it goes out.
+TEST_F(WriteCoverTest, TheFileIsWrittenAgainOnlyWhenItGainsBytes) {
+    WriteCover cover(*b_.session, node_, path_.string(), false);
+    ASSERT_TRUE(write(0xFD, 0, {1, 2, 3, 4}).ok);
+    // A second name for the file as it is now: a save renames a new file over path_, and the
+    // link keeps the old one (and its inode number, so no new file can reuse it).
+    const fs::path witness = path_.string() + ".witness";
+    fs::remove(witness);
+    fs::create_hard_link(path_, witness);
+    ASSERT_TRUE(write(0xFD, 0, {5, 6, 7, 8}).ok);
+    ASSERT_TRUE(write(0xFD, 1, {9}).ok);
+    EXPECT_TRUE(fs::equivalent(path_, witness)) << "written again without new bytes";
+    ASSERT_TRUE(write(0xFD, 8, {1}).ok);
+    EXPECT_FALSE(fs::equivalent(path_, witness));
+    std::string error;
+    const auto saved = SafetyBackup::load(path_.string(), error);
+    ASSERT_TRUE(saved) << error;
+    EXPECT_EQ(saved->ranges().size(), 2u);
+    EXPECT_TRUE(cover.finish().identical);
+    fs::remove(witness);
+}
+
+// A backup file that cannot be written keeps the write back, and the cover remembers why, so the
+// run can call itself incomplete instead of a clean run of SKIPs.
+TEST_F(WriteCoverTest, AnUnwritableBackupKeepsTheWriteBackAndSaysWhy) {
+    WriteCover cover(*b_.session, node_, "/dev/null/backup.txt", false);
+    EXPECT_EQ(cover.save_error(), "");
+    const auto before = node_bytes(0xFD, 0, 4);
+    const MemResult r = write(0xFD, 0, {1, 2, 3, 4});
+    EXPECT_FALSE(r.ok);
+    EXPECT_EQ(r.not_sent,
+              "the safety backup cannot be saved: cannot open /dev/null/backup.txt for writing: "
+              "Not a directory");
+    EXPECT_EQ(cover.save_error(), "cannot open /dev/null/backup.txt for writing: Not a directory");
+    std::vector<std::pair<RangeRequest, std::string>> missing;
+    std::string error;
+    EXPECT_FALSE(cover.capture({{0xFD, 8, 4}}, missing, error));
+    EXPECT_EQ(cover.save_error(), error) << "the first reason is kept";
+    EXPECT_FALSE(cover.armed());
+    EXPECT_EQ(b_.session->ledger().sent(node_.id), 0u);
+    EXPECT_EQ(node_bytes(0xFD, 0, 4), before);
+}
+
 }  // namespace
 }  // namespace olcb::conform
