@@ -1,6 +1,5 @@
 #include "simnode/audit/audit_report.hpp"
 
-#include <unistd.h>
 #include <pugixml.hpp>
 
 #include <array>
@@ -8,10 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <system_error>
 
 #include "base/utf8.hpp"
 #include "simnode/audit/audit_context.hpp"
@@ -165,31 +162,6 @@ std::string audit_junit(const FindingLog& log, const ReportInfo& info) {
     std::ostringstream out;
     doc.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
     return out.str();
-}
-
-bool write_file_atomically(const std::filesystem::path& path, std::string_view text,
-                           std::string& error) {
-    std::filesystem::path tmp = path;
-    tmp += ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.flush();
-        if (!out) {
-            error = "cannot write " + tmp.string();
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            return false;
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        error = "cannot replace " + path.string() + ": " + ec.message();
-        std::filesystem::remove(tmp, ec);
-        return false;
-    }
-    return true;
 }
 
 std::string utc_now() {

@@ -1,10 +1,8 @@
 // The files of the client audit: JSON (every finding in full) and JUnit XML (one testcase per
-// rule, a failure per rule with error findings), each replaced whole on every write.
+// rule, a failure per rule with error findings); AuditTap replaces them whole on every write.
 #pragma once
 
-#include <filesystem>
 #include <string>
-#include <string_view>
 
 #include "simnode/audit/finding.hpp"
 
@@ -22,11 +20,6 @@ std::string audit_json(const FindingLog& log, const ReportInfo& info);
 /// The audit as JUnit XML: one testcase per rule; a rule with error findings fails, warnings
 /// and notes are in its system-out.
 std::string audit_junit(const FindingLog& log, const ReportInfo& info);
-
-/// Writes text to path through a temporary file renamed over it, so a reader (or a simnode
-/// killed meanwhile) never leaves half a file; false with error on failure.
-bool write_file_atomically(const std::filesystem::path& path, std::string_view text,
-                           std::string& error);
 
 /// Now as ISO 8601 UTC ("2024-07-04T17:38:48Z").
 std::string utc_now();

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <utility>
 
+#include "base/file.hpp"
 #include "simnode/audit/audit_report.hpp"
 #include "simnode/audit/node_profile.hpp"
 #include "simnode/sim_node.hpp"
@@ -114,9 +115,9 @@ bool AuditTap::write(std::string& error) {
     const FindingLog& log = audit_.log();
     written_revision_ = log.revision();
     bool ok = true;
-    if (!files_.json.empty()) ok = write_file_atomically(files_.json, audit_json(log, info), error);
+    if (!files_.json.empty()) ok = base::write_file(files_.json, audit_json(log, info), error);
     if (!files_.junit.empty())
-        ok = write_file_atomically(files_.junit, audit_junit(log, info), error) && ok;
+        ok = base::write_file(files_.junit, audit_junit(log, info), error) && ok;
     return ok;
 }
 

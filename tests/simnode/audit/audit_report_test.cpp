@@ -2,8 +2,6 @@
 // rule, both written through a temporary file.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 
@@ -91,23 +89,6 @@ TEST_F(AuditReport, TheJunitHasOneTestcasePerRuleAndFailsOnlyOnErrors) {
     EXPECT_TRUE(warned.child("system-out"));
     const auto clean = suite.find_child_by_attribute("testcase", "name", "alias.unreserved");
     EXPECT_FALSE(clean.first_child());
-}
-
-TEST(AuditFile, IsReplacedWholeAndLeavesNoTemporaryFile) {
-    simnode::test::TempDir dir;
-    const auto path = dir.path() / "audit.json";
-    std::string error;
-    ASSERT_TRUE(write_file_atomically(path, "first", error)) << error;
-    ASSERT_TRUE(write_file_atomically(path, "second", error)) << error;
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    EXPECT_EQ(text.str(), "second");
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()),
-                            std::filesystem::directory_iterator()),
-              1);
-    EXPECT_FALSE(write_file_atomically(dir.path() / "missing" / "audit.json", "x", error));
-    EXPECT_NE(error.find("missing"), std::string::npos) << error;
 }
 
 }  // namespace
