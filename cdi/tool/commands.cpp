@@ -9,8 +9,8 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
-#include "base/file.hpp"
 #include "base/utf8.hpp"
+#include "cdi/cdi_file.hpp"
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/render.hpp"
@@ -61,7 +61,7 @@ struct Loaded {
 
 std::optional<Loaded> load(const std::string& path) {
     std::string error;
-    auto bytes = base::read_file(path, error);
+    auto bytes = read_cdi_file(path, error);
     if (!bytes) {
         std::cerr << "error: " << display(error) << "\n";
         return std::nullopt;
@@ -167,7 +167,7 @@ int run_validate(const std::vector<std::string>& args) {
     int status = kExitOk;
     for (const auto& path : files) {
         std::string error;
-        auto bytes = base::read_file(path, error);
+        auto bytes = read_cdi_file(path, error);
         if (!bytes) {
             std::cout << "error: " << display(error) << "\n";
             status = kExitErrors;
