@@ -10,7 +10,14 @@
 #include <cerrno>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <mutex>
+#include <set>
+#include <string_view>
+#include <system_error>
 #include <utility>
+
+#include "base/file.hpp"
 
 namespace olcb::memory {
 namespace {
@@ -100,20 +107,16 @@ constexpr std::array<std::uint32_t, 256> make_crc_table() {
 
 constexpr std::array<std::uint32_t, 256> kCrcTable = make_crc_table();
 
-// Writes a fresh image beside path and renames it into place, so a crash leaves either no
-// image (created again next time) or a complete one.
-std::string create_image(const std::filesystem::path& path, int dir_fd,
-                         std::span<const std::uint8_t> content) {
-    std::filesystem::path tmp = path;
-    tmp += ".tmp";
-    Fd fd(::open(tmp.c_str(), O_RDWR | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
-    if (fd.get() < 0) return errno_text("cannot create", tmp);
-    if (!pwrite_all(fd.get(), content, 0)) return errno_text("cannot write", tmp);
-    if (!sync_data(fd.get())) return errno_text("cannot sync", tmp);
-    fd.reset(-1);
-    if (::rename(tmp.c_str(), path.c_str()) != 0) return errno_text("cannot rename", tmp);
-    if (::fsync(dir_fd) != 0) return errno_text("cannot sync directory of", path);
-    return {};
+// Removes what a creation killed before its rename left ("<image>.tmp-XXXXXXXX", see
+// base::write_file). Only while the directory lock is held, so no other creation is under way;
+// unlink() removes a planted link, never its target.
+void remove_stale_temps(const std::filesystem::path& path) {
+    const std::string prefix = path.filename().string() + ".tmp-";
+    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        if (it->path().filename().string().starts_with(prefix)) ::unlink(it->path().c_str());
+    }
 }
 
 }  // namespace
@@ -157,36 +160,125 @@ std::optional<Record> decode(std::span<const std::uint8_t> bytes, std::size_t im
 
 namespace {
 
+// A directory as the kernel knows it, whatever path reached it.
+using DirectoryKey = std::pair<dev_t, ino_t>;
+
+// The directories this process has images open in, one descriptor each, shared by all their
+// images: it holds the flock that keeps a second process out of every image in the directory
+// (the lock dies with the process, also after kill -9), and an image's files are opened relative
+// to it. Sharing it is what makes a node's images cost one descriptor: the image and journal
+// files themselves are open only during ImageFile::open() and write().
+class DirectoryLocks {
+public:
+    // The directory's descriptor, with name counted as open in it; -1 with error set when the
+    // image is open already in this process or another process holds the directory.
+    int acquire(const std::filesystem::path& image, const std::string& name, DirectoryKey& key,
+                std::string& error) {
+        std::filesystem::path dir = image.parent_path();
+        if (dir.empty()) dir = ".";
+        Fd fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+        struct stat st {};
+        if (fd.get() < 0 || ::fstat(fd.get(), &st) != 0) {
+            error = errno_text("cannot open image directory", dir);
+            return -1;
+        }
+        key = {st.st_dev, st.st_ino};
+        const std::lock_guard lock(mutex_);
+        if (const auto it = held_.find(key); it != held_.end()) {
+            if (it->second.names.insert(name).second) return it->second.fd;
+            error = "image " + image.string() + " is in use (open already in this process)";
+            return -1;
+        }
+        // Two writers of one image would interleave journal records.
+        if (::flock(fd.get(), LOCK_EX | LOCK_NB) != 0) {
+            error = errno == EWOULDBLOCK
+                        ? "image " + image.string() + " is in use by another process"
+                        : errno_text("cannot lock image directory", dir);
+            return -1;
+        }
+        Held& held = held_[key];
+        held.fd = fd.release();
+        held.names.insert(name);
+        return held.fd;
+    }
+
+    // The image is closed; the last one in its directory closes it (and drops the lock).
+    void release(const DirectoryKey& key, const std::string& name) {
+        const std::lock_guard lock(mutex_);
+        const auto it = held_.find(key);
+        if (it == held_.end()) return;
+        it->second.names.erase(name);
+        if (!it->second.names.empty()) return;
+        ::close(it->second.fd);
+        held_.erase(it);
+    }
+
+private:
+    struct Held {
+        int fd = -1;
+        std::set<std::string> names;  // the images open in the directory
+    };
+    std::mutex mutex_;
+    std::map<DirectoryKey, Held> held_;
+};
+
+DirectoryLocks& directory_locks() {
+    static DirectoryLocks locks;
+    return locks;
+}
+
+}  // namespace
+
+// One image's share of its directory's lock, and the names of its files in that directory.
+class DirectoryLease {
+public:
+    DirectoryLease(DirectoryKey key, int dir_fd, std::string name)
+        : key_(key), dir_fd_(dir_fd), name_(std::move(name)), journal_name_(name_ + ".journal") {}
+    ~DirectoryLease() { directory_locks().release(key_, name_); }
+    DirectoryLease(const DirectoryLease&) = delete;
+    DirectoryLease& operator=(const DirectoryLease&) = delete;
+
+    int open_image() const { return ::openat(dir_fd_, name_.c_str(), O_RDWR | O_CLOEXEC); }
+    int open_journal(int flags = 0) const {
+        return ::openat(dir_fd_, journal_name_.c_str(), O_RDWR | O_CLOEXEC | flags, 0644);
+    }
+    bool sync_directory() const { return ::fsync(dir_fd_) == 0; }
+
+private:
+    DirectoryKey key_;
+    int dir_fd_;  // directory_locks()'s
+    std::string name_;
+    std::string journal_name_;
+};
+
+namespace {
+
 // The files ImageFile::open() works on, and what it learns from them. The image closes first,
-// the journal (and its lock) after it.
+// the journal after it, the directory lease (and its lock) last.
 struct Opening {
     explicit Opening(const std::filesystem::path& image) : path(image) {}
 
     const std::filesystem::path& path;
-    std::filesystem::path dir;
     std::filesystem::path journal_path;
-    Fd dir_fd;
+    std::unique_ptr<DirectoryLease> lease;
     Fd journal_fd;
     Fd image_fd;
     std::vector<std::uint8_t> bytes;  // the image's content, its size from the start
     std::uint64_t sequence = 0;       // the journal record's, 0 without one
 };
 
-// Opens the image's directory and its journal, locked; an error sentence on failure.
+// Takes the image's directory lock and opens its journal; an error sentence on failure.
 std::string open_journal(Opening& o) {
-    o.dir = o.path.parent_path();
-    if (o.dir.empty()) o.dir = ".";
-    o.dir_fd.reset(::open(o.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-    if (o.dir_fd.get() < 0) return errno_text("cannot open image directory", o.dir);
+    const std::string name = o.path.filename().string();
+    DirectoryKey key;
+    std::string error;
+    const int dir_fd = directory_locks().acquire(o.path, name, key, error);
+    if (dir_fd < 0) return error;
+    o.lease = std::make_unique<DirectoryLease>(key, dir_fd, name);
     o.journal_path = o.path;
     o.journal_path += ".journal";
-    o.journal_fd.reset(::open(o.journal_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644));
+    o.journal_fd.reset(o.lease->open_journal(O_CREAT));
     if (o.journal_fd.get() < 0) return errno_text("cannot open journal", o.journal_path);
-    // Two writers of one image would interleave journal records; the lock dies with the process.
-    if (::flock(o.journal_fd.get(), LOCK_EX | LOCK_NB) != 0) {
-        return errno == EWOULDBLOCK ? "image " + o.path.string() + " is in use by another process"
-                                    : errno_text("cannot lock", o.journal_path);
-    }
     return {};
 }
 
@@ -197,8 +289,14 @@ std::string create_fresh(Opening& o, const ImageFile::Initialiser& init) {
         return errno_text("cannot clear journal", o.journal_path);
     }
     if (init) init(o.bytes);
-    if (auto error = create_image(o.path, o.dir_fd.get(), o.bytes); !error.empty()) return error;
-    o.image_fd.reset(::open(o.path.c_str(), O_RDWR | O_CLOEXEC));
+    remove_stale_temps(o.path);
+    // A new file under a fresh name, synced, renamed into place and its directory synced: a
+    // crash leaves no image (created again next time) or a complete one, and a file or link
+    // planted at a temporary name is never opened or followed.
+    std::string error;
+    const std::string_view content(reinterpret_cast<const char*>(o.bytes.data()), o.bytes.size());
+    if (!base::write_file(o.path, content, error)) return error;
+    o.image_fd.reset(o.lease->open_image());
     if (o.image_fd.get() < 0) return errno_text("cannot open image", o.path);
     return {};
 }
@@ -263,17 +361,18 @@ std::string load_existing(Opening& o, JournalState& state) {
         state = JournalState::kDiscarded;
     }
     // The journal may have just been created: make its directory entry durable.
-    if (::fsync(o.dir_fd.get()) != 0) return errno_text("cannot sync directory", o.dir);
+    if (!o.lease->sync_directory()) {
+        return errno_text("cannot sync directory of", o.path);
+    }
     return {};
 }
 
 }  // namespace
 
-ImageFile::ImageFile(std::filesystem::path path, int image_fd, int journal_fd,
+ImageFile::ImageFile(std::filesystem::path path, std::unique_ptr<DirectoryLease> lease,
                      std::vector<std::uint8_t> bytes, std::uint64_t sequence)
     : path_(std::move(path)),
-      image_fd_(image_fd),
-      journal_fd_(journal_fd),
+      lease_(std::move(lease)),
       bytes_(std::move(bytes)),
       sequence_(sequence) {
     journal_path_ = path_;
@@ -281,10 +380,7 @@ ImageFile::ImageFile(std::filesystem::path path, int image_fd, int journal_fd,
     record_.reserve(journal::kHeaderSize + 64 + journal::kTrailerSize);
 }
 
-ImageFile::~ImageFile() {
-    if (image_fd_ >= 0) ::close(image_fd_);
-    if (journal_fd_ >= 0) ::close(journal_fd_);  // also drops the flock
-}
+ImageFile::~ImageFile() = default;
 
 ImageOpenResult ImageFile::open(const std::filesystem::path& path, std::size_t size,
                                 const Initialiser& init) {
@@ -298,7 +394,7 @@ ImageOpenResult ImageFile::open(const std::filesystem::path& path, std::size_t s
     o.bytes.assign(size, 0);
     result.error = open_journal(o);
     if (!result.error.empty()) return result;
-    o.image_fd.reset(::open(path.c_str(), O_RDWR | O_CLOEXEC));
+    o.image_fd.reset(o.lease->open_image());
     if (o.image_fd.get() < 0 && errno != ENOENT) {
         result.error = errno_text("cannot open image", path);
         return result;
@@ -310,8 +406,7 @@ ImageOpenResult ImageFile::open(const std::filesystem::path& path, std::size_t s
         result.error = load_existing(o, result.journal);
     }
     if (!result.error.empty()) return result;
-    result.image.reset(new ImageFile(path, o.image_fd.release(), o.journal_fd.release(),
-                                     std::move(o.bytes), o.sequence));
+    result.image.reset(new ImageFile(path, std::move(o.lease), std::move(o.bytes), o.sequence));
     return result;
 }
 
@@ -321,14 +416,26 @@ ImageFile::Status ImageFile::write(std::size_t offset, std::span<const std::uint
         return Status::kOutOfBounds;
     }
     if (data.empty()) return Status::kOk;
+    // Both files are opened before anything is written: when they cannot be (no descriptor
+    // left, EMFILE), this write fails alone and the disk is as it was, so later ones may work.
+    const Fd journal_fd(lease_->open_journal());
+    if (journal_fd.get() < 0) {
+        last_error_ = errno_text("cannot open journal", journal_path_);
+        return Status::kIoError;
+    }
+    const Fd image_fd(lease_->open_image());
+    if (image_fd.get() < 0) {
+        last_error_ = errno_text("cannot open image", path_);
+        return Status::kIoError;
+    }
     record_.clear();
     journal::encode(++sequence_, static_cast<std::uint32_t>(offset), data, record_);
-    if (!pwrite_all(journal_fd_, record_, 0) || !sync_data(journal_fd_)) {
+    if (!pwrite_all(journal_fd.get(), record_, 0) || !sync_data(journal_fd.get())) {
         failed_ = true;
         last_error_ = errno_text("cannot write journal", journal_path_);
         return Status::kIoError;
     }
-    if (!pwrite_all(image_fd_, data, offset) || !sync_data(image_fd_)) {
+    if (!pwrite_all(image_fd.get(), data, offset) || !sync_data(image_fd.get())) {
         failed_ = true;
         last_error_ = errno_text("cannot write image", path_);
         return Status::kIoError;

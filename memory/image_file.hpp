@@ -11,7 +11,12 @@
 // The journal always holds the latest write, so replaying it is idempotent and it never needs to
 // be cleared; a torn record (kill or power loss during step 1) fails its CRC and is discarded,
 // leaving the previous value, which step 2 of the previous write had already made durable.
-// Fresh images are created as "<image>.tmp", filled, fsynced, renamed, and the directory fsynced.
+// Fresh images are written by base::write_file (a new file under a fresh random name, fsynced,
+// renamed, the directory fsynced).
+//
+// Descriptors: every image this process has open in one directory shares one descriptor of that
+// directory, which holds the flock keeping a second process out of all of them; the image and
+// its journal are open only inside open() and write(). A node (one directory) costs one.
 #pragma once
 
 #include <cstddef>
@@ -35,6 +40,7 @@ enum class JournalState : std::uint8_t {
 };
 
 class ImageFile;
+class DirectoryLease;  // image_file.cpp: an image's share of its directory's lock
 
 /// Outcome of ImageFile::open().
 struct ImageOpenResult {
@@ -57,8 +63,9 @@ public:
     enum class Status : std::uint8_t { kOk, kOutOfBounds, kIoError };
 
     /// Opens path (its directory must exist), replaying the journal, or creates it with size
-    /// bytes filled by init (zeros when init is empty). An existing image of another size, or one
-    /// locked by another process, is refused.
+    /// bytes filled by init (zeros when init is empty). An existing image of another size, one
+    /// open already in this process, or any image in a directory another process has images
+    /// open in, is refused ("... is in use ...").
     static ImageOpenResult open(const std::filesystem::path& path, std::size_t size,
                                 const Initialiser& init = {});
 
@@ -76,7 +83,8 @@ public:
     const std::filesystem::path& journal_path() const { return journal_path_; }
 
     /// Stores data at offset atomically and durably (see the header comment); all or nothing.
-    /// After an I/O error the image refuses further writes (its disk state is uncertain).
+    /// After an I/O error the image refuses further writes (its disk state is uncertain); when
+    /// its files cannot even be opened (EMFILE) only this write fails, nothing on disk changed.
     Status write(std::size_t offset, std::span<const std::uint8_t> data);
     /// Rewrites the whole image with init's content (factory reset), atomically.
     Status reinitialise(const Initialiser& init);
@@ -84,13 +92,12 @@ public:
     const std::string& last_error() const { return last_error_; }
 
 private:
-    ImageFile(std::filesystem::path path, int image_fd, int journal_fd,
+    ImageFile(std::filesystem::path path, std::unique_ptr<DirectoryLease> lease,
               std::vector<std::uint8_t> bytes, std::uint64_t sequence);
 
     std::filesystem::path path_;
     std::filesystem::path journal_path_;
-    int image_fd_ = -1;
-    int journal_fd_ = -1;
+    std::unique_ptr<DirectoryLease> lease_;
     std::vector<std::uint8_t> bytes_;
     std::vector<std::uint8_t> record_;  // reused so a write does not allocate
     std::uint64_t sequence_ = 0;

@@ -1,8 +1,10 @@
 #include "memory/image_file.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <stdlib.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,6 +51,15 @@ protected:
     }
 
     ImageOpenResult open(std::size_t size = 256) { return ImageFile::open(path_, size, factory); }
+
+    // Files in the directory whose names start "<image>.tmp".
+    int temp_files() const {
+        int n = 0;
+        for (const auto& entry : fs::directory_iterator(dir_)) {
+            if (entry.path().filename().string().starts_with("space_fd.img.tmp")) ++n;
+        }
+        return n;
+    }
 
     // Creates the image with one write of value at offset 16 (8 bytes), then closes it.
     void prepare(std::uint8_t value) {
@@ -247,12 +258,29 @@ TEST_F(ImageFileTest, StaleJournalWithoutImageIsIgnored) {
     EXPECT_EQ(again.image->bytes()[16], 16);
 }
 
-TEST_F(ImageFileTest, LeftoverTempFileFromCrashedCreationIsReplaced) {
-    write_file(path_.string() + ".tmp", filled(3, 0x99));
+TEST_F(ImageFileTest, LeftoverTempFileFromCrashedCreationIsRemoved) {
+    const fs::path leftover = path_.string() + ".tmp-crashed0";
+    write_file(leftover, filled(3, 0x99));
     ImageOpenResult result = open();
     ASSERT_TRUE(result.ok()) << result.error;
     EXPECT_EQ(read_file(path_).size(), 256u);
-    EXPECT_FALSE(fs::exists(path_.string() + ".tmp"));
+    EXPECT_FALSE(fs::exists(leftover));
+    EXPECT_EQ(temp_files(), 0);
+}
+
+// A link planted where older versions wrote their fixed temporary file is neither followed nor
+// removed: creation writes a file of its own under a fresh name.
+TEST_F(ImageFileTest, LinkAtTheOldTempNameIsNotFollowed) {
+    const fs::path target = dir_ / "target";
+    write_file(target, filled(5, 0x5A));
+    const fs::path link = path_.string() + ".tmp";
+    fs::create_symlink(target, link);
+    ImageOpenResult result = open();
+    ASSERT_TRUE(result.ok()) << result.error;
+    EXPECT_EQ(read_file(path_).size(), 256u);
+    EXPECT_EQ(read_file(target), filled(5, 0x5A));
+    EXPECT_TRUE(fs::is_symlink(link));
+    EXPECT_EQ(temp_files(), 1);  // the link itself
 }
 
 TEST_F(ImageFileTest, WrongSizeIsRefused) {
@@ -283,6 +311,90 @@ TEST_F(ImageFileTest, SecondOpenWhileInUseIsRefused) {
     EXPECT_NE(second.error.find("in use"), std::string::npos) << second.error;
     first.image.reset();
     EXPECT_TRUE(open().ok());
+}
+
+int open_descriptors() {
+    return static_cast<int>(
+        std::distance(fs::directory_iterator("/proc/self/fd"), fs::directory_iterator()));
+}
+
+// A node's images share one descriptor, its directory's; files are open only while written.
+TEST_F(ImageFileTest, ImagesOfOneDirectoryHoldOneDescriptor) {
+    const int before = open_descriptors();
+    std::vector<std::unique_ptr<ImageFile>> images;
+    for (const char* name : {"a.img", "b.img", "c.img"}) {
+        ImageOpenResult result = ImageFile::open(dir_ / name, 64);
+        ASSERT_TRUE(result.ok()) << result.error;
+        images.push_back(std::move(result.image));
+    }
+    EXPECT_EQ(open_descriptors(), before + 1);
+    for (auto& image : images) ASSERT_EQ(image->write(1, filled(2, 7)), ImageFile::Status::kOk);
+    EXPECT_EQ(open_descriptors(), before + 1);
+    images.clear();
+    EXPECT_EQ(open_descriptors(), before);
+}
+
+// The lock is the directory's: another process cannot open any image in it, this one can open
+// its other images.
+TEST_F(ImageFileTest, OtherProcessIsRefusedTheDirectory) {
+    int ready[2];
+    int done[2];
+    ASSERT_EQ(::pipe(ready), 0);
+    ASSERT_EQ(::pipe(done), 0);
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        ImageOpenResult held = ImageFile::open(dir_ / "other.img", 16);
+        const char c = held.ok() ? 'y' : 'n';
+        if (::write(ready[1], &c, 1) != 1) ::_exit(2);
+        char ignored = 0;
+        if (::read(done[0], &ignored, 1) < 0) ::_exit(3);
+        ::_exit(0);
+    }
+    char c = 0;
+    ASSERT_EQ(::read(ready[0], &c, 1), 1);
+    EXPECT_EQ(c, 'y');
+    ImageOpenResult refused = open();
+    EXPECT_FALSE(refused.ok());
+    EXPECT_NE(refused.error.find("in use by another process"), std::string::npos) << refused.error;
+    ASSERT_EQ(::write(done[1], "x", 1), 1);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    for (const int fd : {ready[0], ready[1], done[0], done[1]}) ::close(fd);
+    EXPECT_TRUE(open().ok());
+}
+
+// The child: fills every descriptor the limit allows, writes (which must fail alone), frees two
+// and writes again (which must work). Its exit status names the step that went wrong.
+[[noreturn]] void write_without_descriptors(const fs::path& path) {
+    ImageOpenResult result = ImageFile::open(path, 64);
+    if (!result.ok()) ::_exit(2);
+    const rlimit limit{64, 64};
+    if (::setrlimit(RLIMIT_NOFILE, &limit) != 0) ::_exit(3);
+    std::vector<int> spare;
+    for (int fd = 0; (fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC)) >= 0;) spare.push_back(fd);
+    if (spare.size() < 2) ::_exit(4);
+    const std::vector<std::uint8_t> value(4, 0x42);
+    if (result.image->write(8, value) != ImageFile::Status::kIoError) ::_exit(5);
+    if (result.image->last_error().find("Too many open files") == std::string::npos) ::_exit(6);
+    if (result.image->bytes()[8] == 0x42) ::_exit(7);
+    ::close(spare.back());
+    ::close(spare[spare.size() - 2]);
+    if (result.image->write(8, value) != ImageFile::Status::kOk) ::_exit(8);
+    ::_exit(0);
+}
+
+TEST_F(ImageFileTest, WriteWithoutDescriptorsFailsAloneAndLaterWritesWork) {
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) write_without_descriptors(path_);
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status)) << status;
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    ImageOpenResult result = ImageFile::open(path_, 64);
+    ASSERT_TRUE(result.ok()) << result.error;
+    EXPECT_EQ(result.image->bytes()[11], 0x42);
 }
 
 TEST_F(ImageFileTest, ReinitialiseRestoresFactoryContent) {
