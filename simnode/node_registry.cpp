@@ -10,7 +10,9 @@
 namespace olcb::simnode {
 
 NodeRegistry::NodeRegistry(std::vector<std::unique_ptr<SimNode>>& nodes, StackDriver& driver)
-    : nodes_(nodes), driver_(driver) {}
+    : nodes_(nodes), driver_(driver) {
+    for (const auto& node : nodes_) node_fds_ += node_fds(node->config());
+}
 
 SimNode* NodeRegistry::find(NodeId id) const {
     for (const auto& node : nodes_) {
@@ -45,8 +47,13 @@ SimNode* NodeRegistry::add(const NodeConfig& config, std::string& error) {
         error = "node " + config.node_id.to_string() + " is already running";
         return nullptr;
     }
+    // Refused before it opens anything: a process out of descriptors cannot accept a client.
+    const std::size_t need = fds_needed() + node_fds(config);
+    error = fd_shortage("not added: simnode", need, budget_);
+    if (!error.empty()) return nullptr;
     auto node = create(config, error);
     if (!node) return nullptr;
+    node_fds_ += node_fds(config);
     nodes_.push_back(std::move(node));
     run(*nodes_.back());
     return nodes_.back().get();
@@ -60,6 +67,7 @@ bool NodeRegistry::remove(NodeId id) {
     stack.release(Clock::now());
     driver_.flush();  // the AMR leaves before the stack does
     driver_.detach(stack);
+    node_fds_ -= node_fds((*it)->config());
     nodes_.erase(it);
     return true;
 }
@@ -82,6 +90,7 @@ SimNode* NodeRegistry::set_faults(NodeId id, const FaultSet& faults, std::string
         std::string ignored;
         *it = create(before, ignored);
         if (!*it) {
+            node_fds_ -= node_fds(before);
             nodes_.erase(it);
             error += "; the node could not be restarted as before either and is gone";
             return nullptr;

@@ -9,6 +9,7 @@
 
 #include "openlcb/node_id.hpp"
 #include "simnode/faults.hpp"
+#include "simnode/fd_budget.hpp"
 #include "simnode/sim_node.hpp"
 
 namespace olcb {
@@ -29,13 +30,19 @@ public:
     const std::vector<std::unique_ptr<SimNode>>& nodes() const { return nodes_; }
     /// The node with this ID, or null.
     SimNode* find(NodeId id) const;
+    /// What the run needs besides its nodes, and the descriptor limit add() keeps to (none
+    /// until set).
+    void set_fd_budget(const FdBudget& budget) { budget_ = budget; }
+    /// Descriptors the run needs now: the budget's fixed part and what the nodes hold.
+    std::size_t fds_needed() const { return budget_.fixed + node_fds_; }
     /// Starts every node (StackDriver::start_all); nodes added later start at once.
     void start_all();
     /// True once start_all() ran.
     bool started() const { return started_; }
 
     /// Creates the node (its image directory too), attaches it and starts it when the others
-    /// run; null with error set (a running node ID, a bad CDI, an unusable image directory).
+    /// run; null with error set (a running node ID, a bad CDI, an unusable image directory, or
+    /// the descriptors it would hold passing the budget's limit).
     SimNode* add(const NodeConfig& config, std::string& error);
     /// Takes the node off the segment: AMR for its alias (sent before this returns), then it is
     /// destroyed (its images stay on disk); false when no node has this ID.
@@ -51,6 +58,8 @@ private:
 
     std::vector<std::unique_ptr<SimNode>>& nodes_;
     StackDriver& driver_;
+    FdBudget budget_;
+    std::size_t node_fds_ = 0;  // what nodes_ hold (node_fds of their configs)
     bool started_ = false;
 };
 

@@ -2,8 +2,10 @@
 // serial GridConnect adapter or in-process only) until SIGINT/SIGTERM or --run-for.
 #include <signal.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -29,6 +31,7 @@
 #include "simnode/control_commands.hpp"
 #include "simnode/control_server.hpp"
 #include "simnode/faults/fault_catalog.hpp"
+#include "simnode/fd_budget.hpp"
 #include "simnode/node_registry.hpp"
 #include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
@@ -153,6 +156,7 @@ public:
         : scenario_(scenario), run_timer_(io_), startup_timer_(io_) {}
 
     int run() {
+        if (!fits_fd_limit()) return kExitUsage;
         if (!create_nodes() || !open_segment()) return kExitRuntime;
         node_port_ = &add_port({});
         if (!start_audit() || !open_tap()) return kExitRuntime;
@@ -162,6 +166,7 @@ public:
         for (auto& node : nodes_) driver_->attach(node->stack());
         // Live control (docs/control.md): changes the nodes from the same io_context.
         registry_.emplace(nodes_, *driver_);
+        registry_->set_fd_budget(fd_budget_);
         commands_.emplace(*registry_, scenario_);
         commands_->set_log_handler(say);
         control_.emplace(io_, *commands_);
@@ -178,6 +183,17 @@ public:
     }
 
 private:
+    // Before anything opens: a scenario over the limit would stop at whichever node or client
+    // came first, so it is refused with the numbers instead.
+    bool fits_fd_limit() {
+        fd_budget_ = {fixed_fds(scenario_), fd_limit()};
+        const std::string shortage =
+            fd_shortage("scenario", fd_budget_.fixed + node_fds(scenario_.nodes), fd_budget_);
+        if (shortage.empty()) return true;
+        std::cerr << "simnode: " << shortage << "; raise the limit or run fewer nodes\n";
+        return false;
+    }
+
     bool create_nodes() {
         nodes_.reserve(scenario_.nodes.size());
         for (const auto& config : scenario_.nodes) {
@@ -443,6 +459,7 @@ private:
     }
 
     const Scenario& scenario_;
+    FdBudget fd_budget_;
     boost::asio::io_context io_;
     std::vector<std::unique_ptr<SimNode>> nodes_;
     std::unique_ptr<TcpHubServer> hub_;
@@ -515,6 +532,11 @@ static int main_checked(int argc, char** argv) {
     if (parsed->list_faults) return list_faults(parsed->list_faults_format);
     // A peer closing its socket must not kill the process.
     ::signal(SIGPIPE, SIG_IGN);
+    // The soft limit (often 1,024) is a default, not a choice: the hard one is what may be used.
+    if (!raise_fd_limit()) {
+        std::cerr << "simnode: warning: cannot raise the file descriptor limit to the hard one: "
+                  << std::strerror(errno) << "\n";
+    }
     return Runner(parsed->scenario).run();
 }
 

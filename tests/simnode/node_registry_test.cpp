@@ -13,6 +13,7 @@
 #include "openlcb/in_process_bus.hpp"
 #include "openlcb/stack_driver.hpp"
 #include "simnode/sim_node_test_util.hpp"
+#include "support/temp_files.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -116,6 +117,31 @@ TEST_F(NodeRegistryTest, SetFaultsRebuildsTheNodeWhichStartsAgain) {
     EXPECT_EQ(rebuilt->config().faults.value("acdi-version"), FaultValue{1});
     EXPECT_TRUE(run_until([&] { return count(":X19100") > starts; })) << "Initialization Complete";
     EXPECT_FALSE(registry_.set_faults(kOther, {}, error));
+}
+
+// A node with images holds a descriptor: add() refuses the one that would pass the limit, before
+// it opens anything, and a removed node gives its descriptor back.
+TEST_F(NodeRegistryTest, AddPastTheDescriptorLimitIsRefusedWithTheNumbers) {
+    const test_support::TempDir images("olcb-registry");
+    const auto with_images = [&](NodeId id) {
+        NodeConfig c = config(id);
+        c.image_dir = images.path() / id.to_string();
+        return c;
+    };
+    registry_.set_fd_budget({100, 101});
+    std::string error;
+    ASSERT_TRUE(registry_.add(with_images(test::kNodeId), error)) << error;
+    EXPECT_EQ(registry_.fds_needed(), 101u);
+    EXPECT_EQ(registry_.add(with_images(kOther), error), nullptr);
+    EXPECT_NE(error.find("needs about 102 file descriptors, the limit is 101"), std::string::npos)
+        << error;
+    EXPECT_FALSE(std::filesystem::exists(images.path() / kOther.to_string()));
+    error.clear();
+    EXPECT_TRUE(registry_.add(config(kOther), error)) << error << " (a node in RAM holds none)";
+    EXPECT_TRUE(registry_.remove(kOther));
+    EXPECT_TRUE(registry_.remove(test::kNodeId));
+    EXPECT_EQ(registry_.fds_needed(), 100u);
+    EXPECT_TRUE(registry_.add(with_images(kOther), error)) << error;
 }
 
 }  // namespace
