@@ -20,6 +20,9 @@ using base::HostPort;
 /// Parses "HOST:PORT", "[V6]:PORT", "HOST" (port 12021) or a bare "PORT" (host 127.0.0.1).
 using base::parse_host_port;
 
+/// log-max-bytes when not given: 64 MiB, so about 128 MiB of each log stays on disk.
+inline constexpr std::uint64_t kDefaultLogMaxBytes = std::uint64_t{64} * 1024 * 1024;
+
 /// Everything one simnode process runs.
 struct Scenario {
     std::vector<NodeConfig> nodes;    ///< every node, in scenario order; IDs are distinct
@@ -31,9 +34,11 @@ struct Scenario {
     bool rtscts = false;              ///< hardware flow control on the serial adapter
     std::filesystem::path trace;      ///< decoded traffic log (empty: none)
     std::filesystem::path candump;    ///< candump -L traffic log (empty: none)
-    std::uint64_t log_max_bytes = 0;  ///< trace/candump rotate to FILE.1 past this (0 = never)
-    std::optional<double> run_for;    ///< stop after this many seconds
-    std::size_t max_clients = 64;     ///< hub connections beyond are refused
+    /// trace/candump rotate to FILE.1 past this (0 = never); by default a log left running for
+    /// days stays bounded.
+    std::uint64_t log_max_bytes = kDefaultLogMaxBytes;
+    std::optional<double> run_for;             ///< stop after this many seconds
+    std::size_t max_clients = 64;              ///< hub connections beyond are refused
     std::size_t max_clients_per_address = 48;  ///< hub connections from one address
     double idle_timeout = 0;                   ///< seconds; a silent client is closed (0 = never)
     std::uint32_t bitrate = 0;  ///< pace the segment at CAN bit timing, bit/s (0 = off)

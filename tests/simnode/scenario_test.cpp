@@ -3,10 +3,16 @@
 #include "simnode/scenario.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <future>
 #include <string>
 #include <vector>
+
+#include "support/temp_files.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -59,7 +65,10 @@ TEST(ScenarioTest, BadBaudAndFlowControlAreRefusedByName) {
 
 TEST(ScenarioTest, LogMaxBytesAndWatchVariableFromFileAndCommandLine) {
     std::string error;
-    auto s = parse(std::string(kOneNode) + "log-max-bytes = 4096\n", {}, error);
+    auto s = parse(kOneNode, {}, error);
+    ASSERT_TRUE(s) << error;
+    EXPECT_EQ(s->log_max_bytes, 67'108'864u) << "a log left running stays bounded by default";
+    s = parse(std::string(kOneNode) + "log-max-bytes = 4096\n", {}, error);
     ASSERT_TRUE(s) << error;
     EXPECT_EQ(s->log_max_bytes, 4096u);
     s = parse(kOneNode, {"--log-max-bytes", "0", "--watch-variable", "Settings/Trim"}, error);
@@ -69,6 +78,28 @@ TEST(ScenarioTest, LogMaxBytesAndWatchVariableFromFileAndCommandLine) {
     EXPECT_EQ(s->nodes[0].watch_variable, "Settings/Trim");
     EXPECT_FALSE(parse(kOneNode, {"--log-max-bytes", "lots"}, error));
     EXPECT_NE(error.find("log-max-bytes"), std::string::npos) << error;
+}
+
+TEST(ScenarioTest, ACdiThatIsNoRegularFileIsRefusedUnread) {
+    const test_support::TempDir dir("simnode-cdi-fifo");
+    const fs::path fifo = dir.path() / "cdi.xml";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    using namespace std::chrono_literals;
+    auto parsed = std::async(std::launch::async, [&fifo] {
+        std::string error;
+        const auto s =
+            parse("node-id = 05.01.01.01.22.00\ncdi = " + fifo.string() + "\n", {}, error);
+        return s ? std::string("parsed") : error;
+    });
+    if (parsed.wait_for(1s) != std::future_status::ready) {
+        std::ofstream(fifo) << "";  // a writer that comes and goes releases the blocked open
+        FAIL() << "a FIFO without a writer blocked the scenario: " << parsed.get();
+    }
+    EXPECT_EQ(parsed.get(),
+              "node: CDI file: cannot read " + fifo.string() + ": not a regular file");
+    std::string error;
+    EXPECT_FALSE(parse("node-id = 05.01.01.01.22.00\ncdi = /dev/zero\n", {}, error));
+    EXPECT_EQ(error, "node: CDI file: cannot read /dev/zero: not a regular file");
 }
 
 TEST(ScenarioTest, StreamsOnByDefaultOffByKeyOrCommandLine) {
