@@ -281,6 +281,49 @@ std::optional<std::vector<std::string>> key_values(const Json& value) {
     return out;
 }
 
+// How deep arrays and objects nest in text, brackets inside strings not counted; counting stops
+// past limit. Checked before parsing: the parse is iterative, but a quoted value is printed
+// recursively, and 32,000 levels overflowed the stack under ASan.
+std::size_t nesting_depth(std::string_view text, std::size_t limit) {
+    std::size_t depth = 0;
+    std::size_t deepest = 0;
+    bool in_string = false;
+    bool escaped = false;
+    for (const char c : text) {
+        if (in_string) {
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escaped = true;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+            if (deepest > limit) break;
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+
+// The count an add asks for when it is plainly too many, checked before the nodes' configs are
+// built: each holds a copy of the CDI text, 100,000 of a 16 MiB CDI would exhaust memory.
+std::optional<std::string> too_many_added(const std::vector<NodeKey>& keys) {
+    for (const auto& [key, values] : keys) {
+        if (key != "count" || values.size() != 1) continue;
+        const std::string& text = values.front();
+        std::uint64_t n = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+        if (end != text.data() + text.size() || text.empty()) return std::nullopt;
+        if (ec == std::errc::result_out_of_range || n > kMaxAddedNodes) return text;
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 ControlCommands::ControlCommands(NodeRegistry& registry, const Scenario& running)
@@ -291,6 +334,10 @@ void ControlCommands::log(const std::string& line) const {
 }
 
 Json ControlCommands::handle_line(std::string_view line) {
+    if (nesting_depth(line, kMaxControlDepth) > kMaxControlDepth) {
+        return refused("request nested deeper than " + std::to_string(kMaxControlDepth) +
+                       " levels of arrays and objects");
+    }
     Json request;
     try {
         request = Json::parse(line);
@@ -482,11 +529,20 @@ Json ControlCommands::add(const Json& request) {
         if (!values) return refused("\"" + key + "\" must be a string, a number or a list of them");
         keys.emplace_back(key, std::move(*values));
     }
+    const std::string at_most =
+        "one add makes at most " + std::to_string(kMaxAddedNodes) + " nodes";
+    if (const auto count = too_many_added(keys))
+        return refused(at_most + " (count " + *count + ")");
     std::string error;
     auto configs = parse_node_group(keys, running_, error);
     if (!configs) return refused(error);
-    if (configs->size() > kMaxAddedNodes) {
-        return refused("one add makes at most " + std::to_string(kMaxAddedNodes) + " nodes");
+    if (configs->size() > kMaxAddedNodes) return refused(at_most);
+    const std::size_t running = registry_.nodes().size();
+    if (running + configs->size() > max_nodes_) {
+        return refused("simnode runs at most " + std::to_string(max_nodes_) + " nodes; " +
+                       std::to_string(running) + " run now, so at most " +
+                       std::to_string(max_nodes_ - std::min(running, max_nodes_)) +
+                       " more can be added");
     }
     for (const auto& config : *configs) {
         if (registry_.find(config.node_id) != nullptr) {

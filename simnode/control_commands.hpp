@@ -20,6 +20,11 @@ using ControlJson = nlohmann::ordered_json;
 
 /// Most bytes one read or write request moves.
 inline constexpr std::size_t kMaxControlBytes = 4096;
+/// Deepest nesting of arrays and objects a request line may have; a deeper one is refused
+/// unparsed. Requests nest two levels; nlohmann copies, compares and prints JSON recursively.
+inline constexpr std::size_t kMaxControlDepth = 32;
+/// Most nodes `add` lets simnode run, as many as one scenario node group may hold.
+inline constexpr std::size_t kMaxControlNodes = 100000;
 
 /// Answers control requests on the nodes of a registry.
 class ControlCommands {
@@ -32,11 +37,13 @@ public:
 
     /// Sets who is told of every change.
     void set_log_handler(LogHandler handler) { log_ = std::move(handler); }
+    /// Sets how many nodes `add` lets simnode run at most (default kMaxControlNodes).
+    void set_max_nodes(std::size_t max_nodes) { max_nodes_ = max_nodes; }
     /// The response to one request object: {"ok":true,...} or {"ok":false,"error":"..."}, with
     /// the request's "id" copied when it has one. Never throws.
     ControlJson handle(const ControlJson& request);
     /// The response to one line of text: handle() of its JSON, or a refusal of text that is not
-    /// a JSON object.
+    /// a JSON object or nests deeper than kMaxControlDepth.
     ControlJson handle_line(std::string_view line);
 
 private:
@@ -55,6 +62,7 @@ private:
     NodeRegistry& registry_;
     const Scenario& running_;
     LogHandler log_;
+    std::size_t max_nodes_ = kMaxControlNodes;
 };
 
 }  // namespace olcb::simnode

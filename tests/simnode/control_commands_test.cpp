@@ -4,8 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <fstream>
 #include <functional>
+#include <future>
 
 #include "openlcb/gridconnect.hpp"
 #include "openlcb/in_process_bus.hpp"
@@ -139,6 +143,31 @@ TEST_F(ControlCommandsTest, MalformedRequestsGetClearErrors) {
               "\"faults\" must be a string or a list of strings");
 }
 
+TEST_F(ControlCommandsTest, DeeplyNestedRequestsAreRefusedUnparsed) {
+    start_default();
+    // 32,739 levels filled a 64 KiB line: quoting the value printed it recursively, which
+    // overflowed the stack under ASan.
+    const std::size_t deep = 32'739;
+    const std::string line =
+        "{\"cmd\":\"read\",\"node\":" + std::string(deep, '[') + std::string(deep, ']') + "}";
+    EXPECT_EQ(error_of(ask_line(line)),
+              "request nested deeper than 32 levels of arrays and objects");
+    EXPECT_EQ(error_of(ask_line(std::string(65'536, '{'))),
+              "request nested deeper than 32 levels of arrays and objects");
+    // 32 levels pass; brackets in strings are text.
+    const auto nested_id = [](std::size_t levels) {
+        return "{\"cmd\":\"list\",\"id\":" + std::string(levels - 1, '[') +
+               std::string(levels - 1, ']') + "}";
+    };
+    EXPECT_EQ(ask_line(nested_id(32))["ok"], true);
+    EXPECT_EQ(error_of(ask_line(nested_id(33))),
+              "request nested deeper than 32 levels of arrays and objects");
+    const std::string in_string = "{\"cmd\":\"list\",\"id\":\"" + std::string(100, '[') + "\\\"" +
+                                  std::string(100, '{') + "\"}";
+    const Json r = ask_line(in_string);
+    EXPECT_EQ(r["ok"], true) << r.dump().substr(0, 200);
+}
+
 TEST_F(ControlCommandsTest, TheRequestIdIsEchoedWhenItIsAScalar) {
     start_default();
     EXPECT_EQ(ask(Json{{"cmd", "list"}, {"id", 42}})["id"], 42);
@@ -270,6 +299,55 @@ TEST_F(ControlCommandsTest, AddStartsANodeFromScenarioKeys) {
                   registry_.find(added)->stack().alias());
     EXPECT_TRUE(run_until([&] { return seen(init); })) << init;
     EXPECT_EQ(registry_.nodes().size(), 3u);
+}
+
+TEST_F(ControlCommandsTest, AddIsBoundedInNodesBeforeBuildingThem) {
+    start_default();
+    const std::string cdi = std::string(OLCB_SOURCE_DIR) + "/scenarios/default.xml";
+    // Refused before 100,000 configs are built, each with its copy of the CDI text.
+    EXPECT_EQ(
+        error_of(ask(Json{
+            {"cmd", "add"}, {"node-id", "05.01.01.01.30.00"}, {"count", 100000}, {"cdi", cdi}})),
+        "one add makes at most 1000 nodes (count 100000)");
+    EXPECT_EQ(error_of(ask(Json{{"cmd", "add"},
+                                {"node-id", "05.01.01.01.30.00"},
+                                {"count", "99999999999999999999999"},
+                                {"cdi", cdi}})),
+              "one add makes at most 1000 nodes (count 99999999999999999999999)");
+    commands_.set_max_nodes(3);
+    EXPECT_EQ(error_of(ask(Json{
+                  {"cmd", "add"}, {"node-id", "05.01.01.01.30.00"}, {"count", 3}, {"cdi", cdi}})),
+              "simnode runs at most 3 nodes; 1 run now, so at most 2 more can be added");
+    EXPECT_EQ(registry_.nodes().size(), 1u) << "nothing added";
+    EXPECT_EQ(
+        ask(Json{
+            {"cmd", "add"}, {"node-id", "05.01.01.01.30.00"}, {"count", 2}, {"cdi", cdi}})["ok"],
+        true);
+    EXPECT_EQ(registry_.nodes().size(), 3u);
+}
+
+TEST_F(ControlCommandsTest, AddRefusesACdiThatIsNoRegularFileAtOnce) {
+    start_default();
+    const test::TempDir dir("simnode-control-fifo");
+    const auto fifo = dir.path() / "cdi.xml";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // Before, open() waited for a writer on the io thread: every node and the hub froze.
+    auto added = std::async(std::launch::async, [&] {
+        return ask(Json{{"cmd", "add"}, {"node-id", "05.01.01.01.30.00"}, {"cdi", fifo.string()}});
+    });
+    if (added.wait_for(1s) != std::future_status::ready) {
+        std::ofstream(fifo) << "";  // a writer that comes and goes releases the blocked open
+        FAIL() << "add blocked on a FIFO without a writer: " << added.get().dump();
+    }
+    EXPECT_EQ(error_of(added.get()),
+              "node: CDI file: cannot read " + fifo.string() + ": not a regular file");
+    const auto start = std::chrono::steady_clock::now();
+    // Before, /dev/zero was read until memory ran out (bad_alloc at 518 MiB).
+    EXPECT_EQ(
+        error_of(ask(Json{{"cmd", "add"}, {"node-id", "05.01.01.01.30.00"}, {"cdi", "/dev/zero"}})),
+        "node: CDI file: cannot read /dev/zero: not a regular file");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, 1s);
+    EXPECT_EQ(registry_.nodes().size(), 1u);
 }
 
 TEST_F(ControlCommandsTest, RemoveReleasesTheAlias) {
