@@ -18,15 +18,29 @@ std::string refusal_line(const std::string& error) {
     return out.dump() + "\n";
 }
 
-// One control connection: reads lines, answers each, writes the answers, reads on.
+// One control connection: reads lines, answers them a batch at a time, writes the answers, and
+// reads on only when every line read is answered and every answer written. So a client costs at
+// most one line of input and one batch of answers, whatever it sends and however it reads.
 class Session : public std::enable_shared_from_this<Session> {
 public:
-    Session(tcp::socket socket, ControlCommands& commands)
-        : socket_(std::move(socket)), commands_(commands) {}
+    Session(tcp::socket socket, ControlCommands& commands,
+            std::shared_ptr<const ControlServer::LogHandler> log,
+            std::chrono::milliseconds write_timeout)
+        : socket_(std::move(socket)),
+          timer_(socket_.get_executor()),
+          commands_(commands),
+          log_(std::move(log)),
+          write_timeout_(write_timeout) {
+        boost::system::error_code ignored;
+        const auto remote = socket_.remote_endpoint(ignored);
+        peer_ = remote.address().to_string() + ":" + std::to_string(remote.port());
+    }
 
     void start() { read(); }
 
     void close() {
+        closed_ = true;
+        timer_.cancel();
         boost::system::error_code ignored;
         socket_.shutdown(tcp::socket::shutdown_both, ignored);
         socket_.close(ignored);
@@ -37,6 +51,10 @@ public:
         output_ = refusal_line(error);
         send(true);
     }
+
+    const std::string& peer() const { return peer_; }
+    std::size_t queued() const { return output_.size() - written_; }
+    bool open() const { return !closed_; }
 
 private:
     void read() {
@@ -52,12 +70,15 @@ private:
             });
     }
 
-    // Answers every complete line read so far; one batch of answers is written at a time, so
-    // a client that never reads its answers stops being read from.
+    // Answers complete lines until the batch or the queued answers reach their limit; the lines
+    // left wait for the answers to be written.
     void answer() {
         std::size_t begin = 0;
+        std::size_t answered = 0;
         bool close_after = false;
-        for (auto nl = input_.find('\n'); nl != std::string::npos; nl = input_.find('\n', begin)) {
+        while (answered < kMaxControlBatch && output_.size() < kMaxControlQueuedBytes) {
+            const auto nl = input_.find('\n', begin);
+            if (nl == std::string::npos) break;
             std::string_view line(input_.data() + begin, nl - begin);
             begin = nl + 1;
             if (line.size() > kMaxControlLineBytes) {
@@ -69,39 +90,85 @@ private:
             output_ += commands_.handle_line(line).dump(-1, ' ', false,
                                                         ControlJson::error_handler_t::replace);
             output_ += '\n';
+            ++answered;
         }
         input_.erase(0, begin);
-        if (close_after || input_.size() > kMaxControlLineBytes) {
+        if (close_after || (!has_line() && input_.size() > kMaxControlLineBytes)) {
             output_ += refusal_line("request line longer than " +
                                     std::to_string(kMaxControlLineBytes) + " bytes; closing");
             input_.clear();
             close_after = true;
         }
         if (output_.empty()) {
-            read();
+            read();  // every line was blank: none is left
             return;
         }
         send(close_after);
     }
 
+    bool has_line() const { return input_.find('\n') != std::string::npos; }
+
     void send(bool close_after) {
-        boost::asio::async_write(socket_, boost::asio::buffer(output_),
-                                 [self = shared_from_this(), close_after](
-                                     const boost::system::error_code& ec, std::size_t) {
-                                     self->output_.clear();
-                                     if (ec || close_after) {
-                                         self->close();
-                                         return;
-                                     }
-                                     self->read();
-                                 });
+        close_after_ = close_after;
+        written_ = 0;
+        write_some();
+    }
+
+    // Writes what is left of the answers; every byte the client takes restarts its timeout.
+    void write_some() {
+        arm_timeout();
+        socket_.async_write_some(
+            boost::asio::buffer(output_.data() + written_, output_.size() - written_),
+            [self = shared_from_this()](const boost::system::error_code& ec, std::size_t n) {
+                self->written_ += n;
+                if (ec || self->closed_) {
+                    self->close();
+                    return;
+                }
+                if (self->written_ < self->output_.size()) {
+                    self->write_some();
+                    return;
+                }
+                self->timer_.cancel();
+                self->output_.clear();
+                self->written_ = 0;
+                if (self->close_after_) {
+                    self->close();
+                } else if (self->has_line()) {
+                    self->answer();
+                } else {
+                    self->read();
+                }
+            });
+    }
+
+    void arm_timeout() {
+        timer_.expires_after(write_timeout_);
+        timer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+            // A wait re-armed after this one fired is not a timeout.
+            if (ec || self->closed_ || self->timer_.expiry() > std::chrono::steady_clock::now())
+                return;
+            if (*self->log_) {
+                (*self->log_)("control: closed " + self->peer_ + ": it read none of its " +
+                              std::to_string(self->queued()) + " bytes of answers for " +
+                              std::to_string(self->write_timeout_.count()) + " ms");
+            }
+            self->close();
+        });
     }
 
     tcp::socket socket_;
+    boost::asio::steady_timer timer_;
     ControlCommands& commands_;
+    std::shared_ptr<const ControlServer::LogHandler> log_;
+    std::chrono::milliseconds write_timeout_;
+    std::string peer_;
     std::array<char, 4096> chunk_{};
     std::string input_;
     std::string output_;
+    std::size_t written_ = 0;  // bytes of output_ the socket took
+    bool close_after_ = false;
+    bool closed_ = false;
 };
 
 }  // namespace
@@ -122,17 +189,14 @@ struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
     void take(tcp::socket socket) {
         boost::system::error_code ignored;
         socket.set_option(tcp::no_delay(true), ignored);  // one short line each way
-        const auto remote = socket.remote_endpoint(ignored);
         std::erase_if(sessions, [](const auto& s) { return s.expired(); });
-        auto session = std::make_shared<Session>(std::move(socket), commands);
+        auto session =
+            std::make_shared<Session>(std::move(socket), commands, on_log, write_timeout);
         if (sessions.size() >= kMaxControlClients) {
             const std::string why = std::to_string(sessions.size()) +
                                     " control connections open (at most " +
                                     std::to_string(kMaxControlClients) + ")";
-            if (on_log) {
-                on_log("control: refused " + remote.address().to_string() + ":" +
-                       std::to_string(remote.port()) + ": " + why);
-            }
+            if (*on_log) (*on_log)("control: refused " + session->peer() + ": " + why);
             session->refuse(why);
             return;
         }
@@ -142,7 +206,9 @@ struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
 
     tcp::acceptor acceptor;
     ControlCommands& commands;
-    LogHandler on_log;
+    // Shared with the sessions, which may outlive the server by a pending handler.
+    std::shared_ptr<LogHandler> on_log = std::make_shared<LogHandler>();
+    std::chrono::milliseconds write_timeout = kControlWriteTimeout;
     std::vector<std::weak_ptr<Session>> sessions;
     bool stopped = true;
 };
@@ -151,7 +217,11 @@ ControlServer::ControlServer(boost::asio::io_context& io, ControlCommands& comma
     : impl_(std::make_shared<Impl>(io, commands)) {}
 
 ControlServer::~ControlServer() {
-    stop();
+    try {
+        stop();
+    } catch (...) {
+        // @nothrow: cancelling a timer or closing a socket already gone leaves nothing.
+    }
 }
 
 boost::system::error_code ControlServer::listen(const std::string& address, std::uint16_t port) {
@@ -166,7 +236,27 @@ std::uint16_t ControlServer::port() const {
 }
 
 void ControlServer::set_log_handler(LogHandler handler) {
-    impl_->on_log = std::move(handler);
+    *impl_->on_log = std::move(handler);
+}
+
+void ControlServer::set_write_timeout(std::chrono::milliseconds timeout) {
+    impl_->write_timeout = timeout;
+}
+
+std::size_t ControlServer::queued_bytes() const {
+    std::size_t total = 0;
+    for (const auto& weak : impl_->sessions) {
+        if (auto session = weak.lock()) total += session->queued();
+    }
+    return total;
+}
+
+std::size_t ControlServer::connections() const {
+    std::size_t open = 0;
+    for (const auto& weak : impl_->sessions) {
+        if (auto session = weak.lock(); session && session->open()) ++open;
+    }
+    return open;
 }
 
 void ControlServer::stop() {

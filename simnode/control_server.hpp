@@ -3,6 +3,7 @@
 // nodes run on, so a request never races the node stacks.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -18,11 +19,20 @@ namespace olcb::simnode {
 inline constexpr std::size_t kMaxControlLineBytes = std::size_t{64} * 1024;
 /// Control connections open at once; one more is refused with an error line.
 inline constexpr std::size_t kMaxControlClients = 16;
+/// Answers a connection may have waiting to be written before it is answered no further (and
+/// not read from) until they are: a client that pipelines requests and never reads costs this
+/// much memory, plus one answer (one `list` may be longer).
+inline constexpr std::size_t kMaxControlQueuedBytes = std::size_t{256} * 1024;
+/// Requests of one connection answered in one turn of the io thread, whatever their answers'
+/// size: between turns the hub and the nodes run.
+inline constexpr std::size_t kMaxControlBatch = 64;
+/// A connection whose answers wait this long without a byte of them read is closed.
+inline constexpr std::chrono::milliseconds kControlWriteTimeout{30'000};
 
 /// Accepts control connections and answers their requests in order, one at a time.
 class ControlServer {
 public:
-    /// Told a line on every refused or failed connection, for simnode's output.
+    /// Told a line on every refused or dropped connection, for simnode's output.
     using LogHandler = std::function<void(const std::string&)>;
 
     /// A server answering with commands (which must outlive it) on io.
@@ -36,8 +46,15 @@ public:
     boost::system::error_code listen(const std::string& address, std::uint16_t port);
     /// The port listened on (0 when not listening).
     std::uint16_t port() const;
-    /// Sets who is told of refused connections.
+    /// Sets who is told of refused and dropped connections.
     void set_log_handler(LogHandler handler);
+    /// Sets how long answers may wait unread before their connection is closed (default
+    /// kControlWriteTimeout); for connections accepted from now on.
+    void set_write_timeout(std::chrono::milliseconds timeout);
+    /// Bytes of answers not yet written, over every connection: what the clients cost.
+    std::size_t queued_bytes() const;
+    /// Connections open now (refused ones not counted).
+    std::size_t connections() const;
     /// Stops accepting and closes every connection.
     void stop();
 
