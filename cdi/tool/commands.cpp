@@ -73,6 +73,9 @@ std::optional<Loaded> load(const std::string& path) {
                   << " (see lcc-cdi validate)\n";
     }
     ParseResult parsed = parse(*bytes);
+    // The model owns copies of all it needs: the text (up to 16 MiB) need not live on through
+    // the layout and the output, where the peak of a large CDI is.
+    bytes.reset();
     if (!parsed.document) {
         for (const auto& d : parsed.diagnostics)
             std::cerr << display(format_diagnostic(path, d)) << "\n";
