@@ -1,6 +1,7 @@
 #include "simnode/sim_node.hpp"
 
 #include <algorithm>
+#include <iostream>
 #include <set>
 #include <span>
 #include <type_traits>
@@ -115,7 +116,9 @@ public:
     void send(Message message) override { node_.stack_.send_message(std::move(message)); }
     void abort(std::chrono::milliseconds silence) override { node_.abort_node(silence); }
     bool watched_changed() const override { return node_.watched_changed(); }
-    void factory_reset() override { node_.factory_reset(); }
+    void factory_reset() override {
+        if (node_.factory_reset()) ++node_.counters_.factory_resets;
+    }
     NodeMemory& memory() override { return *node_.memory_; }
     void storage_error() override { ++node_.counters_.storage_errors; }
 
@@ -350,10 +353,20 @@ void SimNode::abort_node(std::chrono::milliseconds silence) {
     });
 }
 
-void SimNode::factory_reset() {
+bool SimNode::factory_reset() {
     std::string error;
-    if (!memory_->factory_reset(error)) ++counters_.storage_errors;
-    ++counters_.factory_resets;
+    if (memory_->factory_reset(error)) return true;
+    ++counters_.storage_errors;
+    log("node " + config_.node_id.to_string() + ": factory reset not stored: " + error);
+    return false;
+}
+
+void SimNode::log(const std::string& line) const {
+    if (log_) {
+        log_(line);
+    } else {
+        std::cerr << "simnode: " << line << "\n";
+    }
 }
 
 void SimNode::power_up(TimePoint now) {
@@ -468,7 +481,7 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
 
     if (fx.reboot || fx.factory_reset || write_reboot) {
         if (fx.factory_reset) {
-            factory_reset();
+            ++counters_.factory_resets;  // done in decide(), before the acknowledgement
         } else if (fx.reboot) {
             ++counters_.reboots;
         } else {
@@ -523,6 +536,11 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
     if (decision.accepted && fx.unique_id_counter &&
         !memory_->store_unique_id_counter(*fx.unique_id_counter)) {
         ++counters_.storage_errors;
+        log("node " + config_.node_id.to_string() + ": unique ID counter not stored");
+        decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
+    }
+    // Performed before the acknowledgement, so an acknowledged reset is one on disk.
+    if (decision.accepted && fx.factory_reset && !factory_reset()) {
         decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
     }
     return decision;

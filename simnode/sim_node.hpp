@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -104,6 +105,10 @@ public:
     const NodeCounters& counters() const { return counters_; }
     /// Reset/Reboot commands obeyed.
     std::uint32_t reboot_count() const { return counters_.reboots; }
+    /// Told a line (without "simnode: ") when storage fails; unset: the line goes to stderr.
+    using LogHandler = std::function<void(const std::string&)>;
+    /// Sets who is told of storage failures.
+    void set_log_handler(LogHandler handler) { log_ = std::move(handler); }
     /// Reply datagrams sent or scheduled since creation.
     std::uint64_t replies() const { return replies_; }
     /// The first validation error of the served CDI ("" when it is valid).
@@ -141,7 +146,8 @@ private:
     void find_watched();
     bool watched_changed() const;
     void abort_node(std::chrono::milliseconds silence);
-    void factory_reset();
+    bool factory_reset();
+    void log(const std::string& line) const;
     void power_up(TimePoint now);
     void on_initialized();
     void advertise(const EventSlot* only_begin, const EventSlot* only_end);
@@ -179,6 +185,7 @@ private:
     // Event IDs at the last start-up (events-stale-after-write identifies only these).
     std::vector<std::pair<EventId, EventRole>> startup_events_;
     std::map<std::uint32_t, PendingStreamRead> stream_reads_;  // by stream handle
+    LogHandler log_;
 };
 
 }  // namespace olcb::simnode

@@ -2,7 +2,12 @@
 // acknowledgement, found again by a node re-created on the same directory.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <csignal>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "memory/snip.hpp"
 #include "sim_node_test_util.hpp"
@@ -78,6 +83,55 @@ TEST_F(PersistenceTest, FactoryResetRewritesTheImage) {
     auto again = SimNode::create(c, error);
     ASSERT_TRUE(again) << error;
     EXPECT_EQ(again->memory().read(0xFD, 15, 1), (std::vector<std::uint8_t>{2}));
+}
+
+// Files may not grow past `bytes` while it lives: a write that needs more fails as on a full disk.
+class FileSizeLimit {
+public:
+    explicit FileSizeLimit(rlim_t bytes) {
+        getrlimit(RLIMIT_FSIZE, &saved_);
+        old_handler_ = std::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead
+        rlimit tight = saved_;
+        tight.rlim_cur = bytes;
+        setrlimit(RLIMIT_FSIZE, &tight);
+    }
+    ~FileSizeLimit() {
+        setrlimit(RLIMIT_FSIZE, &saved_);
+        std::signal(SIGXFSZ, old_handler_);
+    }
+    FileSizeLimit(const FileSizeLimit&) = delete;
+    FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+private:
+    rlimit saved_{};
+    void (*old_handler_)(int) = nullptr;
+};
+
+// Factory Reset rewrites whole spaces through the journal (a 203-byte record for space 253); a
+// disk that cannot take it must not see the command acknowledged (issue 31).
+TEST_F(PersistenceTest, FactoryResetThatCannotBeStoredIsRefusedAndLogged) {
+    TempDir dir;
+    NodeConfig c = default_config();
+    c.image_dir = dir.path();
+    start(c);
+    std::vector<std::string> logged;
+    node_->set_log_handler([&](const std::string& line) { logged.push_back(line); });
+    write_ok(0xFD, 15, {3});
+    Answer a;
+    {
+        const FileSizeLimit full(100);  // room for a small write's record, not a whole space's
+        a = exchange({0x20, 0xAA, 5, 1, 1, 1, 0x22, 0x00});
+    }
+    EXPECT_FALSE(a.ok) << "acknowledged a reset the disk did not take";
+    EXPECT_TRUE(a.rejected);
+    EXPECT_EQ(a.code, 0x1000);
+    EXPECT_EQ(node_->counters().factory_resets, 0u);
+    EXPECT_EQ(node_->counters().storage_errors, 1u);
+    ASSERT_EQ(logged.size(), 1u);
+    EXPECT_NE(logged[0].find("factory reset not stored"), std::string::npos) << logged[0];
+    net_.run_for(1s);
+    EXPECT_EQ(node_->memory().read(0xFD, 15, 1), (std::vector<std::uint8_t>{3}))
+        << "the settings stay as they were";
 }
 
 TEST_F(PersistenceTest, MissingImageDirectoryIsAnError) {
