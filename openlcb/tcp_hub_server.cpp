@@ -73,6 +73,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
           acceptor(io_context),
           timer(io_context),
           bus_timer(io_context),
+          accept_timer(io_context),
           options(opts) {
         if (options.bitrate > 0) pacer.emplace(options.bitrate);
     }
@@ -80,10 +81,34 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     void accept() {
         acceptor.async_accept(
             [self = shared_from_this()](const boost::system::error_code& ec, tcp::socket socket) {
-                if (self->stopped) return;
-                if (!ec) self->add_client(std::move(socket));
-                if (ec != boost::asio::error::operation_aborted) self->accept();
+                if (self->stopped || ec == boost::asio::error::operation_aborted) return;
+                if (!ec) {
+                    self->accept_failing = false;
+                    self->add_client(std::move(socket));
+                    self->accept();
+                    return;
+                }
+                self->accept_failed(ec);
             });
+    }
+
+    // Out of descriptors, accept() fails at once until some are closed: rest instead of
+    // spinning, and say so once per episode.
+    void accept_failed(const boost::system::error_code& ec) {
+        ++stats.accept_errors;
+        const auto delay = accept_retry_delay(ec);
+        if (delay.count() == 0) {
+            accept();
+            return;
+        }
+        if (!std::exchange(accept_failing, true)) {
+            log("cannot accept a client: " + ec.message() + "; trying again every " +
+                std::to_string(delay.count()) + " ms");
+        }
+        accept_timer.expires_after(delay);
+        accept_timer.async_wait([self = shared_from_this()](const boost::system::error_code& e) {
+            if (!e && !self->stopped) self->accept();
+        });
     }
 
     void add_client(tcp::socket socket) {
@@ -93,6 +118,9 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         const auto same = static_cast<std::size_t>(
             std::count_if(clients.begin(), clients.end(),
                           [&](const auto& c) { return !c->closed && c->address == address; }));
+        if (clients.size() >= options.max_clients && same < options.max_clients_per_address) {
+            evict_longest_idle(remote);
+        }
         if (clients.size() >= options.max_clients || same >= options.max_clients_per_address) {
             const bool full = clients.size() >= options.max_clients;
             ++(full ? stats.clients_rejected : stats.clients_rejected_per_address);
@@ -119,6 +147,29 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         ++stats.clients_accepted;
         read(client);
         if (on_connect) on_connect(remote);
+    }
+
+    // A full hub makes room for a newcomer by closing the client that has sent nothing for the
+    // longest time, if that is at least evict_idle_after: connections that only sit there (a
+    // flood of them from a few addresses) cannot lock out a client that talks.
+    void evict_longest_idle(const std::string& newcomer) {
+        if (options.evict_idle_after.count() <= 0) return;
+        const auto now = SteadyClock::now();
+        Client* longest = nullptr;
+        for (const auto& client : clients) {
+            if (!client->closed && (longest == nullptr || client->last_rx < longest->last_rx)) {
+                longest = client.get();
+            }
+        }
+        if (longest == nullptr || now - longest->last_rx < options.evict_idle_after) return;
+        const auto idle =
+            std::chrono::duration_cast<std::chrono::milliseconds>(now - longest->last_rx);
+        ++stats.clients_evicted_idle;
+        log("closed client " + longest->remote + ": idle for " + std::to_string(idle.count()) +
+            " ms, the longest, to admit " + newcomer + " (max-clients " +
+            std::to_string(options.max_clients) + ")");
+        close(*longest);
+        sweep();
     }
 
     void log(const std::string& text) {
@@ -392,6 +443,7 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
         acceptor.close(ignored);
         timer.cancel();
         bus_timer.cancel();
+        accept_timer.cancel();
         for (const auto& client : clients) close(*client);
         clients.clear();
     }
@@ -400,6 +452,8 @@ struct TcpHubServer::Impl : std::enable_shared_from_this<TcpHubServer::Impl> {
     tcp::acceptor acceptor;
     boost::asio::steady_timer timer;
     boost::asio::steady_timer bus_timer;
+    boost::asio::steady_timer accept_timer;  // accept_failed()'s rest
+    bool accept_failing = false;             // its log line was written
     Options options;
     Stats stats;
     std::optional<BusPacer> pacer;  // options.bitrate > 0

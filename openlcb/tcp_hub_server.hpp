@@ -38,6 +38,10 @@ struct TcpHubOptions {
     std::uint32_t max_client_frames_per_second = 0;
     /// A client that sent nothing this long is closed (0 = never).
     std::chrono::milliseconds idle_timeout{0};
+    /// When max_clients are connected, a newcomer (from an address below its own limit) is
+    /// admitted by closing the client that has sent nothing for the longest time, if that is at
+    /// least this long (0 = never: the newcomer is refused).
+    std::chrono::milliseconds evict_idle_after{1000};
     /// Paces the segment as one CAN bus at this many bit/s (0 = off): every frame, whoever sent
     /// it, occupies the bus for can_frame_time() and reaches the others when it completes
     /// (BusPacer: lowest ID wins when several wait, each sender in order).
@@ -75,6 +79,8 @@ public:
         std::uint64_t clients_dropped_slow = 0;  ///< disconnected for an overflowing queue
         std::uint64_t clients_rejected_per_address = 0;  ///< refused: too many from one address
         std::uint64_t clients_dropped_idle = 0;          ///< closed after idle_timeout
+        std::uint64_t clients_evicted_idle = 0;  ///< closed for a newcomer (evict_idle_after)
+        std::uint64_t accept_errors = 0;         ///< accepts that failed (e.g. no descriptors)
         std::uint64_t read_pauses = 0;      ///< times a client's reading was paused (backpressure)
         std::uint64_t frames_received = 0;  ///< valid frames from clients and local endpoints
         std::uint64_t parse_errors = 0;     ///< invalid or over-long frame texts from clients

@@ -1,5 +1,7 @@
 #include "openlcb/tcp_listener.hpp"
 
+#include <cerrno>
+
 namespace olcb {
 
 using boost::asio::ip::tcp;
@@ -20,6 +22,19 @@ boost::system::error_code listen_on(tcp::acceptor& acceptor, const std::string& 
         return ec;
     }
     return {};
+}
+
+std::chrono::milliseconds accept_retry_delay(const boost::system::error_code& ec) {
+    if (ec.category() != boost::system::system_category()) return {};
+    switch (ec.value()) {
+        case EMFILE:
+        case ENFILE:
+        case ENOBUFS:
+        case ENOMEM:
+            return kAcceptRetryDelay;
+        default:
+            return {};
+    }
 }
 
 std::uint16_t listening_port(const tcp::acceptor& acceptor) {

@@ -2,6 +2,8 @@
 // paused) instead of its readers being dropped; limits per address and in total; idle clients
 // and slow readers are closed, each with a log line.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -99,6 +101,93 @@ TEST_F(TcpHubLimitsTest, ConnectionsPerAddressAndInTotalAreLimited) {
     EXPECT_EQ(hub->client_count(), 2u);
     EXPECT_TRUE(logged("(max-clients-per-address 2)")) << (log.empty() ? "" : log.front());
     EXPECT_TRUE(logged("refused client 127.0.0.1:"));
+}
+
+std::unique_ptr<Raw> raw_from(boost::asio::io_context& io, std::uint16_t port, const char* from) {
+    auto raw = std::make_unique<Raw>(io, port, from);
+    raw->start_reading();
+    return raw;
+}
+
+// Idle connections from three addresses, each below the per-address limit, fill the hub.
+std::vector<std::unique_ptr<Raw>> idle_flood(boost::asio::io_context& io, std::uint16_t port) {
+    std::vector<std::unique_ptr<Raw>> flood;
+    for (const char* from : {"127.0.0.2", "127.0.0.3", "127.0.0.4"}) {
+        for (int i = 0; i < 2; ++i) flood.push_back(raw_from(io, port, from));
+    }
+    return flood;
+}
+
+TEST_F(TcpHubLimitsTest, AFullHubClosesItsLongestIdleClientForANewcomer) {
+    options.max_clients = 6;
+    options.max_clients_per_address = 2;
+    options.evict_idle_after = milliseconds(100);
+    start();
+    auto flood = idle_flood(io, hub->port());
+    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 6; }));
+    io.run_for(milliseconds(150));
+    auto good = raw_from(io, hub->port(), "127.0.0.1");
+    ASSERT_TRUE(run_until(io, [&] { return hub->stats().clients_evicted_idle == 1; }));
+    io.run_for(milliseconds(50));
+    EXPECT_FALSE(good->closed);
+    EXPECT_TRUE(flood.front()->closed) << "the first of the flood has been idle the longest";
+    EXPECT_EQ(std::count_if(flood.begin(), flood.end(), [](const auto& r) { return r->closed; }),
+              1);
+    EXPECT_EQ(hub->client_count(), 6u);
+    EXPECT_TRUE(logged("ms, the longest, to admit 127.0.0.1:")) << (log.empty() ? "" : log.back());
+}
+
+TEST_F(TcpHubLimitsTest, AFullHubOfRecentClientsRefusesTheNewcomer) {
+    options.max_clients = 6;
+    options.max_clients_per_address = 2;
+    options.evict_idle_after = milliseconds(60000);
+    start();
+    auto flood = idle_flood(io, hub->port());
+    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 6; }));
+    auto late = raw_from(io, hub->port(), "127.0.0.1");
+    ASSERT_TRUE(run_until(io, [&] { return late->closed; }));
+    EXPECT_EQ(hub->stats().clients_rejected, 1u);
+    EXPECT_EQ(hub->stats().clients_evicted_idle, 0u);
+    EXPECT_TRUE(logged("6 clients connected (max-clients 6)"));
+}
+
+// While it lives, the process may open no descriptor more (every new one fails with EMFILE).
+class NoMoreDescriptors {
+public:
+    NoMoreDescriptors() {
+        getrlimit(RLIMIT_NOFILE, &saved_);
+        const int lowest_free = ::dup(0);
+        ::close(lowest_free);
+        rlimit none = saved_;
+        none.rlim_cur = static_cast<rlim_t>(lowest_free);
+        setrlimit(RLIMIT_NOFILE, &none);
+    }
+    ~NoMoreDescriptors() { setrlimit(RLIMIT_NOFILE, &saved_); }
+    NoMoreDescriptors(const NoMoreDescriptors&) = delete;
+    NoMoreDescriptors& operator=(const NoMoreDescriptors&) = delete;
+
+private:
+    rlimit saved_{};
+};
+
+TEST_F(TcpHubLimitsTest, OutOfDescriptorsTheHubRestsAndAcceptsLater) {
+    start();
+    boost::asio::ip::tcp::socket waiting(io);
+    waiting.open(boost::asio::ip::tcp::v4());  // its descriptor exists before the limit
+    {
+        const NoMoreDescriptors none;
+        waiting.connect({boost::asio::ip::address_v4::loopback(), hub->port()});
+        io.run_for(milliseconds(300));
+        EXPECT_EQ(hub->client_count(), 0u);
+        EXPECT_GE(hub->stats().accept_errors, 1u);
+        EXPECT_LE(hub->stats().accept_errors, 4u) << "accept() retried in a busy loop";
+    }
+    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 1; }));
+    EXPECT_EQ(std::count_if(log.begin(), log.end(),
+                            [](const std::string& l) {
+                                return l.find("cannot accept a client") != std::string::npos;
+                            }),
+              1);
 }
 
 TEST_F(TcpHubLimitsTest, IdleClientsAreClosedTalkersStay) {

@@ -77,6 +77,13 @@ struct RawClient {
         socket.connect(
             boost::asio::ip::tcp::endpoint(boost::asio::ip::address_v4::loopback(), port));
     }
+    /// Connects from another loopback address (`from`, e.g. "127.0.0.2"), as a second host.
+    RawClient(boost::asio::io_context& io, std::uint16_t port, const char* from) : socket(io) {
+        namespace ip = boost::asio::ip;
+        socket.open(ip::tcp::v4());
+        socket.bind(ip::tcp::endpoint(ip::make_address_v4(from), 0));
+        socket.connect(ip::tcp::endpoint(ip::address_v4::loopback(), port));
+    }
     /// Reads until the peer closes, appending to text; closed is set then.
     void start_reading() {
         socket.async_read_some(boost::asio::buffer(buf),
