@@ -11,6 +11,7 @@
 
 #include "base/utf8.hpp"
 #include "cdi/cdi_file.hpp"
+#include "cdi/html_page.hpp"
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/render.hpp"
@@ -247,7 +248,11 @@ int run_render(const std::vector<std::string>& args) {
     auto loaded = load(files.front());
     if (!loaded) return kExitErrors;
     if (vm.count("html") != 0) {
-        std::cout << render_html(loaded->layout, files.front());
+        // The page's data first, then the model and layout freed before the page text is made:
+        // of the three, only two need to live at once.
+        const nlohmann::json data = cdi_page_json(loaded->layout, files.front());
+        loaded.reset();
+        std::cout << html_page(PageKind::kCdi, data);
     } else {
         render(loaded->layout, std::cout);
     }
