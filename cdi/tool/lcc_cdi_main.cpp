@@ -23,6 +23,7 @@ constexpr const char* kUsage =
     "  render FILE           print the CDI as an indented, human-readable tree\n"
     "  render --html FILE    print it as one HTML page, as a configuration tool shows it\n"
     "\n"
+    "A FILE over 16 MiB (the CDI limit) is refused unread; a FIFO or device is read no further.\n"
     "Run 'lcc-cdi COMMAND --help' for the options of a command.\n";
 
 }  // namespace

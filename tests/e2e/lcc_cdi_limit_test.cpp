@@ -127,4 +127,11 @@ TEST(LccCdiLimit, ACdiThroughAPipeIsHandledLikeAFile) {
     EXPECT_EQ(from_pipe.out, from_file.out);
 }
 
+TEST(LccCdiLimit, TheHelpNamesTheLimit) {
+    const RunResult r = lcc_cdi("--help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("A FILE over 16 MiB (the CDI limit) is refused unread"), std::string::npos)
+        << r.out;
+}
+
 }  // namespace
