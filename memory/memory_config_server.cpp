@@ -273,8 +273,12 @@ Decision MemoryConfigServer::on_write(Space number, std::uint32_t address, Space
             return Decision::reject(ErrorCode::kReadOnly);
         case WriteStatus::kOutOfBounds:
             return fail(ErrorCode::kOutOfBounds);
-        case WriteStatus::kIoError:
-            return fail(ErrorCode::kPermanent);
+        case WriteStatus::kIoError: {
+            Decision d = fail(ErrorCode::kPermanent);
+            d.effects.not_stored =
+                WrittenRange{number, address, static_cast<std::uint32_t>(length), false};
+            return d;
+        }
     }
 
     Decision d = config_.write_reply_pending ? with_reply(WriteReply{number, address, form})

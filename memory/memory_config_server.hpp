@@ -79,6 +79,8 @@ struct SideEffects {
     std::optional<Space> unfreeze;          ///< Unfreeze accepted for this space
     bool enter_bootloader = false;          ///< Enter Bootloader accepted
     std::optional<StreamRead> stream_read;  ///< Read Stream accepted: serve it (see StreamRead)
+    /// A write the space could not store (I/O error): refused, worth a log line.
+    std::optional<WrittenRange> not_stored;
     friend bool operator==(const SideEffects&, const SideEffects&) = default;
 };
 

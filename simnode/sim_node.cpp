@@ -539,6 +539,13 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
         log("node " + config_.node_id.to_string() + ": unique ID counter not stored");
         decision = memory::Decision::reject(memory::ErrorCode::kPermanent);
     }
+    if (fx.not_stored) {
+        ++counters_.storage_errors;
+        log("node " + config_.node_id.to_string() + ": write of " +
+            std::to_string(fx.not_stored->length) + " bytes to space " +
+            std::to_string(memory::to_u8(fx.not_stored->space)) + " at " +
+            std::to_string(fx.not_stored->address) + " not stored; refused with 0x1000");
+    }
     // Performed before the acknowledgement, so an acknowledged reset is one on disk.
     if (decision.accepted && fx.factory_reset && !factory_reset()) {
         decision = memory::Decision::reject(memory::ErrorCode::kPermanent);

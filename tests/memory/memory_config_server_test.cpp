@@ -334,6 +334,9 @@ TEST_F(ServerTest, WriteStorageFailureRepliesFail1000) {
     EXPECT_TRUE(d.accepted);
     EXPECT_EQ(d.reply_bytes(), hex("20 19 00000000 1000"));
     EXPECT_FALSE(d.effects.written.has_value());
+    ASSERT_TRUE(d.effects.not_stored.has_value());
+    EXPECT_EQ(d.effects.not_stored->address, 0u);
+    EXPECT_EQ(d.effects.not_stored->length, 1u);
 }
 
 // ---- Lock, unique IDs, reset family ----------------------------------------------------------

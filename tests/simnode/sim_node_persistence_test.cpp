@@ -134,6 +134,26 @@ TEST_F(PersistenceTest, FactoryResetThatCannotBeStoredIsRefusedAndLogged) {
         << "the settings stay as they were";
 }
 
+TEST_F(PersistenceTest, AWriteThatCannotBeStoredFails1000AndIsLogged) {
+    TempDir dir;
+    NodeConfig c = default_config();
+    c.image_dir = dir.path();
+    start(c);
+    std::vector<std::string> logged;
+    node_->set_log_handler([&](const std::string& line) { logged.push_back(line); });
+    Answer a;
+    {
+        const FileSizeLimit full(30);  // the journal record of 15 bytes needs 39
+        a = exchange(write_cmd(0xFD, 0, std::vector<std::uint8_t>(15, 7)));
+    }
+    ASSERT_TRUE(a.reply);
+    EXPECT_EQ(a.reply->at(1), 0x19) << "Write Reply Fail for space 253";
+    EXPECT_EQ(node_->counters().storage_errors, 1u);
+    ASSERT_EQ(logged.size(), 1u);
+    EXPECT_NE(logged[0].find("write of 15 bytes to space 253 at 0 not stored"), std::string::npos)
+        << logged[0];
+}
+
 TEST_F(PersistenceTest, MissingImageDirectoryIsAnError) {
     NodeConfig c = default_config();
     c.image_dir = "/nonexistent/simnode/images";
