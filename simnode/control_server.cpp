@@ -11,6 +11,11 @@ namespace {
 
 using boost::asio::ip::tcp;
 
+// The kernel's send buffer of a control connection. Left to autotune it grows to megabytes on
+// loopback, which a client that never reads made simnode fill with answers it would never take
+// (15 such clients: seconds of list answers before anything else ran); loopback needs no more.
+constexpr int kControlSendBuffer = 64 * 1024;
+
 std::string refusal_line(const std::string& error) {
     ControlJson out;
     out["ok"] = false;
@@ -189,6 +194,7 @@ struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
     void take(tcp::socket socket) {
         boost::system::error_code ignored;
         socket.set_option(tcp::no_delay(true), ignored);  // one short line each way
+        socket.set_option(tcp::socket::send_buffer_size(kControlSendBuffer), ignored);
         std::erase_if(sessions, [](const auto& s) { return s.expired(); });
         auto session =
             std::make_shared<Session>(std::move(socket), commands, on_log, write_timeout);
