@@ -58,6 +58,8 @@ public:
     }
 
     const std::string& peer() const { return peer_; }
+    // When the client last sent something (or connected).
+    std::chrono::steady_clock::time_point last_heard() const { return last_heard_; }
     std::size_t queued() const { return output_.size() - written_; }
     bool open() const { return !closed_; }
 
@@ -70,6 +72,7 @@ private:
                     self->close();
                     return;
                 }
+                self->last_heard_ = std::chrono::steady_clock::now();
                 self->input_.append(self->chunk_.data(), n);
                 self->answer();
             });
@@ -172,6 +175,7 @@ private:
     std::string input_;
     std::string output_;
     std::size_t written_ = 0;  // bytes of output_ the socket took
+    std::chrono::steady_clock::time_point last_heard_ = std::chrono::steady_clock::now();
     bool close_after_ = false;
     bool closed_ = false;
 };
@@ -185,10 +189,47 @@ struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
     void accept() {
         acceptor.async_accept(
             [self = shared_from_this()](const boost::system::error_code& ec, tcp::socket socket) {
-                if (self->stopped) return;
+                if (self->stopped || ec == boost::asio::error::operation_aborted) return;
                 if (!ec) self->take(std::move(socket));
-                self->accept();
+                self->accept_again(accept_retry_delay(ec));
             });
+    }
+
+    // Out of descriptors, accept() fails at once until some are closed: rest instead of
+    // spinning.
+    void accept_again(std::chrono::milliseconds delay) {
+        if (delay.count() == 0) {
+            accept();
+            return;
+        }
+        retry.expires_after(delay);
+        retry.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+            if (!ec && !self->stopped) self->accept();
+        });
+    }
+
+    // A full server makes room by closing the connection silent longest, if it has been silent
+    // evict_idle_after with nothing left to write: idle clients cannot lock out the port.
+    bool evict_idle(const std::string& newcomer) {
+        const auto now = std::chrono::steady_clock::now();
+        std::shared_ptr<Session> longest;
+        for (const auto& weak : sessions) {
+            auto s = weak.lock();
+            if (s && s->open() && s->queued() == 0 &&
+                (!longest || s->last_heard() < longest->last_heard())) {
+                longest = std::move(s);
+            }
+        }
+        if (!longest || now - longest->last_heard() < evict_idle_after) return false;
+        const auto idle =
+            std::chrono::duration_cast<std::chrono::milliseconds>(now - longest->last_heard());
+        if (*on_log) {
+            (*on_log)("control: closed " + longest->peer() + ": silent for " +
+                      std::to_string(idle.count()) + " ms, the longest, to admit " + newcomer);
+        }
+        longest->close();
+        std::erase_if(sessions, [&](const auto& w) { return w.lock() == longest; });
+        return true;
     }
 
     void take(tcp::socket socket) {
@@ -198,7 +239,7 @@ struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
         std::erase_if(sessions, [](const auto& s) { return s.expired(); });
         auto session =
             std::make_shared<Session>(std::move(socket), commands, on_log, write_timeout);
-        if (sessions.size() >= kMaxControlClients) {
+        if (sessions.size() >= kMaxControlClients && !evict_idle(session->peer())) {
             const std::string why = std::to_string(sessions.size()) +
                                     " control connections open (at most " +
                                     std::to_string(kMaxControlClients) + ")";
@@ -211,10 +252,12 @@ struct ControlServer::Impl : std::enable_shared_from_this<Impl> {
     }
 
     tcp::acceptor acceptor;
+    boost::asio::steady_timer retry{acceptor.get_executor()};  // accept_again()'s rest
     ControlCommands& commands;
     // Shared with the sessions, which may outlive the server by a pending handler.
     std::shared_ptr<LogHandler> on_log = std::make_shared<LogHandler>();
     std::chrono::milliseconds write_timeout = kControlWriteTimeout;
+    std::chrono::milliseconds evict_idle_after = kControlEvictIdleAfter;
     std::vector<std::weak_ptr<Session>> sessions;
     bool stopped = true;
 };
@@ -245,6 +288,10 @@ void ControlServer::set_log_handler(LogHandler handler) {
     *impl_->on_log = std::move(handler);
 }
 
+void ControlServer::set_evict_idle_after(std::chrono::milliseconds silence) {
+    impl_->evict_idle_after = silence;
+}
+
 void ControlServer::set_write_timeout(std::chrono::milliseconds timeout) {
     impl_->write_timeout = timeout;
 }
@@ -269,6 +316,7 @@ void ControlServer::stop() {
     impl_->stopped = true;
     boost::system::error_code ignored;
     impl_->acceptor.close(ignored);
+    impl_->retry.cancel();
     for (const auto& weak : impl_->sessions) {
         if (auto session = weak.lock()) session->close();
     }

@@ -17,7 +17,8 @@ namespace olcb::simnode {
 
 /// Longest request line taken; a longer one is refused and its connection closed.
 inline constexpr std::size_t kMaxControlLineBytes = std::size_t{64} * 1024;
-/// Control connections open at once; one more is refused with an error line.
+/// Control connections open at once; one more closes the connection silent longest if it has
+/// been silent kControlEvictIdleAfter, else it is refused with an error line.
 inline constexpr std::size_t kMaxControlClients = 16;
 /// Answers a connection may have waiting to be written before it is answered no further (and
 /// not read from) until they are: a client that pipelines requests and never reads costs this
@@ -28,6 +29,9 @@ inline constexpr std::size_t kMaxControlQueuedBytes = std::size_t{256} * 1024;
 inline constexpr std::size_t kMaxControlBatch = 64;
 /// A connection whose answers wait this long without a byte of them read is closed.
 inline constexpr std::chrono::milliseconds kControlWriteTimeout{30'000};
+/// How long a connection must have been silent (sent nothing, nothing left to write) before a
+/// newcomer to a full server closes it.
+inline constexpr std::chrono::milliseconds kControlEvictIdleAfter{1000};
 
 /// Accepts control connections and answers their requests in order, one at a time.
 class ControlServer {
@@ -51,6 +55,9 @@ public:
     /// Sets how long answers may wait unread before their connection is closed (default
     /// kControlWriteTimeout); for connections accepted from now on.
     void set_write_timeout(std::chrono::milliseconds timeout);
+    /// Sets how long a connection must be silent before a newcomer to a full server closes it
+    /// (default kControlEvictIdleAfter).
+    void set_evict_idle_after(std::chrono::milliseconds silence);
     /// Bytes of answers not yet written, over every connection: what the clients cost.
     std::size_t queued_bytes() const;
     /// Connections open now (refused ones not counted).

@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <functional>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "openlcb/in_process_bus.hpp"
 #include "openlcb/stack_driver.hpp"
@@ -145,6 +149,53 @@ TEST_F(ControlServerTest, AClientThatReadsGetsEveryPipelinedAnswerInOrder) {
     }
     EXPECT_EQ(server_.connections(), 1u);
     EXPECT_TRUE(log_.empty()) << log_.front();
+}
+
+// Reads what the server sends client until it closes or a line has come.
+std::string first_line(tcp::socket& client, const std::function<bool(std::function<bool()>)>& run) {
+    auto text = std::make_shared<std::string>();
+    auto chunk = std::make_shared<std::array<char, 4096>>();
+    auto done = std::make_shared<bool>(false);
+    std::function<void()> read = [&client, text, chunk, done, &read] {
+        client.async_read_some(
+            boost::asio::buffer(*chunk),
+            [text, chunk, done, &read](const boost::system::error_code& ec, std::size_t n) {
+                text->append(chunk->data(), n);
+                if (ec || text->find('\n') != std::string::npos) {
+                    *done = true;
+                    return;
+                }
+                read();
+            });
+    };
+    read();
+    run([done] { return *done; });
+    boost::system::error_code ignored;
+    client.cancel(ignored);  // a read still pending ends with an error, never calling read
+    return text->substr(0, text->find('\n'));
+}
+
+TEST_F(ControlServerTest, AFullServerClosesItsLongestSilentClientForANewcomer) {
+    server_.set_evict_idle_after(100ms);
+    std::vector<tcp::socket> silent;
+    for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
+    ASSERT_TRUE(run_until([&] { return server_.connections() == kMaxControlClients; }));
+    run_until([] { return false; }, 150ms);
+    tcp::socket newcomer = connect_client(std::string(kList));
+    const std::string answer = first_line(newcomer, [&](auto done) { return run_until(done); });
+    EXPECT_EQ(ControlJson::parse(answer)["ok"], true) << answer;
+    EXPECT_EQ(server_.connections(), kMaxControlClients);
+    EXPECT_TRUE(logged("ms, the longest, to admit 127.0.0.1:")) << (log_.empty() ? "" : log_[0]);
+}
+
+TEST_F(ControlServerTest, AFullServerOfRecentClientsRefusesTheNewcomer) {
+    server_.set_evict_idle_after(60s);
+    std::vector<tcp::socket> silent;
+    for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
+    ASSERT_TRUE(run_until([&] { return server_.connections() == kMaxControlClients; }));
+    tcp::socket newcomer = connect_client(std::string(kList));
+    const std::string answer = first_line(newcomer, [&](auto done) { return run_until(done); });
+    EXPECT_NE(answer.find("control connections open (at most 16)"), std::string::npos) << answer;
 }
 
 }  // namespace
