@@ -34,6 +34,8 @@ bool RotatingFile::open(const std::string& path, std::uint64_t max_bytes) {
     file_.open(path, std::ios::app);
     if (!file_) return false;
     std::error_code ec;
+    // A FIFO or device (--trace /dev/null) is a stream: renaming it would move the device node.
+    if (!std::filesystem::is_regular_file(path, ec)) max_bytes_ = 0;
     const auto existing = std::filesystem::file_size(path, ec);
     size_ = ec ? 0 : existing;
     return true;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "openlcb/candump_log.hpp"
@@ -131,6 +134,27 @@ TEST(RotatingFile, RotatesToDotOneEachTimeTheBoundWouldBePassed) {
     EXPECT_TRUE(file.ok());
     fs::remove(path);
     fs::remove(old_path);
+}
+
+// simnode's default bound (64 MiB) must not make it rename a FIFO or device given as the file.
+TEST(RotatingFile, AFifoIsNeverRotated) {
+    const auto path = fresh_log("fifo");
+    ASSERT_EQ(::mkfifo(path.c_str(), 0600), 0);
+    const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);  // lets the writer open
+    ASSERT_GE(reader, 0);
+    {
+        RotatingFile file;
+        ASSERT_TRUE(file.open(path.string(), 30));
+        for (int i = 0; i < 7; ++i) file.write(line(i));
+        EXPECT_EQ(file.rotations(), 0u);
+        EXPECT_TRUE(file.ok());
+    }
+    EXPECT_TRUE(fs::is_fifo(path));
+    EXPECT_FALSE(fs::exists(path.string() + ".1"));
+    std::array<char, 128> got{};
+    EXPECT_EQ(::read(reader, got.data(), got.size()), 70) << "every line reached the reader";
+    ::close(reader);
+    fs::remove(path);
 }
 
 TEST(RotatingFile, ZeroNeverRotates) {
