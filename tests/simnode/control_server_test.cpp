@@ -178,11 +178,13 @@ std::string first_line(tcp::socket& client, const std::function<bool(std::functi
 TEST_F(ControlServerTest, AFullServerClosesItsLongestSilentClientForANewcomer) {
     server_.set_evict_idle_after(100ms);
     std::vector<tcp::socket> silent;
+    silent.reserve(kMaxControlClients);
     for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
     ASSERT_TRUE(run_until([&] { return server_.connections() == kMaxControlClients; }));
     run_until([] { return false; }, 150ms);
     tcp::socket newcomer = connect_client(std::string(kList));
-    const std::string answer = first_line(newcomer, [&](auto done) { return run_until(done); });
+    const std::string answer =
+        first_line(newcomer, [&](const auto& done) { return run_until(done); });
     EXPECT_EQ(ControlJson::parse(answer)["ok"], true) << answer;
     EXPECT_EQ(server_.connections(), kMaxControlClients);
     EXPECT_TRUE(logged("ms, the longest, to admit 127.0.0.1:")) << (log_.empty() ? "" : log_[0]);
@@ -191,10 +193,12 @@ TEST_F(ControlServerTest, AFullServerClosesItsLongestSilentClientForANewcomer) {
 TEST_F(ControlServerTest, AFullServerOfRecentClientsRefusesTheNewcomer) {
     server_.set_evict_idle_after(60s);
     std::vector<tcp::socket> silent;
+    silent.reserve(kMaxControlClients);
     for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
     ASSERT_TRUE(run_until([&] { return server_.connections() == kMaxControlClients; }));
     tcp::socket newcomer = connect_client(std::string(kList));
-    const std::string answer = first_line(newcomer, [&](auto done) { return run_until(done); });
+    const std::string answer =
+        first_line(newcomer, [&](const auto& done) { return run_until(done); });
     EXPECT_NE(answer.find("control connections open (at most 16)"), std::string::npos) << answer;
 }
 
