@@ -699,7 +699,7 @@ private:
         if (const auto it = cdis_.find(key); it != cdis_.end()) return &it->second;
         // A control request names the file too: a FIFO or /dev/zero must not stall or fill the
         // io thread, so only a regular file is read, and never past the limit.
-        auto text = base::read_regular_file(path, cdi::kMaxCdiBytes, error);
+        auto text = base::read_bounded_file(path, cdi::kMaxCdiBytes, base::Streams::kRefuse, error);
         if (!text) return nullptr;
         return &cdis_.emplace(key, std::move(*text)).first->second;
     }

@@ -1,4 +1,4 @@
-// Reading a CDI file under the size limit (cdi/cdi_file.cpp): regular files refused by their size,
+// Reading a CDI file under the size limit (cdi/cdi_file.hpp): regular files refused by their size,
 // FIFOs and devices refused once they give one byte past it, never read to their end.
 #include "cdi/cdi_file.hpp"
 
