@@ -11,23 +11,10 @@
 #include <cstring>
 #include <string>
 
+#include "base/descriptor.hpp"
+
 namespace olcb::base {
 namespace {
-
-// Closes the descriptor on every way out.
-class Descriptor {
-public:
-    explicit Descriptor(int fd) : fd_(fd) {}
-    ~Descriptor() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    Descriptor(const Descriptor&) = delete;
-    Descriptor& operator=(const Descriptor&) = delete;
-    int get() const { return fd_; }
-
-private:
-    int fd_;
-};
 
 std::optional<std::string> fail(const std::filesystem::path& path, const std::string& reason,
                                 std::string& error) {

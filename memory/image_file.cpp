@@ -17,36 +17,19 @@
 #include <system_error>
 #include <utility>
 
+#include "base/descriptor.hpp"
 #include "base/file.hpp"
 
 namespace olcb::memory {
 namespace {
+
+using base::Descriptor;
 
 constexpr std::uint64_t kMaxImageSize = std::numeric_limits<std::uint32_t>::max();
 
 std::string errno_text(const std::string& what, const std::filesystem::path& path) {
     return what + " " + path.string() + ": " + std::strerror(errno);
 }
-
-// Closes a descriptor on scope exit unless released.
-class Fd {
-public:
-    explicit Fd(int fd = -1) : fd_(fd) {}
-    ~Fd() {
-        if (fd_ >= 0) ::close(fd_);
-    }
-    Fd(const Fd&) = delete;
-    Fd& operator=(const Fd&) = delete;
-    int get() const { return fd_; }
-    int release() { return std::exchange(fd_, -1); }
-    void reset(int fd) {
-        if (fd_ >= 0) ::close(fd_);
-        fd_ = fd;
-    }
-
-private:
-    int fd_;
-};
 
 bool pwrite_all(int fd, std::span<const std::uint8_t> data, std::uint64_t offset) {
     while (!data.empty()) {
@@ -176,7 +159,7 @@ public:
                 std::string& error) {
         std::filesystem::path dir = image.parent_path();
         if (dir.empty()) dir = ".";
-        Fd fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+        Descriptor fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
         struct stat st {};
         if (fd.get() < 0 || ::fstat(fd.get(), &st) != 0) {
             error = errno_text("cannot open image directory", dir);
@@ -261,8 +244,8 @@ struct Opening {
     const std::filesystem::path& path;
     std::filesystem::path journal_path;
     std::unique_ptr<DirectoryLease> lease;
-    Fd journal_fd;
-    Fd image_fd;
+    Descriptor journal_fd;
+    Descriptor image_fd;
     std::vector<std::uint8_t> bytes;  // the image's content, its size from the start
     std::uint64_t sequence = 0;       // the journal record's, 0 without one
 };
@@ -418,12 +401,12 @@ ImageFile::Status ImageFile::write(std::size_t offset, std::span<const std::uint
     if (data.empty()) return Status::kOk;
     // Both files are opened before anything is written: when they cannot be (no descriptor
     // left, EMFILE), this write fails alone and the disk is as it was, so later ones may work.
-    const Fd journal_fd(lease_->open_journal());
+    const Descriptor journal_fd(lease_->open_journal());
     if (journal_fd.get() < 0) {
         last_error_ = errno_text("cannot open journal", journal_path_);
         return Status::kIoError;
     }
-    const Fd image_fd(lease_->open_image());
+    const Descriptor image_fd(lease_->open_image());
     if (image_fd.get() < 0) {
         last_error_ = errno_text("cannot open image", path_);
         return Status::kIoError;

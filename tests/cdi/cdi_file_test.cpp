@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 
+#include "support/endless_fifo.hpp"
 #include "support/temp_files.hpp"
 
 namespace olcb::cdi {
@@ -85,25 +86,13 @@ TEST(CdiFile, ADeviceThatNeverEndsIsReadOnlyToOneBytePastTheLimit) {
 // A FIFO fed by a writer that stops only when the reader has gone: the reader must give up.
 TEST(CdiFile, AFifoFedWithoutEndIsRefused) {
     const TempDir dir("cdi-file");
-    const fs::path fifo = dir.path() / "fifo";
-    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    // The writer learns that the reader closed from EPIPE, not from a signal killing the test.
-    struct sigaction ignore {};
-    struct sigaction saved {};
-    ignore.sa_handler = SIG_IGN;
-    ::sigaction(SIGPIPE, &ignore, &saved);
-    std::thread writer([&fifo] {
-        const int fd = ::open(fifo.c_str(), O_WRONLY | O_CLOEXEC);
-        if (fd < 0) return;
-        const std::string block(4096, 'x');
-        while (::write(fd, block.data(), block.size()) > 0) {
-        }
-        ::close(fd);
-    });
+    std::optional<std::string> bytes;
     std::string error;
-    const auto bytes = read_cdi_file(fifo, 100'000, error);
-    writer.join();
-    ::sigaction(SIGPIPE, &saved, nullptr);
+    {
+        const olcb::test_support::EndlessFifo fifo(dir.path() / "fifo");
+        ASSERT_TRUE(fifo.made());
+        bytes = read_cdi_file(fifo.path(), 100'000, error);
+    }
     EXPECT_FALSE(bytes);
     EXPECT_NE(error.find(": more than 100000 bytes, over the CDI limit"), std::string::npos)
         << error;

@@ -17,6 +17,8 @@
 #include <thread>
 
 #include "cdi/schema_validator.hpp"
+#include "support/endless_fifo.hpp"
+#include "support/run_shell.hpp"
 #include "support/temp_files.hpp"
 
 namespace {
@@ -24,23 +26,11 @@ namespace {
 namespace fs = std::filesystem;
 using olcb::test_support::TempDir;
 
-struct RunResult {
-    int status = -1;
-    std::string out;  // stdout and stderr
-};
+using RunResult = olcb::test_support::ShellResult;
 
-// Runs a shell command line; `timeout` turns a hang into exit status 124, not a stuck suite.
+// Runs a shell command line with stderr merged; `timeout` turns a hang into exit status 124.
 RunResult shell(const std::string& line) {
-    const std::string command = line + " 2>&1";
-    RunResult run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return run;
-    std::array<char, 4096> buf{};
-    std::size_t n = 0;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
+    return olcb::test_support::run_shell(line + " 2>&1");
 }
 
 const std::string kLccCdi = std::string("timeout 30 ") + LCC_CDI_PATH;
@@ -94,23 +84,12 @@ TEST(LccCdiLimit, ADeviceWithoutEndIsRefusedNotReadForever) {
 TEST(LccCdiLimit, AFifoIsReadUpToTheLimit) {
     const TempDir dir("lcc-cdi-limit");
     const fs::path fifo = dir.path() / "cdi.fifo";
-    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    // A writer that stops only when lcc-cdi closes the FIFO (EPIPE; SIGPIPE ignored here).
-    struct sigaction ignore {};
-    struct sigaction saved {};
-    ignore.sa_handler = SIG_IGN;
-    ::sigaction(SIGPIPE, &ignore, &saved);
-    std::thread writer([&fifo] {
-        const int fd = ::open(fifo.c_str(), O_WRONLY | O_CLOEXEC);
-        if (fd < 0) return;
-        const std::string block(65536, ' ');
-        while (::write(fd, block.data(), block.size()) > 0) {
-        }
-        ::close(fd);
-    });
-    const RunResult r = lcc_cdi("layout " + fifo.string());
-    writer.join();
-    ::sigaction(SIGPIPE, &saved, nullptr);
+    RunResult r;
+    {
+        const olcb::test_support::EndlessFifo endless(fifo, 65536);
+        ASSERT_TRUE(endless.made());
+        r = lcc_cdi("layout " + fifo.string());
+    }
     EXPECT_EQ(r.status, 1);
     EXPECT_EQ(r.out, "error: cannot read " + fifo.string() +
                          ": more than 16777216 bytes, over the CDI limit of 16777216 bytes\n");

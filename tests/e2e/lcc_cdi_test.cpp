@@ -16,27 +16,16 @@
 #include <nlohmann/json.hpp>
 
 #include "e2e/conform_util.hpp"
+#include "support/run_shell.hpp"
 
 namespace {
 
-struct RunResult {
-    int status = -1;
-    std::string out;
-};
+using RunResult = olcb::test_support::ShellResult;
 
 // Runs lcc-cdi with `args` (shell-quoted by the caller); captures stdout and, when asked, stderr.
 RunResult lcc_cdi(const std::string& args, bool merge_stderr = false) {
-    std::string command =
-        std::string(LCC_CDI_PATH) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
-    RunResult run;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return run;
-    std::array<char, 4096> buf{};
-    std::size_t n = 0;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
-    int status = pclose(pipe);
-    run.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
+    return olcb::test_support::run_shell(std::string(LCC_CDI_PATH) + " " + args +
+                                         (merge_stderr ? " 2>&1" : " 2>/dev/null"));
 }
 
 const std::string kDefault = std::string(OLCB_SOURCE_DIR) + "/scenarios/default.xml";

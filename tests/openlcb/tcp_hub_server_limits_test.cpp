@@ -110,21 +110,25 @@ std::unique_ptr<Raw> raw_from(boost::asio::io_context& io, std::uint16_t port, c
 }
 
 // Idle connections from three addresses, each below the per-address limit, fill the hub.
-std::vector<std::unique_ptr<Raw>> idle_flood(boost::asio::io_context& io, std::uint16_t port) {
-    std::vector<std::unique_ptr<Raw>> flood;
-    for (const char* from : {"127.0.0.2", "127.0.0.3", "127.0.0.4"}) {
-        for (int i = 0; i < 2; ++i) flood.push_back(raw_from(io, port, from));
+class TcpHubEvictionTest : public TcpHubLimitsTest {
+protected:
+    std::vector<std::unique_ptr<Raw>> fill_with_idle_flood(milliseconds evict_idle_after) {
+        options.max_clients = 6;
+        options.max_clients_per_address = 2;
+        options.evict_idle_after = evict_idle_after;
+        start();
+        std::vector<std::unique_ptr<Raw>> flood;
+        for (const char* from : {"127.0.0.2", "127.0.0.3", "127.0.0.4"}) {
+            for (int i = 0; i < 2; ++i) flood.push_back(raw_from(io, hub->port(), from));
+        }
+        run_until(io, [&] { return hub->client_count() == 6; });
+        return flood;
     }
-    return flood;
-}
+};
 
-TEST_F(TcpHubLimitsTest, AFullHubClosesItsLongestIdleClientForANewcomer) {
-    options.max_clients = 6;
-    options.max_clients_per_address = 2;
-    options.evict_idle_after = milliseconds(100);
-    start();
-    auto flood = idle_flood(io, hub->port());
-    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 6; }));
+TEST_F(TcpHubEvictionTest, AFullHubClosesItsLongestIdleClientForANewcomer) {
+    auto flood = fill_with_idle_flood(milliseconds(100));
+    ASSERT_EQ(hub->client_count(), 6u);
     io.run_for(milliseconds(150));
     auto good = raw_from(io, hub->port(), "127.0.0.1");
     ASSERT_TRUE(run_until(io, [&] { return hub->stats().clients_evicted_idle == 1; }));
@@ -137,13 +141,9 @@ TEST_F(TcpHubLimitsTest, AFullHubClosesItsLongestIdleClientForANewcomer) {
     EXPECT_TRUE(logged("ms, the longest, to admit 127.0.0.1:")) << (log.empty() ? "" : log.back());
 }
 
-TEST_F(TcpHubLimitsTest, AFullHubOfRecentClientsRefusesTheNewcomer) {
-    options.max_clients = 6;
-    options.max_clients_per_address = 2;
-    options.evict_idle_after = milliseconds(60000);
-    start();
-    auto flood = idle_flood(io, hub->port());
-    ASSERT_TRUE(run_until(io, [&] { return hub->client_count() == 6; }));
+TEST_F(TcpHubEvictionTest, AFullHubOfRecentClientsRefusesTheNewcomer) {
+    auto flood = fill_with_idle_flood(milliseconds(60000));
+    ASSERT_EQ(hub->client_count(), 6u);
     auto late = raw_from(io, hub->port(), "127.0.0.1");
     ASSERT_TRUE(run_until(io, [&] { return late->closed; }));
     EXPECT_EQ(hub->stats().clients_rejected, 1u);

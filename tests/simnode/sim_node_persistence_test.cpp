@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,18 @@
 namespace olcb::simnode::test {
 namespace {
 
-class PersistenceTest : public SimNodeTest {};
+class PersistenceTest : public SimNodeTest {
+protected:
+    // Starts the default node on images in dir; the lines it logs are kept in the result.
+    std::shared_ptr<std::vector<std::string>> start_logging(const TempDir& dir) {
+        NodeConfig c = default_config();
+        c.image_dir = dir.path();
+        start(c);
+        auto logged = std::make_shared<std::vector<std::string>>();
+        node_->set_log_handler([logged](const std::string& line) { logged->push_back(line); });
+        return logged;
+    }
+};
 
 TEST_F(PersistenceTest, ImagesSurviveRecreation) {
     TempDir dir;
@@ -111,11 +123,7 @@ private:
 // disk that cannot take it must not see the command acknowledged (issue 31).
 TEST_F(PersistenceTest, FactoryResetThatCannotBeStoredIsRefusedAndLogged) {
     TempDir dir;
-    NodeConfig c = default_config();
-    c.image_dir = dir.path();
-    start(c);
-    std::vector<std::string> logged;
-    node_->set_log_handler([&](const std::string& line) { logged.push_back(line); });
+    const auto logged = start_logging(dir);
     write_ok(0xFD, 15, {3});
     Answer a;
     {
@@ -127,8 +135,8 @@ TEST_F(PersistenceTest, FactoryResetThatCannotBeStoredIsRefusedAndLogged) {
     EXPECT_EQ(a.code, 0x1000);
     EXPECT_EQ(node_->counters().factory_resets, 0u);
     EXPECT_EQ(node_->counters().storage_errors, 1u);
-    ASSERT_EQ(logged.size(), 1u);
-    EXPECT_NE(logged[0].find("factory reset not stored"), std::string::npos) << logged[0];
+    ASSERT_EQ(logged->size(), 1u);
+    EXPECT_NE(logged->at(0).find("factory reset not stored"), std::string::npos) << logged->at(0);
     net_.run_for(1s);
     EXPECT_EQ(node_->memory().read(0xFD, 15, 1), (std::vector<std::uint8_t>{3}))
         << "the settings stay as they were";
@@ -136,11 +144,7 @@ TEST_F(PersistenceTest, FactoryResetThatCannotBeStoredIsRefusedAndLogged) {
 
 TEST_F(PersistenceTest, AWriteThatCannotBeStoredFails1000AndIsLogged) {
     TempDir dir;
-    NodeConfig c = default_config();
-    c.image_dir = dir.path();
-    start(c);
-    std::vector<std::string> logged;
-    node_->set_log_handler([&](const std::string& line) { logged.push_back(line); });
+    const auto logged = start_logging(dir);
     Answer a;
     {
         const FileSizeLimit full(30);  // the journal record of 15 bytes needs 39
@@ -149,9 +153,10 @@ TEST_F(PersistenceTest, AWriteThatCannotBeStoredFails1000AndIsLogged) {
     ASSERT_TRUE(a.reply);
     EXPECT_EQ(a.reply->at(1), 0x19) << "Write Reply Fail for space 253";
     EXPECT_EQ(node_->counters().storage_errors, 1u);
-    ASSERT_EQ(logged.size(), 1u);
-    EXPECT_NE(logged[0].find("write of 15 bytes to space 253 at 0 not stored"), std::string::npos)
-        << logged[0];
+    ASSERT_EQ(logged->size(), 1u);
+    EXPECT_NE(logged->at(0).find("write of 15 bytes to space 253 at 0 not stored"),
+              std::string::npos)
+        << logged->at(0);
 }
 
 TEST_F(PersistenceTest, MissingImageDirectoryIsAnError) {
