@@ -76,6 +76,35 @@ protected:
                            [text](const std::string& l) { return l.find(text) != l.npos; });
     }
 
+    // As many connections as the server takes, none of them sending anything.
+    std::vector<tcp::socket> fill_with_silent_clients() {
+        std::vector<tcp::socket> silent;
+        silent.reserve(kMaxControlClients);
+        for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
+        run_until([&] { return server_.connections() == kMaxControlClients; });
+        return silent;
+    }
+
+    // What the server sends client until a line has come or it closes.
+    std::string first_line(tcp::socket& client) {
+        std::string text;
+        std::array<char, 4096> chunk{};
+        bool done = false;
+        std::function<void()> read = [&] {
+            client.async_read_some(boost::asio::buffer(chunk),
+                                   [&](const boost::system::error_code& ec, std::size_t n) {
+                                       text.append(chunk.data(), n);
+                                       done = ec || text.find('\n') != std::string::npos;
+                                       if (!done) read();
+                                   });
+        };
+        read();
+        run_until([&] { return done; });
+        client.cancel();  // a read still pending ends now, while what it refers to lives
+        io_.poll();
+        return text.substr(0, text.find('\n'));
+    }
+
     static std::string repeated(std::string_view line, std::size_t times) {
         std::string out;
         for (std::size_t i = 0; i < times; ++i) out += line;
@@ -151,40 +180,13 @@ TEST_F(ControlServerTest, AClientThatReadsGetsEveryPipelinedAnswerInOrder) {
     EXPECT_TRUE(log_.empty()) << log_.front();
 }
 
-// Reads what the server sends client until it closes or a line has come.
-std::string first_line(tcp::socket& client, const std::function<bool(std::function<bool()>)>& run) {
-    auto text = std::make_shared<std::string>();
-    auto chunk = std::make_shared<std::array<char, 4096>>();
-    auto done = std::make_shared<bool>(false);
-    std::function<void()> read = [&client, text, chunk, done, &read] {
-        client.async_read_some(
-            boost::asio::buffer(*chunk),
-            [text, chunk, done, &read](const boost::system::error_code& ec, std::size_t n) {
-                text->append(chunk->data(), n);
-                if (ec || text->find('\n') != std::string::npos) {
-                    *done = true;
-                    return;
-                }
-                read();
-            });
-    };
-    read();
-    run([done] { return *done; });
-    boost::system::error_code ignored;
-    client.cancel(ignored);  // a read still pending ends with an error, never calling read
-    return text->substr(0, text->find('\n'));
-}
-
 TEST_F(ControlServerTest, AFullServerClosesItsLongestSilentClientForANewcomer) {
     server_.set_evict_idle_after(100ms);
-    std::vector<tcp::socket> silent;
-    silent.reserve(kMaxControlClients);
-    for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
-    ASSERT_TRUE(run_until([&] { return server_.connections() == kMaxControlClients; }));
+    const auto silent = fill_with_silent_clients();
+    ASSERT_EQ(server_.connections(), kMaxControlClients);
     run_until([] { return false; }, 150ms);
     tcp::socket newcomer = connect_client(std::string(kList));
-    const std::string answer =
-        first_line(newcomer, [&](const auto& done) { return run_until(done); });
+    const std::string answer = first_line(newcomer);
     EXPECT_EQ(ControlJson::parse(answer)["ok"], true) << answer;
     EXPECT_EQ(server_.connections(), kMaxControlClients);
     EXPECT_TRUE(logged("ms, the longest, to admit 127.0.0.1:")) << (log_.empty() ? "" : log_[0]);
@@ -192,13 +194,10 @@ TEST_F(ControlServerTest, AFullServerClosesItsLongestSilentClientForANewcomer) {
 
 TEST_F(ControlServerTest, AFullServerOfRecentClientsRefusesTheNewcomer) {
     server_.set_evict_idle_after(60s);
-    std::vector<tcp::socket> silent;
-    silent.reserve(kMaxControlClients);
-    for (std::size_t i = 0; i < kMaxControlClients; ++i) silent.push_back(connect_client(""));
-    ASSERT_TRUE(run_until([&] { return server_.connections() == kMaxControlClients; }));
+    const auto silent = fill_with_silent_clients();
+    ASSERT_EQ(server_.connections(), kMaxControlClients);
     tcp::socket newcomer = connect_client(std::string(kList));
-    const std::string answer =
-        first_line(newcomer, [&](const auto& done) { return run_until(done); });
+    const std::string answer = first_line(newcomer);
     EXPECT_NE(answer.find("control connections open (at most 16)"), std::string::npos) << answer;
 }
 
