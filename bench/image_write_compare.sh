@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Compares ImageFile::write of two source trees side by side: builds bench/image_write.cpp
 # against each tree's built olcb_memory and olcb_base, then times them alternately with
-# farm-bench (A = after, B = before; per-pair ratios), on DIR's file system.
+# bench/paired.py (after, before, after, ...; per-pair ratios after/before of the microseconds
+# per write each run prints, and of its whole process), on DIR's file system.
 #
 #   bench/image_write_compare.sh BEFORE_SRC BEFORE_BUILD AFTER_SRC AFTER_BUILD DIR [WRITES]
 #
@@ -19,5 +20,6 @@ build() {  # SRC BUILD NAME
 build "$1" "$2" before
 build "$3" "$4" after
 writes=${6:-2000}
-farm-bench -n 10 --timeout 600 --vs "$out/before $5/before $writes" -- "$out/after" "$5/after" \
-    "$writes"
+python3 "$here/paired.py" -n 10 --warmup 1 --timeout 600 --names after,before \
+    --figure 'us per write=([0-9.]+) us per write' -- \
+    "$out/after" "$5/after" "$writes" --vs "$out/before" "$5/before" "$writes"

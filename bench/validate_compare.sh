@@ -1,23 +1,25 @@
 #!/usr/bin/env bash
-# Compares bench_cdi of two builds side by side: runs them alternately (so a change in machine
-# load hits both alike), each run with --benchmark_repetitions=5, and prints per benchmark the
-# median CPU and real time over all repetitions of all rounds, before and after.
+# Compares bench_cdi of two builds side by side: for each benchmark, pairs of processes (before,
+# then after; each --benchmark_repetitions=5, that benchmark alone in its process, so no other
+# benchmark's heap state is measured along), and prints per benchmark the median of both sides
+# and the median of the per-pair ratios before/after (the speed-up), with their range.
 #
-#   bench/validate_compare.sh BEFORE_BUILD_DIR AFTER_BUILD_DIR [ROUNDS] [FILTER]
+#   bench/validate_compare.sh BEFORE_BUILD_DIR AFTER_BUILD_DIR [PAIRS] [FILTER]
 #
-# ROUNDS defaults to 5; FILTER to the validate and parse+layout benchmarks. Each build dir must
-# hold bench/bench_cdi (cmake --build DIR --target bench_cdi).
+# PAIRS defaults to 5 (after one warm-up pair); FILTER (a Google Benchmark regex) to the validate
+# and parse+layout benchmarks. Each build dir must hold bench/bench_cdi (cmake --build DIR
+# --target bench_cdi).
 #
 #   bench/validate_compare.sh --e2e BEFORE_BUILD_DIR AFTER_BUILD_DIR [PAIRS]
 #
 # End to end instead: whole `lcc-cdi validate` processes over every corpus and scenario CDI, one
 # process for all files and one per file, before and after alternating; prints the median wall
-# time of each and the median of the per-pair ratios. PAIRS defaults to 100 (a tenth of that
-# for the per-file loop). Each build dir must hold cdi/lcc-cdi.
+# and CPU time of each and the median of the per-pair ratios before/after. PAIRS defaults to 100
+# (a tenth of that for the per-file loop). Each build dir must hold cdi/lcc-cdi.
 set -euo pipefail
 
 usage() {
-    sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
     exit 2
 }
 
@@ -28,82 +30,53 @@ if [ "${1:-}" = --e2e ]; then
         [ -x "$program" ] || { echo "not found: $program" >&2; exit 2; }
     done
     exec python3 - "$2/cdi/lcc-cdi" "$3/cdi/lcc-cdi" "${4:-100}" "$root" <<'PY'
-import glob, statistics, subprocess, sys, time
+import glob, resource, subprocess, sys, time
 before, after, pairs, root = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
+sys.path.insert(0, f"{root}/bench")
+import paired  # noqa: E402  (bench/paired.py: A B A B, per-pair ratios)
 files = sorted(glob.glob(f"{root}/../shared/corpus/cdi/*.xml"))
 files += sorted(glob.glob(f"{root}/scenarios/*.xml"))
 
-def run(program, per_file):
-    # Output goes to /dev/null: what is timed is the program, not a terminal or a pipe.
-    start = time.perf_counter()
-    for args in ([[f] for f in files] if per_file else [files]):
-        subprocess.run([program, "validate", *args], stdout=subprocess.DEVNULL,
-                       stderr=subprocess.DEVNULL)
-    return time.perf_counter() - start
+def timed(program, per_file):
+    def run():
+        # Output goes to /dev/null: what is timed is the program, not a terminal or a pipe.
+        t0, c0 = time.perf_counter(), resource.getrusage(resource.RUSAGE_CHILDREN)
+        for args in ([[f] for f in files] if per_file else [files]):
+            subprocess.run([program, "validate", *args], stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL)
+        c1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (c1.ru_utime - c0.ru_utime) + (c1.ru_stime - c0.ru_stime)
+        return {"wall ms": (time.perf_counter() - t0) * 1e3, "cpu ms": cpu * 1e3}
+    return run
 
 print(f"{len(files)} CDIs; before {before}, after {after}")
-med = statistics.median
 for per_file, n in ((False, pairs), (True, max(pairs // 10, 3))):
-    for program in (before, after):  # warm-up: page cache, dynamic loader
-        run(program, per_file)
-    b, a = [], []
-    for _ in range(n):  # alternating, so a drift in machine speed hits both alike
-        b.append(run(before, per_file))
-        a.append(run(after, per_file))
-    what = "one process per file" if per_file else "one process, all files"
-    print(f"{what:23} before {med(b) * 1e3:8.2f} ms  after {med(a) * 1e3:8.2f} ms"
-          f"  after/before {med([y / x for x, y in zip(b, a)]):.3f} (median of {n} pairs)")
+    done = paired.run_pairs(timed(before, per_file), timed(after, per_file), n, warmup=1)
+    print("== " + ("one process per file" if per_file else "one process, all files"))
+    paired.print_summary(paired.summarize(done), ("before", "after"), len(done))
 PY
 fi
 
 [ $# -ge 2 ] || usage
 before="$1/bench/bench_cdi"
 after="$2/bench/bench_cdi"
-rounds="${3:-5}"
+pairs="${3:-5}"
 filter="${4:-BM_ValidateLargestCorpusFile|BM_ParseLayoutLargestCorpusFile|BM_ParseLayoutGenerated1MB}"
 for program in "$before" "$after"; do
     [ -x "$program" ] || { echo "not found: $program" >&2; exit 2; }
 done
 
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-for ((round = 1; round <= rounds; round++)); do
-    for side in before after; do
-        program=$before
-        [ "$side" = after ] && program=$after
-        "$program" --benchmark_filter="$filter" --benchmark_repetitions=5 \
-            --benchmark_format=json >"$out/$side.$round.json" 2>/dev/null
-        echo "round $round/$rounds: $side done" >&2
-    done
+here=$(cd "$(dirname "$0")" && pwd)
+mapfile -t names < <("$after" --benchmark_list_tests --benchmark_filter="$filter")
+[ ${#names[@]} -gt 0 ] || { echo "no benchmark of $after matches $filter" >&2; exit 2; }
+for name in "${names[@]}"; do
+    # The name as a regex matching only itself: Google Benchmark's filter is a regex.
+    only="^$(printf '%s' "$name" | sed 's/[][\\^$.|?*+(){}]/\\&/g')\$"
+    args=(--benchmark_filter="$only" --benchmark_repetitions=5
+        --benchmark_report_aggregates_only=true --benchmark_format=json)
+    echo "== $name"
+    python3 "$here/paired.py" --gbench -n "$pairs" --warmup 1 --names before,after -- \
+        "$before" "${args[@]}" --vs "$after" "${args[@]}"
 done
-
-python3 - "$out" "$rounds" <<'EOF'
-import json, statistics, sys
-out, rounds = sys.argv[1], int(sys.argv[2])
-real, cpu, rates, units = {}, {}, {}, {}  # (benchmark, side) -> every repetition's value
-for side in ("before", "after"):
-    for r in range(1, rounds + 1):
-        with open(f"{out}/{side}.{r}.json") as f:
-            data = json.load(f)
-        for b in data["benchmarks"]:
-            if b.get("run_type") != "iteration":
-                continue
-            key = (b["run_name"], side)
-            real.setdefault(key, []).append(b["real_time"])
-            cpu.setdefault(key, []).append(b["cpu_time"])
-            units[b["run_name"]] = b["time_unit"]
-            if "bytes_per_second" in b:  # Google Benchmark divides by CPU time
-                rates.setdefault(key, []).append(b["bytes_per_second"] / 1e6)
-med = statistics.median
-print(f"{'benchmark':32} {'unit':>4} {'cpu before':>11} {'cpu after':>11} {'speed-up':>8}"
-      f" {'real before':>12} {'real after':>11}  MB/s (cpu) before -> after")
-for name in sorted({n for n, _ in real}):
-    b, a = (name, "before"), (name, "after")
-    line = (f"{name:32} {units[name]:>4} {med(cpu[b]):11.1f} {med(cpu[a]):11.1f}"
-            f" {med(cpu[b]) / med(cpu[a]):7.2f}x {med(real[b]):12.1f} {med(real[a]):11.1f}")
-    if b in rates and a in rates:
-        line += f"  {med(rates[b]):7.1f} -> {med(rates[a]):7.1f}"
-    print(line)
-print(f"(medians over {rounds} alternating rounds x 5 repetitions; on a loaded machine trust the "
-      "CPU-time columns, real time includes waiting for a core)")
-EOF
+echo "(before/after above 1: after is faster. Each side's figure is one process's median of 5"
+echo " repetitions; on a loaded machine trust the cpu rows, real time includes waiting for a core)"
