@@ -202,7 +202,8 @@ def machine_block(result):
         commit += f" with uncommitted changes in {len(m['git_uncommitted_changes'])} files"
     runs = (f"{plural(s['processes'], 'process', 'processes')} of "
             f"{plural(s['repetitions'], 'repetition', 'repetitions')}")
-    how = f"each benchmark in its own process, {runs}"
+    how = (f"each benchmark in its own process, {runs}; one with fixed iterations in "
+           f"{plural(s['processes'] * s['repetitions'], 'process', 'processes')} of one")
     if s["mode"] == "shared":
         how = f"all benchmarks of a program in one process, {runs}"
     lines = [

@@ -12,10 +12,13 @@ after parse+layout in the same process (60,000 page faults more). A fresh proces
 measures each from the same start, whatever ran before.
 
 Every benchmark runs in P processes (default 3), each --benchmark_repetitions=R (default 3,
-aggregates only); the processes go in rounds (every benchmark once, then again), so a slow
-minute of the machine is spread over all benchmarks, not concentrated on one. Per benchmark the
-result keeps each process's median and reports the median of those, with their range (the
-honest noise figure: it includes the start of a process, which repetitions do not).
+aggregates only); one with fixed iterations (/iterations:N in its name: start-up, memory growth,
+a fresh simnode each) in P x R processes of one repetition, since a second repetition in the
+same process would find the first one's heap (bm_startup_1000's rss_MiB read 0 there). The
+processes go in rounds (every benchmark once, then again), so a slow minute of the machine is
+spread over all benchmarks, not concentrated on one. Per benchmark the result keeps each
+process's median and reports the median of those, with their range (the honest noise figure:
+it includes the start of a process, which repetitions do not).
 
 --quick: P=1, R=1 and --benchmark_min_time=0.05 (benchmarks with fixed iterations ignore it):
 a smoke run, not for docs/benchmarks.md (bench/benchmarks_doc.py refuses it unless forced).
@@ -254,7 +257,7 @@ def main():
                           and os.access(os.path.join(bench_dir, f), os.X_OK)
                           and os.path.isfile(os.path.join(bench_dir, f)))
     pattern = re.compile(opts.filter)
-    plan = []  # (program, [benchmark names]) per process of a round
+    plan = []  # (program, [benchmark names], repetitions) per process of a round
     names = {}
     for program in programs:
         prog = os.path.basename(program)
@@ -263,15 +266,23 @@ def main():
         if not tests:
             continue
         if opts.shared:
-            plan.append((program, tests))
-        else:
-            plan.extend((program, [t]) for t in tests)
+            plan.append((program, tests, repetitions))
+            continue
+        for t in tests:
+            if "/iterations:" in t:
+                # Fixed iterations: what it measures happens once per process (start-up, memory
+                # growth, a fresh simnode); a second repetition would find the first one's heap.
+                plan.extend((program, [t], 1) for _ in range(repetitions))
+            else:
+                plan.append((program, [t], repetitions))
 
-    common = [f"--benchmark_repetitions={repetitions}", "--benchmark_format=json"]
-    if repetitions > 1:
-        common.append("--benchmark_report_aggregates_only=true")
-    if min_time is not None:
-        common.append(f"--benchmark_min_time={min_time}")
+    def options(reps):
+        common = [f"--benchmark_repetitions={reps}", "--benchmark_format=json"]
+        if reps > 1:
+            common.append("--benchmark_report_aggregates_only=true")
+        if min_time is not None:
+            common.append(f"--benchmark_min_time={min_time}")
+        return common
 
     info = machine(opts.build_dir)
     env = dict(os.environ)
@@ -284,13 +295,13 @@ def main():
     total = processes * len(plan)
     done = 0
     for round_ in range(processes):
-        for program, tests in plan:
+        for program, tests, reps in plan:
             prog = os.path.basename(program)
             if opts.shared:
                 filt = "^(" + "|".join(gbench_regex_escape(t) for t in tests) + ")$"
             else:
                 filt = "^" + gbench_regex_escape(tests[0]) + "$"
-            argv = [program, f"--benchmark_filter={filt}", *common]
+            argv = [program, f"--benchmark_filter={filt}", *options(reps)]
             code, out, err, wall, usage = run(argv, opts.timeout, env)
             loads.append(os.getloadavg()[0])
             done += 1
