@@ -11,7 +11,8 @@ its range. A ratio of the two sides' medians would mix minutes of different load
 Figures of every run: wall seconds (a monotonic clock around the child), CPU seconds (user +
 system of the child and what it waited for, from wait4), peak RSS. With --gbench the commands
 are Google Benchmark programs asked for --benchmark_format=json: each benchmark's CPU and real
-time (its median row when it ran repetitions) become figures too. --figure NAME=REGEX takes a
+time (its median row when it ran repetitions) become figures too; a command may print several
+reports (sh -c 'for ...': one process per benchmark). --figure NAME=REGEX takes a
 number from what the command prints (the first group of REGEX, searched in stdout).
 
 A command's output is thrown away unless it is parsed; its exit status is reported, not acted
@@ -58,9 +59,13 @@ class Runner:
         timer = threading.Timer(self.timeout, kill) if self.timeout else None
         if timer:
             timer.start()
-        out = proc.stdout.read() if proc.stdout else b""
-        # wait4, not Popen.wait: this child's own CPU time and peak memory.
-        _, status, usage = os.wait4(proc.pid, 0)
+        try:
+            out = proc.stdout.read() if proc.stdout else b""
+            # wait4, not Popen.wait: this child's own CPU time and peak memory.
+            _, status, usage = os.wait4(proc.pid, 0)
+        except KeyboardInterrupt:  # the child is in its own session: Ctrl-C does not reach it
+            kill()
+            raise
         wall = time.perf_counter() - start
         if timer:
             timer.cancel()
@@ -88,19 +93,29 @@ class Runner:
 
 
 def gbench_figures(text):
-    """CPU and real time of each benchmark in a Google Benchmark JSON report, in its own unit."""
-    try:
-        report = json.loads(text)
-    except json.JSONDecodeError:
-        return {}
+    """CPU and real time of each benchmark in Google Benchmark JSON reports, in its own unit.
+
+    The text may hold several reports one after the other (a loop of one process per
+    benchmark)."""
+    reports, decoder, pos = [], json.JSONDecoder(), 0
+    while True:
+        while pos < len(text) and text[pos].isspace():
+            pos += 1
+        if pos >= len(text):
+            break
+        try:
+            report, pos = decoder.raw_decode(text, pos)
+        except json.JSONDecodeError:
+            break
+        reports.append(report)
     rows = {}
-    for b in report.get("benchmarks", []):
+    for b in (b for r in reports for b in r.get("benchmarks", [])):
         if b.get("error_occurred"):
             continue
         name = b.get("run_name", b["name"])
         if b.get("run_type") == "aggregate":
             if b.get("aggregate_name") == "median":
-                rows[name] = {"median": b}
+                rows.setdefault(name, {})["median"] = b
         else:
             rows.setdefault(name, {}).setdefault("iterations", []).append(b)
     figures = {}
