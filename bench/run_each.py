@@ -79,10 +79,14 @@ def run(argv, timeout, env=None):
     err_chunks = []
     reader = threading.Thread(target=lambda: err_chunks.append(proc.stderr.read()))
     reader.start()
-    out = proc.stdout.read()
-    reader.join()
-    # wait4, not Popen.wait: the child's own CPU time, page faults and peak memory.
-    _, status, usage = os.wait4(proc.pid, 0)
+    try:
+        out = proc.stdout.read()
+        reader.join()
+        # wait4, not Popen.wait: the child's own CPU time, page faults and peak memory.
+        _, status, usage = os.wait4(proc.pid, 0)
+    except KeyboardInterrupt:  # the child is in its own session: Ctrl-C does not reach it
+        kill()
+        raise
     wall = time.perf_counter() - start
     timer.cancel()
     proc.returncode = os.waitstatus_to_exitcode(status)
