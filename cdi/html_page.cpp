@@ -1,5 +1,7 @@
 #include "cdi/html_page.hpp"
 
+#include <stdexcept>
+
 #include <nlohmann/json.hpp>
 
 namespace olcb::cdi {
@@ -11,10 +13,7 @@ constexpr std::string_view kPolicy =
 
 // JSON that is safe as the text of a <script> element: '<' cannot start "</script" or "<!--",
 // and '>' and '&' are escaped too so no HTML parser state can be reached from inside a string.
-std::string script_json(const nlohmann::json& data) {
-    const std::string text = data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    std::string out;
-    out.reserve(text.size() + text.size() / 16);
+void append_escaped(std::string& out, std::string_view text) {
     for (const char c : text) {
         switch (c) {
             case '<':
@@ -30,12 +29,31 @@ std::string script_json(const nlohmann::json& data) {
                 out += c;
         }
     }
-    return out;
+}
+
+std::string json_text(const nlohmann::json& value) {
+    return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 }  // namespace
 
+void append_script_json(std::string& out, const nlohmann::json& value) {
+    append_escaped(out, json_text(value));
+}
+
+void append_open_object(std::string& out, const nlohmann::json& object) {
+    if (!object.is_object() || object.empty()) {
+        throw std::logic_error("append_open_object: not a non-empty object");
+    }
+    const std::string text = json_text(object);
+    append_escaped(out, std::string_view(text).substr(0, text.size() - 1));
+}
+
 std::string html_page(PageKind kind, const nlohmann::json& data) {
+    return html_page_from(kind, [&data](std::string& out) { append_script_json(out, data); });
+}
+
+std::string html_page_from(PageKind kind, const std::function<void(std::string& out)>& write_data) {
     const std::string_view script = kind == PageKind::kCdi ? "cdi.js" : "conform.js";
     std::string page;
     page += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
@@ -47,7 +65,7 @@ std::string html_page(PageKind kind, const nlohmann::json& data) {
     page += html_asset("page.css");
     page += "</style>\n</head>\n<body>\n<div id=\"app\"></div>\n";
     page += "<script type=\"application/json\" id=\"page-data\">";
-    page += script_json(data);
+    write_data(page);
     page += "</script>\n<script>\n";
     page += html_asset("map.js");
     page += "\n</script>\n<script>\n";

@@ -6,8 +6,6 @@
 #include <string>
 #include <string_view>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "cdi/layout.hpp"
 #include "cdi/memory_map.hpp"
 
@@ -18,10 +16,12 @@ namespace olcb::cdi {
 /// element has an "id", its "kind", "address" (first replica) and constraints, groups their
 /// "replication", "stride" and "replica_names"; memory-map variables name their "element" and
 /// the "replicas" of their replicated groups.
-nlohmann::json cdi_page_json(const Layout& layout, std::string_view source,
-                             const MemoryMapOptions& options = {});
+/// Written as JSON text (escaped for the page's <script> element, html_page.hpp) onto `out`,
+/// element by element: no JSON tree of the whole CDI is built.
+void append_cdi_page_data(std::string& out, const Layout& layout, std::string_view source,
+                          const MemoryMapOptions& options = {});
 
-/// The whole page of cdi_page_json().
+/// The whole page with append_cdi_page_data()'s data.
 std::string render_html(const Layout& layout, std::string_view source,
                         const MemoryMapOptions& options = {});
 

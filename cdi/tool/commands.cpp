@@ -248,11 +248,10 @@ int run_render(const std::vector<std::string>& args) {
     auto loaded = load(files.front());
     if (!loaded) return kExitErrors;
     if (vm.count("html") != 0) {
-        // The page's data first, then the model and layout freed before the page text is made:
-        // of the three, only two need to live at once.
-        const nlohmann::json data = cdi_page_json(loaded->layout, files.front());
+        // The page is written from the layout element by element; the model goes before output.
+        const std::string page = render_html(loaded->layout, files.front());
         loaded.reset();
-        std::cout << html_page(PageKind::kCdi, data);
+        std::cout << page;
     } else {
         render(loaded->layout, std::cout);
     }

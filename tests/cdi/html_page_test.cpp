@@ -61,5 +61,25 @@ TEST(HtmlPage, DataCannotCloseItsElement) {
     EXPECT_EQ(parsed["name"], data["name"]);
 }
 
+TEST(HtmlPage, DataWrittenPieceByPieceIsTheSameAsOneValue) {
+    const nlohmann::json data = {{"a", "</script>"}, {"b", 1}, {"list", {1, 2}}};
+    const std::string page = html_page_from(PageKind::kCdi, [](std::string& out) {
+        append_open_object(out, {{"a", "</script>"}, {"b", 1}});
+        out += ",\"list\":[";
+        append_script_json(out, 1);
+        out += ',';
+        append_script_json(out, 2);
+        out += "]}";
+    });
+    EXPECT_EQ(page, html_page(PageKind::kCdi, data));
+}
+
+TEST(HtmlPage, OnlyANonEmptyObjectCanBeLeftOpen) {
+    std::string out;
+    EXPECT_THROW(append_open_object(out, nlohmann::json::object()), std::logic_error);
+    EXPECT_THROW(append_open_object(out, nlohmann::json::array({1})), std::logic_error);
+    EXPECT_TRUE(out.empty());
+}
+
 }  // namespace
 }  // namespace olcb::cdi

@@ -20,6 +20,22 @@ namespace {
 using test::first_error_text;
 using test::lay;
 
+// The page's data as the page script reads it.
+nlohmann::json cdi_page_json(const Layout& layout, std::string_view source) {
+    std::string text;
+    append_cdi_page_data(text, layout, source);
+    return nlohmann::json::parse(text);
+}
+
+// The data inside a whole page's <script id="page-data"> element.
+nlohmann::json data_of_page(const std::string& page) {
+    const std::string open = "id=\"page-data\">";
+    const std::size_t begin = page.find(open);
+    const std::size_t end = page.find("</script>", begin);
+    if (begin == std::string::npos || end == std::string::npos) return nullptr;
+    return nlohmann::json::parse(page.substr(begin + open.size(), end - begin - open.size()));
+}
+
 TEST(RenderHtml, CdiPageDataCarriesStructureHintsAndReplicas) {
     std::ifstream in(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios" / "default.xml");
     std::stringstream text;
@@ -134,10 +150,39 @@ TEST(RenderHtml, ThePageCarriesTheDataAndTheCdiScript) {
         lay(R"(<cdi><segment space="1"><int size="1"><name>Knob</name></int></segment></cdi>)");
     ASSERT_TRUE(l->result.layout);
     const std::string page = render_html(l->layout(), "knob.xml");
-    EXPECT_EQ(page, html_page(PageKind::kCdi, cdi_page_json(l->layout(), "knob.xml")));
+    EXPECT_EQ(data_of_page(page), cdi_page_json(l->layout(), "knob.xml"));
     EXPECT_NE(page.find("\"Knob\""), std::string::npos);
     EXPECT_NE(page.find("\"knob.xml\""), std::string::npos);
     EXPECT_NE(page.find(std::string(html_asset("cdi.js"))), std::string::npos);
+}
+
+TEST(RenderHtml, StreamedDataNestsGroupsAndKeepsMarkupOutOfTheScript) {
+    auto l = lay(R"(<cdi><segment space="253"><name>&lt;/script&gt;&lt;!--</name>
+<group replication="2"><name>Outer &amp; more</name><repname>R</repname>
+<group><name>Inner</name><int size="1"><name>A</name></int></group>
+<string size="4"><name>B</name></string></group>
+<int size="2"><name>C</name></int></segment></cdi>)");
+    ASSERT_TRUE(l->result.layout) << first_error_text(l->result.diagnostics);
+    const std::string page = render_html(l->layout(), "x.xml");
+    const std::size_t data = page.find("id=\"page-data\">");
+    ASSERT_NE(data, std::string::npos);
+    // The first "</script>" after the data's start closes the data element itself.
+    EXPECT_EQ(page.find("</script>", data), page.find("</script>\n<script>\n", data));
+    EXPECT_EQ(page.find("<!--"), std::string::npos);
+    const nlohmann::json j = data_of_page(page);
+    const nlohmann::json& s = j["segments"][0];
+    EXPECT_EQ(s["name"], "</script><!--");
+    const nlohmann::json& outer = s["children"][0];
+    EXPECT_EQ(outer["name"], "Outer & more");
+    EXPECT_EQ(outer["children"][0]["children"][0]["name"], "A");
+    EXPECT_EQ(outer["children"][0]["children"][0]["id"], 2);
+    EXPECT_EQ(outer["children"][1]["name"], "B");
+    EXPECT_EQ(s["children"][1]["name"], "C");
+    EXPECT_EQ(s["children"][1]["id"], 4);
+    EXPECT_EQ(s["children"][1]["address"], 10);
+    // Every listed variable points back at its element.
+    for (const nlohmann::json& v : j["memory_map"][0]["variables"])
+        EXPECT_TRUE(v.contains("element"));
 }
 
 }  // namespace
