@@ -56,6 +56,16 @@ void cdi_space_info(CheckRun& run, const CheckSpec& spec) {
 
 void cdi_read(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& d = run.probe<CdiDownload>();
+    if (d.by_stream && !d.datagram.ok) {
+        return run.out(spec).fail("space 0xFF answered a stream read, but a datagram read of " +
+                                      d.sampled + " got " + describe(d.datagram),
+                                  "datagram reads of 0xFF answered", describe(d.datagram));
+    }
+    if (d.by_stream) {
+        return run.out(spec).pass("space 0xFF read: " + std::to_string(d.result.data.size()) +
+                                  " bytes by one stream, datagram reads of " + d.sampled +
+                                  " answered");
+    }
     if (d.read_ok) return run.out(spec).pass("space 0xFF read in 64-byte reads");
     // §4.2 asks only a node that has a CDI to serve it; one that claims none owes nothing.
     const auto& pip = run.probe<PipProbe>().reply;
@@ -109,9 +119,10 @@ std::vector<CheckSpec> cdi_checks() {
          "a node that has a CDI makes it readable through space 0xFF", "cd20",
          "reads of up to 64 bytes of 0xFF, each going on where the previous reply's data ended, up "
          "to Space Info's highest address, a NUL or 0x1082 (at the highest address without a NUL "
-         "it "
-         "reads on: a CDI cut short by a too-small highest address is judged whole, the address by "
-         "cdi.nul-at-highest): data returned",
+         "it reads on: a CDI cut short by a too-small highest address is judged whole, the address "
+         "by cdi.nul-at-highest): data returned. A node that offers streams is read once, by one "
+         "stream up to the NUL; then datagram reads of its first and last 64 bytes must answer "
+         "(stream.cdi-read compares them)",
          cdi_read},
         {"cdi.nul-terminated", 160, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kShall, "the CDI is provided as a NUL-terminated string", "cd20",
@@ -136,9 +147,8 @@ std::vector<CheckSpec> cdi_checks() {
          text_rule},
         {"cdi.well-formed", 210, Category::kCdi, "ConfigurationDescriptionInformationS §5",
          Strength::kShall, "the CDI is XML 1.0", "cd10",
-         "pugixml's parse where the screen settles it, else libxml2's (FAIL quotes libxml2's first "
-         "parse error and lists all; stopped at the "
-         "invalid UTF-8: SKIP depends on cdi.utf8)",
+         "libxml2's parse (FAIL quotes its first parse error and lists all; stopped at the invalid "
+         "UTF-8: SKIP depends on cdi.utf8)",
          text_rule},
         {"cdi.valid", 220, Category::kCdi, "ConfigurationDescriptionInformationS §5, §5.1.4",
          Strength::kShall,

@@ -27,6 +27,7 @@ std::string quoted(std::string_view text) {
 std::string describe(const MemResult& r) {
     if (!r.not_sent.empty()) return "not sent by lcc-conform (" + r.not_sent + ")";
     if (r.timed_out) return "no answer";
+    if (r.restarted) return "the node restarted before answering";
     if (r.rejected)
         return r.error ? "Datagram Rejected " + hex(r.error)
                        : "Datagram Rejected without an error code";
@@ -184,6 +185,16 @@ void CheckRun::tally(const MemResult& r) {
     // Datagram Rejected is a datagram answer too: the node implements the transport.
     if (!r.timed_out) heard_.datagrams = true;
     if (r.ok || (!r.rejected && !r.timed_out)) heard_.memory = true;
+    // No reply came, or the time includes our waits before resending a rejected request.
+    if (r.reply_latency == Duration::zero() || r.temporary_rejects != 0) return;
+    const auto over = [this](Duration latency, std::uint8_t n) {
+        return latency - (n == 0 ? o_.max_reply_latency : Duration(std::chrono::seconds(1u << n)));
+    };
+    if (!heard_.slowest_reply || over(r.reply_latency, r.reply_timeout_exponent) >
+                                     over(*heard_.slowest_reply, heard_.slowest_exponent)) {
+        heard_.slowest_reply = r.reply_latency;
+        heard_.slowest_exponent = r.reply_timeout_exponent;
+    }
 }
 
 void CheckRun::share_duration(std::size_t first, Duration spent) {

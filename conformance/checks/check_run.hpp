@@ -102,6 +102,10 @@ struct Heard {
     unsigned temporary_rejects = 0;  ///< temporary rejects retried
     bool datagrams = false;          ///< a datagram was answered (Datagram Rejected too)
     bool memory = false;             ///< a memory-config command got a reply (not Rejected)
+    /// Of the memory-config replies so far, the one slowest against its limit (750 ms, or the
+    /// 2^N s its Datagram Received OK announced): its latency and N (0: none announced).
+    std::optional<Duration> slowest_reply;
+    std::uint8_t slowest_exponent = 0;
 };
 
 /// One node's protocol checks in progress.

@@ -4,11 +4,26 @@
 namespace olcb::conform::checks {
 namespace {
 
-void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
+// SKIPs (and returns false) when no datagram read of the CDI came back to judge.
+bool datagram_read(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& d = run.probe<CdiDownload>();
-    if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to judge");
-    if (d.result.datagram_ok_seen)
-        return run.out(spec).pass("Datagram Received OK precedes every read reply");
+    if (d.datagram.ok) return true;
+    run.out(spec).skip("depends on cdi.read: no datagram read reply to judge (" +
+                       describe(d.datagram) + ")");
+    return false;
+}
+
+// Which reads were judged: all of the download, or the samples of a stream-read CDI.
+std::string reads_judged(const CdiDownload& d) {
+    return d.by_stream ? "the datagram reads of the CDI (" + d.sampled + ")" : "every CDI read";
+}
+
+void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
+    if (!datagram_read(run, spec)) return;
+    const CdiDownload& d = run.probe<CdiDownload>();
+    if (d.datagram.datagram_ok_seen)
+        return run.out(spec).pass("Datagram Received OK precedes the read reply in " +
+                                  reads_judged(d));
     // Only MemoryConfigurationTN §2.4.5 orders them; a missing OK shows as a timeout elsewhere.
     run.out(spec).warn(
         "a read reply came before its Datagram Received OK (the technical note orders "
@@ -16,15 +31,16 @@ void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
 }
 
 void datagram_reply_pending(CheckRun& run, const CheckSpec& spec) {
+    if (!datagram_read(run, spec)) return;
     const CdiDownload& d = run.probe<CdiDownload>();
-    if (!d.read_ok) return run.out(spec).skip("depends on cdi.read: no read reply to judge");
     // An OK that came after its reply was not seen when the read ended: its flags are unknown.
-    if (!d.result.datagram_ok_seen)
+    if (!d.datagram.datagram_ok_seen)
         return run.out(spec).skip(
             "depends on datagram.ok-before-reply: the Datagram Received OK "
             "came after the reply");
-    run.out(spec).judge(d.result.reply_pending, "Datagram Received OK of a read has Reply Pending",
-                        "flag 0x80", "flags without 0x80");
+    run.out(spec).judge(d.datagram.reply_pending,
+                        "Datagram Received OK has Reply Pending in " + reads_judged(d), "flag 0x80",
+                        "flags without 0x80");
 }
 
 void datagram_temporary_rejects(CheckRun& run, const CheckSpec& spec) {
@@ -45,11 +61,12 @@ std::vector<CheckSpec> datagram_checks() {
          "every datagram is answered with Datagram Received OK or Rejected; only the technical "
          "note "
          "orders the OK before the reply (a late OK WARNs)",
-         "", "(every CDI read) Datagram Received OK arrives before each read reply",
+         "", "(every datagram read of the CDI) Datagram Received OK arrives before each read reply",
          datagram_ok_before_reply},
         {"datagram.reply-pending", 140, Category::kDatagram, "MemoryConfigurationS §4.4",
          Strength::kShall, "the Datagram Received OK to a Read carries Reply Pending", "",
-         "(every CDI read) the Datagram Received OK has Reply Pending", datagram_reply_pending},
+         "(every datagram read of the CDI) the Datagram Received OK has Reply Pending",
+         datagram_reply_pending},
         {"datagram.temporary-rejects", 750, Category::kDatagram, "DatagramTransportS §6.2",
          Strength::kMay, "a receiver may reject a datagram temporarily; the sender resends", "",
          "(whole run) PASS when no datagram was rejected temporarily; WARN with the count when "

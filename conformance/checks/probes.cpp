@@ -9,6 +9,7 @@
 
 #include "cdi/validator.hpp"
 #include "memory/acdi.hpp"
+#include "memory/memory_config_defs.hpp"
 #include "openlcb/can_defs.hpp"
 
 namespace olcb::conform {
@@ -90,6 +91,24 @@ void count_probe_messages(CheckRun& run, FrameProbe& p, std::size_t& seen) {
     seen = s.message_mark();
 }
 
+// Adds what `more`, a later read of the same range, learned about the datagrams to `into`.
+void merge_datagram_flags(MemResult& into, const MemResult& more) {
+    into.datagram_ok_seen = into.datagram_ok_seen && more.datagram_ok_seen;
+    into.reply_pending = into.reply_pending && more.reply_pending;
+    into.reply_timeout_exponent =
+        std::max(into.reply_timeout_exponent, more.reply_timeout_exponent);
+    into.reply_in_request_form = into.reply_in_request_form && more.reply_in_request_form;
+    into.reply_latency = std::max(into.reply_latency, more.reply_latency);
+    into.temporary_rejects += more.temporary_rejects;
+}
+
+// The outcome of a read without its data (a copy of at most the CDI limit, made once).
+MemResult without_data(const MemResult& r) {
+    MemResult out = r;
+    out.data = {};
+    return out;
+}
+
 // Reads on past Space Info's highest address when the download ended there without a NUL.
 void read_past_highest(CheckRun& run, CdiDownload& d, std::uint32_t len) {
     // A highest address below the CDI's end would cut the text short, and every CDI check would
@@ -106,11 +125,73 @@ void read_past_highest(CheckRun& run, CdiDownload& d, std::uint32_t len) {
     if (!more.ok || more.data.empty()) return;
     d.beyond_highest = static_cast<std::uint32_t>(more.data.size());
     r.data.insert(r.data.end(), more.data.begin(), more.data.end());
-    r.datagram_ok_seen = r.datagram_ok_seen && more.datagram_ok_seen;
-    r.reply_pending = r.reply_pending && more.reply_pending;
-    r.reply_in_request_form = r.reply_in_request_form && more.reply_in_request_form;
-    r.reply_latency = std::max(r.reply_latency, more.reply_latency);
-    r.temporary_rejects += more.temporary_rejects;
+    merge_datagram_flags(r, more);
+}
+
+// The whole CDI by datagram reads (no streams, or the stream read failed).
+void download_by_datagrams(CheckRun& run, CdiDownload& d) {
+    const ProtocolOptions& o = run.options();
+    const SpaceInfo ff = run.probe<SpaceInfoProbe>(0xFF);
+    const std::uint32_t len =
+        ff.present ? std::min(ff.highest_address + 1, o.max_cdi_bytes) : o.max_cdi_bytes;
+    d.result = run.session().read_range(run.node(), Space::kCdi, 0, len, true, o.cdi_progress);
+    run.tally(d.result);
+    if (ff.present && len < o.max_cdi_bytes) read_past_highest(run, d, len);
+    d.datagram = without_data(d.result);
+}
+
+// One datagram read of bytes [from, to) of 0xFF, compared with the stream's; false when the read
+// failed (d.datagram then says how).
+bool sample_by_datagram(CheckRun& run, CdiDownload& d, std::size_t from, std::size_t to) {
+    const auto at = static_cast<std::uint32_t>(from);
+    const MemResult r = run.session().read_range(run.node(), Space::kCdi, at,
+                                                 static_cast<std::uint32_t>(to - from), false);
+    run.tally(r);
+    if (d.sampled.empty()) {
+        d.datagram = without_data(r);
+    } else {
+        merge_datagram_flags(d.datagram, r);
+        if (!r.ok) d.datagram = without_data(r);
+    }
+    if (!d.sampled.empty()) d.sampled += ", ";
+    d.sampled += hex(at, 8) + "-" + hex(static_cast<unsigned>(to - 1), 8);
+    if (!r.ok) return false;
+    const auto& bytes = d.result.data;
+    for (std::size_t i = 0; i < to - from; ++i) {
+        const bool have = i < r.data.size();
+        if (have && r.data[i] == bytes[from + i]) continue;
+        if (d.sample_difference.empty()) {
+            d.sample_difference = "at " + hex(static_cast<unsigned>(from + i), 8) + ": stream " +
+                                  hex(bytes[from + i], 2) + ", datagram " +
+                                  (have ? hex(r.data[i], 2) : std::string("no byte"));
+        }
+        break;
+    }
+    return true;
+}
+
+// The CDI by the stream read, when the node offers streams and the read brought a NUL; the
+// datagram reads then cover the first and last kCdiSampleBytes. False: read it by datagrams.
+bool download_by_stream(CheckRun& run, CdiDownload& d) {
+    if (!run.probe<StreamSupport>().skip.empty()) return false;
+    const CdiStream& stream = run.probe<CdiStream>();
+    const auto& bytes = stream.mem.data;
+    const auto nul = std::find(bytes.begin(), bytes.end(), std::uint8_t{0});
+    // Without its NUL the stream may have been cut short: the datagram download judges the text.
+    if (!stream.mem.ok || nul == bytes.end()) return false;
+    d.by_stream = true;
+    d.result = without_data(stream.mem);
+    d.result.data.assign(bytes.begin(), nul + 1);
+    const SpaceInfo ff = run.probe<SpaceInfoProbe>(0xFF);
+    if (ff.present && d.result.data.size() > ff.highest_address + std::uint64_t{1})
+        d.beyond_highest =
+            static_cast<std::uint32_t>(d.result.data.size() - (ff.highest_address + 1));
+    const std::size_t n = d.result.data.size();
+    constexpr std::size_t kCdiSampleBytes = 64;  // one datagram read
+    if (!sample_by_datagram(run, d, 0, std::min(n, kCdiSampleBytes))) return true;
+    if (n > kCdiSampleBytes)
+        sample_by_datagram(run, d, std::max(kCdiSampleBytes, n - kCdiSampleBytes), n);
+    return true;
 }
 
 }  // namespace
@@ -195,15 +276,37 @@ SpaceInfoProbe SpaceInfoProbe::ask(CheckRun& run, std::uint8_t space) {
     return p;
 }
 
-CdiDownload CdiDownload::ask(CheckRun& run) {
+StreamSupport StreamSupport::ask(CheckRun& run) {
+    StreamSupport s;
+    const auto& pip = run.probe<PipProbe>().reply;
+    s.pip = pip && pip->has(Protocol::kStream);
+    if (const auto& o = run.probe<OptionsProbe>().reply) {
+        s.lengths = (o->write_lengths & memory::write_lengths::kStreams) != 0;
+        s.options =
+            (o->available_commands & memory::available_commands::kStreamReads) != 0 || s.lengths;
+    }
+    if (run.options().no_stream) {
+        s.skip = "--no-stream";
+    } else if (!s.pip || !s.options) {
+        s.skip = "node does not advertise streams";
+        if (s.pip) s.skip += " reads (PIP Stream, but Options says no stream reads)";
+    }
+    return s;
+}
+
+CdiStream CdiStream::ask(CheckRun& run) {
     const ProtocolOptions& o = run.options();
-    const SpaceInfo ff = run.probe<SpaceInfoProbe>(0xFF);
-    const std::uint32_t len =
-        ff.present ? std::min(ff.highest_address + 1, o.max_cdi_bytes) : o.max_cdi_bytes;
+    StreamReadOptions read;
+    read.max_bytes = o.max_cdi_bytes;
+    read.progress = o.cdi_progress;
+    CdiStream r{run.session().read_stream(run.node(), Space::kCdi, 0, read)};
+    run.tally(r.mem);
+    return r;
+}
+
+CdiDownload CdiDownload::ask(CheckRun& run) {
     CdiDownload d;
-    d.result = run.session().read_range(run.node(), Space::kCdi, 0, len, true, o.cdi_progress);
-    run.tally(d.result);
-    if (ff.present && len < o.max_cdi_bytes) read_past_highest(run, d, len);
+    if (!download_by_stream(run, d)) download_by_datagrams(run, d);
     d.read_ok = d.result.ok && !d.result.data.empty();
     d.nul_found = !d.result.data.empty() && d.result.data.back() == 0;
     d.text = d.result.data;

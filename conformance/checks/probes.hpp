@@ -63,10 +63,38 @@ struct SpaceInfoProbe : SpaceInfo {
     bool settled() const { return answered; }
 };
 
-/// Space 0xFF downloaded, parsed and laid out.
+/// What the node advertises about memory-config stream reads.
+struct StreamSupport {
+    bool pip = false;      ///< PIP Stream bit
+    bool options = false;  ///< Options: stream reads (0x1000) or the stream lengths bit
+    bool lengths = false;  ///< Options write-lengths 0x01 (the standard's stream bit)
+    std::string skip;      ///< why the stream-read checks SKIP ("" = they run)
+
+    static StreamSupport ask(CheckRun& run);
+};
+
+/// The whole CDI by one stream read with the largest buffer (Proceed at once), at most
+/// max_cdi_bytes.
+struct CdiStream : StreamReadResult {
+    static CdiStream ask(CheckRun& run);
+};
+
+/// Space 0xFF downloaded, parsed and laid out: read once, by the fastest path the node offers.
+/// With streams (StreamSupport) the CDI is the CdiStream's bytes up to their NUL, and datagram
+/// reads fetch only its first and last 64 bytes to compare; without, or when the stream read
+/// fails or brings no NUL, datagram reads fetch it all.
 struct CdiDownload {
-    MemResult result;      ///< the read_range() outcome
-    bool read_ok = false;  ///< data came
+    MemResult result;        ///< the bytes and how they came (the stream's, or read_range()'s)
+    bool read_ok = false;    ///< data came
+    bool by_stream = false;  ///< the bytes came by the stream read
+    /// The datagram reads of 0xFF without their data: the whole download, or with by_stream the
+    /// two sample reads (their Datagram Received OK flags, latency and form are what the
+    /// datagram checks judge; ok is false when one failed).
+    MemResult datagram;
+    /// With by_stream: where the datagram samples differ from the stream's bytes ("" = agree).
+    std::string sample_difference;
+    /// With by_stream: the bytes the datagram samples covered, as "0x0000-0x003F, ...".
+    std::string sampled;
     /// Bytes that came from past Space Info's highest address (it is too small when not 0).
     std::uint32_t beyond_highest = 0;
     std::vector<std::uint8_t> text;  ///< the bytes up to (excluding) the NUL

@@ -21,43 +21,6 @@ constexpr std::uint16_t kProbeBuffer = 64;
 constexpr std::uint32_t kProbeWindows = 3;
 constexpr Duration kHold = std::chrono::milliseconds(200);
 
-// What the node advertises about streams.
-struct StreamSupport {
-    bool pip = false;      // PIP Stream bit
-    bool options = false;  // Options: stream reads (0x1000) or the stream lengths bit
-    bool lengths = false;  // Options write-lengths 0x01 (the standard's stream bit)
-    std::string skip;      // why the stream-read checks SKIP ("" = they run)
-
-    static StreamSupport ask(CheckRun& run);
-};
-
-StreamSupport StreamSupport::ask(CheckRun& run) {
-    StreamSupport s;
-    const auto& pip = run.probe<PipProbe>().reply;
-    s.pip = pip && pip->has(Protocol::kStream);
-    if (const auto& o = run.probe<OptionsProbe>().reply) {
-        s.lengths = (o->write_lengths & memory::write_lengths::kStreams) != 0;
-        s.options =
-            (o->available_commands & memory::available_commands::kStreamReads) != 0 || s.lengths;
-    }
-    if (run.options().no_stream) {
-        s.skip = "--no-stream";
-    } else if (!s.pip || !s.options) {
-        s.skip = "node does not advertise streams";
-        if (s.pip) s.skip += " reads (PIP Stream, but Options says no stream reads)";
-    }
-    return s;
-}
-
-// The whole CDI by stream with the largest buffer (Proceed at once).
-struct CdiStream : StreamReadResult {
-    static CdiStream ask(CheckRun& run) {
-        CdiStream r{run.session().read_stream(run.node(), Space::kCdi, 0)};
-        run.tally(r.mem);
-        return r;
-    }
-};
-
 // A read of a few small buffers, each held kHold before lcc-conform's Proceed.
 struct WindowedStream : StreamReadResult {
     static WindowedStream ask(CheckRun& run);
@@ -74,6 +37,7 @@ WindowedStream WindowedStream::ask(CheckRun& run) {
 }
 
 std::string outcome(const StreamReadResult& r) {
+    if (r.cut) return std::to_string(r.mem.data.size()) + " bytes and more: the read was cut";
     if (r.mem.ok) return std::to_string(r.mem.data.size()) + " bytes";
     std::string s = describe(r.mem);
     if (!r.initiated) s += ", no Stream Initiate Request";
@@ -114,20 +78,30 @@ void stream_cdi_read(CheckRun& run, const CheckSpec& spec) {
     Verdict v = run.out(spec);
     if (!runnable(run, v)) return;
     const StreamReadResult& r = run.probe<CdiStream>();
-    const std::vector<std::uint8_t>& dg = run.probe<CdiDownload>().result.data;
+    const CdiDownload& d = run.probe<CdiDownload>();
     if (!r.mem.ok) return v.fail("stream read of the CDI failed", "the CDI", outcome(r));
-    const auto& got = r.mem.data;
-    const bool same = got.size() >= dg.size() && std::equal(dg.begin(), dg.end(), got.begin());
-    if (!same) {
-        const auto diff = std::mismatch(dg.begin(), dg.end(), got.begin(), got.end());
-        const auto at = static_cast<std::size_t>(diff.first - dg.begin());
-        return v.fail(
-            "stream bytes differ from the datagram download at offset " + std::to_string(at),
-            std::to_string(dg.size()) + " datagram bytes",
-            std::to_string(got.size()) + " stream bytes");
+    if (!d.by_stream) {
+        // The stream brought no NUL, so the datagram download was made: compare it all.
+        const auto& dg = d.result.data;
+        const auto& got = r.mem.data;
+        if (got.size() < dg.size() || !std::equal(dg.begin(), dg.end(), got.begin())) {
+            const auto diff = std::mismatch(dg.begin(), dg.end(), got.begin(), got.end());
+            const auto at = static_cast<std::size_t>(diff.first - dg.begin());
+            return v.fail(
+                "stream bytes differ from the datagram download at offset " + std::to_string(at),
+                std::to_string(dg.size()) + " datagram bytes",
+                std::to_string(got.size()) + " stream bytes");
+        }
+        return v.pass(std::to_string(got.size()) + " bytes by stream, no NUL among them; the " +
+                      std::to_string(dg.size()) + " of the datagram download first");
     }
-    v.pass(std::to_string(got.size()) + " bytes by stream (buffer " + std::to_string(r.granted) +
-           "), the " + std::to_string(dg.size()) + " of the datagram download first");
+    if (!d.datagram.ok) return v.skip("depends on cdi.read: the datagram reads to compare failed");
+    if (!d.sample_difference.empty()) {
+        return v.fail("stream and datagram reads of 0xFF differ " + d.sample_difference,
+                      "the same bytes in " + d.sampled, d.sample_difference);
+    }
+    v.pass(std::to_string(d.result.data.size()) + " bytes by stream (buffer " +
+           std::to_string(r.granted) + "); datagram reads of " + d.sampled + " agree");
 }
 
 void stream_complete(CheckRun& run, const CheckSpec& spec) {
@@ -178,11 +152,12 @@ void stream_proceed(CheckRun& run, const CheckSpec& spec) {
                           " held buffers");
     }
     if (!r.mem.ok) return v.fail("the windowed read did not finish", "Data Complete", outcome(r));
+    // The CDI as downloaded (by the whole stream or by datagrams).
     const std::vector<std::uint8_t>& dg = run.probe<CdiDownload>().result.data;
     const std::size_t n = std::min(r.mem.data.size(), dg.size());
     if (!std::equal(r.mem.data.begin(), r.mem.data.begin() + static_cast<std::ptrdiff_t>(n),
                     dg.begin())) {
-        return v.fail("windowed stream bytes differ from the datagram download", "same bytes",
+        return v.fail("windowed stream bytes differ from the CDI download", "same bytes",
                       "different bytes");
     }
     v.pass(std::to_string(r.mem.data.size()) + " bytes in buffers of " + std::to_string(r.granted) +
@@ -231,7 +206,9 @@ std::vector<CheckSpec> stream_checks() {
         {"stream.cdi-read", 680, Category::kStream, "MemoryConfigurationS §4.6, §4.7",
          Strength::kShall, "a Read Stream returns the space's bytes through a stream", "cd20",
          "Read Stream of 0xFF from 0 to the end (count 0xFFFFFFFF), lcc-conform granting the "
-         "largest buffer: the stream's bytes start with the datagram download, byte for byte",
+         "largest buffer, at most the CDI limit: it is how the CDI is read (up to its NUL), and "
+         "datagram reads of its first and last 64 bytes agree byte for byte; a stream without a "
+         "NUL is compared with the whole datagram download",
          stream_cdi_read},
         {"stream.complete", 690, Category::kStream, "StreamTransportS §6.4", Strength::kNone,
          "StreamTransportS is not adopted: its rules WARN", "",

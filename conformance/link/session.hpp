@@ -51,6 +51,7 @@ struct MemResult {
     bool reply_in_request_form = true;  ///< reply used the same short/byte-6 form as the request
     Duration reply_latency{};           ///< request sent -> reply datagram received
     unsigned temporary_rejects = 0;     ///< 0x2xxx rejects that were retried
+    bool restarted = false;  ///< the node re-initialized before acknowledging: no answer comes
     /// A write the ledger's gate kept back: nothing was sent (not_sent says why).
     std::string not_sent;
 };
@@ -71,6 +72,10 @@ struct StreamReadOptions {
     Duration hold{};
     memory::SpaceForm form = memory::SpaceForm::kAuto;
     Duration idle_timeout = base::kRequesterTimeout;  ///< no progress this long: timed out
+    /// More bytes than this end the read (the stream is dropped, `cut` set): the node's own end
+    /// of the space is what normally ends it, so this only bounds a node that never stops.
+    std::size_t max_bytes = SIZE_MAX;
+    std::function<void(std::size_t)> progress;  ///< called with the bytes so far as data comes
 };
 
 /// Outcome of one memory-config stream read.
@@ -87,6 +92,7 @@ struct StreamReadResult {
     std::uint64_t data_frames = 0;  ///< Data Send frames received
     std::uint64_t proceeds = 0;     ///< Data Proceed messages we sent
     Duration elapsed{};             ///< request sent -> Complete (or the end of the wait)
+    bool cut = false;               ///< the node sent more than max_bytes (data holds max_bytes)
 };
 
 /// What the session has seen of one node.
@@ -253,6 +259,9 @@ private:
 
     MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                        bool always_reply, memory::Message* reply);
+    /// True when node id announced itself again (Initialization Complete) since it had
+    /// `initializations`, on another alias than `alias`.
+    bool came_back_elsewhere(NodeId id, std::uint32_t initializations, std::uint16_t alias) const;
     MemResult send_exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                             bool always_reply, memory::Message* reply);
     const OutcomeRecord* outcome_of(std::uint32_t datagram_id) const;

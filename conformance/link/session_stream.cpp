@@ -37,6 +37,11 @@ void Session::stream_event(StreamWait& w, const StreamEvent& e) {
     switch (e.kind) {
         case StreamEvent::Kind::kData:
             w.result.mem.data.insert(w.result.mem.data.end(), e.data.begin(), e.data.end());
+            if (w.result.mem.data.size() > w.options.max_bytes) {
+                w.result.mem.data.resize(w.options.max_bytes);
+                w.result.cut = true;
+                w.failed = true;
+            }
             break;
         case StreamEvent::Kind::kWindowFull:
             w.window_full = true;
@@ -86,6 +91,8 @@ bool Session::stream_progress(StreamWait& w) {
         }
     }
     if (w.result.mem.data.size() != before || w.window_full) w.last_progress = link_.now();
+    if (w.result.mem.data.size() != before && w.options.progress)
+        w.options.progress(w.result.mem.data.size());
     return w.failed || w.window_full || (w.result.completed && w.reply_done);
 }
 
