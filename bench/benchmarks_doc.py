@@ -199,7 +199,8 @@ def machine_block(result):
     m, s, load = result["machine"], result["settings"], result["load_avg_1min"]
     commit = m["git_commit"][:10]
     if m["git_uncommitted_changes"]:
-        commit += f" with uncommitted changes in {len(m['git_uncommitted_changes'])} files"
+        commit += (f" (the source tree had uncommitted changes in "
+                   f"{len(m['git_uncommitted_changes'])} files when measured)")
     runs = (f"{plural(s['processes'], 'process', 'processes')} of "
             f"{plural(s['repetitions'], 'repetition', 'repetitions')}")
     how = (f"each benchmark in its own process, {runs}; one with fixed iterations in "
