@@ -1,5 +1,7 @@
 #include "openlcb/alias_allocator.hpp"
 
+#include <utility>
+
 #include "openlcb/can_defs.hpp"
 #include "openlcb/mti.hpp"
 
@@ -23,9 +25,19 @@ void AliasAllocator::start(TimePoint now) {
     if (state_ == State::kIdle || state_ == State::kHalted) begin_reservation(now);
 }
 
+void AliasAllocator::share_cache(std::shared_ptr<const AliasCache> cache) {
+    shared_ = std::move(cache);
+    cache_.clear();
+}
+
 void AliasAllocator::begin_reservation(TimePoint now) {
+    // A shared cache also holds this node's own mapping, which is no reason to skip its alias.
+    const auto taken = [this](std::uint16_t alias) {
+        const auto holder = cache().node_of(alias);
+        return holder && *holder != node_;
+    };
     std::uint16_t alias = generator_.next();
-    for (int i = 0; i < kMaxAliasSkips && cache_.node_of(alias); ++i) alias = generator_.next();
+    for (int i = 0; i < kMaxAliasSkips && taken(alias); ++i) alias = generator_.next();
     alias_ = alias;
     ++attempts_;
     for (int n = 7; n >= 4; --n) send(can::make_cid(n, node_, alias_));
@@ -88,14 +100,14 @@ void AliasAllocator::handle_control(const CanFrame& frame) {
                 on_duplicate();
                 return;
             }
-            cache_.add(src, *carried);
+            if (!shared_) cache_.add(src, *carried);
             break;
         case can::ControlFrame::kAmr:
-            cache_.remove_alias(src);
+            if (!shared_) cache_.remove_alias(src);
             break;
         case can::ControlFrame::kAme:
             if (frame.len == 0) {
-                cache_.clear();
+                if (!shared_) cache_.clear();
                 if (state_ == State::kPermitted) send(can::make_amd(alias_, node_));
             } else if (carried && *carried == node_ && state_ == State::kPermitted) {
                 send(can::make_amd(alias_, node_));
@@ -127,7 +139,7 @@ void AliasAllocator::learn_from_message(const CanFrame& frame) {
             if (auto id = NodeId::from_bytes(std::span(frame.data.data(), frame.len))) {
                 const std::uint16_t src = can::source_alias(frame.id);
                 if (*id != node_) {
-                    cache_.add(src, *id);
+                    if (!shared_) cache_.add(src, *id);
                 } else if (can::can_mti(frame.id) != to_u16(Mti::kInitializationComplete) &&
                            can::can_mti(frame.id) != to_u16(Mti::kInitializationCompleteSimple) &&
                            src != alias_ && state_ == State::kPermitted) {

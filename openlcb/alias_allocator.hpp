@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 
 #include "base/node_id.hpp"
@@ -90,8 +91,14 @@ public:
     std::uint16_t alias() const { return alias_; }
     /// Our node ID.
     NodeId node_id() const { return node_; }
-    /// Mappings learned about other nodes.
-    const AliasCache& cache() const { return cache_; }
+    /// Mappings learned about other nodes (the shared cache when one is set).
+    const AliasCache& cache() const { return shared_ ? *shared_ : cache_; }
+    /// Looks mappings up in `cache` instead of its own, which it then stops keeping: the owner of
+    /// a cache several nodes share learns it from every frame (AliasCache::learn). nullptr: its
+    /// own cache again, empty. Reservation still skips only aliases of other node IDs.
+    void share_cache(std::shared_ptr<const AliasCache> cache);
+    /// The cache set by share_cache(), if any.
+    const std::shared_ptr<const AliasCache>& shared_cache() const { return shared_; }
     /// Number of reservations begun (1 + restarts).
     std::uint32_t attempts() const { return attempts_; }
     /// The alias generator; the next reservation takes the alias after its current state's.
@@ -109,7 +116,8 @@ private:
     NodeId node_;
     AliasAllocatorConfig config_;
     AliasGenerator generator_;
-    AliasCache cache_;
+    AliasCache cache_;                          // kept only without shared_
+    std::shared_ptr<const AliasCache> shared_;  // kept by its owner
     State state_ = State::kIdle;
     std::uint16_t alias_ = 0;
     TimePoint deadline_{};

@@ -1,5 +1,10 @@
 #include "openlcb/alias_cache.hpp"
 
+#include <span>
+
+#include "openlcb/can_defs.hpp"
+#include "openlcb/mti.hpp"
+
 namespace olcb {
 
 void AliasCache::add(std::uint16_t alias, NodeId node) {
@@ -39,6 +44,48 @@ std::optional<NodeId> AliasCache::node_of(std::uint16_t alias) const {
 std::optional<std::uint16_t> AliasCache::alias_of(NodeId node) const {
     if (auto it = by_node_.find(node); it != by_node_.end()) return it->second;
     return std::nullopt;
+}
+
+namespace {
+
+// The node ID an announcing global message carries, if it is one.
+std::optional<NodeId> announced_by_message(const CanFrame& frame) {
+    if (can::frame_format(frame.id) != can::FrameFormat::kGlobalAddressed) return std::nullopt;
+    switch (can::can_mti(frame.id)) {
+        case to_u16(Mti::kInitializationComplete):
+        case to_u16(Mti::kInitializationCompleteSimple):
+        case to_u16(Mti::kVerifiedNodeId):
+        case to_u16(Mti::kVerifiedNodeIdSimple):
+            return NodeId::from_bytes(std::span(frame.data.data(), frame.len));
+        default:
+            return std::nullopt;
+    }
+}
+
+}  // namespace
+
+void AliasCache::learn(const CanFrame& frame) {
+    if (!can::is_openlcb_frame(frame) || frame.len > 8) return;
+    const std::uint16_t src = can::source_alias(frame.id);
+    if (!can::is_control(frame.id)) {
+        if (const auto id = announced_by_message(frame)) add(src, *id);
+        return;
+    }
+    switch (can::classify_control(frame.id)) {
+        case can::ControlFrame::kAmd:
+            if (const auto id = NodeId::from_bytes(std::span(frame.data.data(), frame.len))) {
+                add(src, *id);
+            }
+            break;
+        case can::ControlFrame::kAmr:
+            remove_alias(src);
+            break;
+        case can::ControlFrame::kAme:
+            if (frame.len == 0) clear();
+            break;
+        default:
+            break;
+    }
 }
 
 }  // namespace olcb

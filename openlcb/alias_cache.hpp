@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/node_id.hpp"
+#include "openlcb/can_frame.hpp"
 
 namespace olcb {
 
@@ -27,6 +28,11 @@ public:
     std::optional<std::uint16_t> alias_of(NodeId node) const;
     /// Number of known mappings.
     std::size_t size() const { return by_node_.size(); }
+    /// Takes in what one frame of the segment says of the mappings, for an observer of the whole
+    /// segment (the cache StackGroup's stacks share): AMD, Initialization Complete and Verified
+    /// Node ID announce one, AMR withdraws one, a global AME voids them all. A node's own cache
+    /// is kept by its AliasAllocator, which also tells its own ID apart.
+    void learn(const CanFrame& frame);
 
 private:
     std::vector<std::uint64_t> by_alias_;  // 4096 slots once used; 0 = unknown

@@ -97,6 +97,7 @@ void NodeStack::release(TimePoint now) {
 
 void NodeStack::drop_state() {
     if (alias() != 0) previous_alias_ = alias();
+    std::shared_ptr<const AliasCache> shared = alias_.shared_cache();
     if (config_.new_alias_on_restart) {
         // Two generator states can fold to the same 12 bits: step past any that would hand the
         // node the alias it just had, so it really comes back on another one.
@@ -111,6 +112,7 @@ void NodeStack::drop_state() {
         // A fresh allocator: a rebooted node forgets its cache and starts from the first alias.
         alias_ = AliasAllocator(config_.node_id, config_.alias);
     }
+    alias_.share_cache(std::move(shared));  // the segment's, not the node's to forget
     assembler_.clear();
     receiver_.set_alias(0);
     receiver_.reset();
@@ -120,6 +122,31 @@ void NodeStack::drop_state() {
     pending_.clear();
     initialized_ = false;
     started_ = false;
+}
+
+void NodeStack::share_alias_cache(std::shared_ptr<const AliasCache> cache) {
+    alias_.share_cache(std::move(cache));
+}
+
+void NodeStack::set_global_messages(std::optional<std::vector<Mti>> mtis) {
+    global_can_mtis_.reset();
+    if (!mtis) return;
+    global_can_mtis_.emplace();
+    for (const Mti mti : *mtis) {
+        if (mti == Mti::kEventReportWithPayload) {
+            // Carried by frames of three CAN-MTIs of its own.
+            global_can_mtis_->insert(global_can_mtis_->end(),
+                                     {can::kCanMtiPcerPayloadFirst, can::kCanMtiPcerPayloadMiddle,
+                                      can::kCanMtiPcerPayloadLast});
+        } else {
+            global_can_mtis_->push_back(cmti_of(mti));
+        }
+    }
+}
+
+bool NodeStack::takes_global(std::uint16_t can_mti) const {
+    return !global_can_mtis_ || std::find(global_can_mtis_->begin(), global_can_mtis_->end(),
+                                          can_mti) != global_can_mtis_->end();
 }
 
 void NodeStack::reinitialize(TimePoint now) {
@@ -262,15 +289,16 @@ bool NodeStack::announces_reinitialization(const CanFrame& frame, bool control,
 
 void NodeStack::on_global_frame(const CanFrame& frame, TimePoint now) {
     const std::uint16_t cmti = can::can_mti(frame.id);
+    const bool taken = on_message_ && takes_global(cmti);
     if (cmti == can::kCanMtiPcerPayloadFirst || cmti == can::kCanMtiPcerPayloadMiddle ||
         cmti == can::kCanMtiPcerPayloadLast) {
-        if (!on_message_) return;  // no built-in uses it: do not reassemble for nobody
+        if (!taken) return;  // no built-in uses it: do not reassemble for nobody
         if (auto msg = assembler_.on_frame(frame, now)) dispatch(*msg);
         return;
     }
     const bool builtin =
         cmti == cmti_of(Mti::kVerifyNodeIdGlobal) && config_.builtins.verify_node_id;
-    if (!builtin && !on_message_) return;  // nobody would look at it: stay cheap
+    if (!builtin && !taken) return;  // nobody would look at it: stay cheap
     const std::uint16_t src = can::source_alias(frame.id);
     scratch_.mti = static_cast<Mti>(cmti);
     scratch_.source = NodeHandle{alias_.cache().node_of(src).value_or(NodeId{}), src};

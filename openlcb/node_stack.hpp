@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -162,15 +163,30 @@ public:
     void set_outbound_filter(OutboundFilter filter) { outbound_filter_ = std::move(filter); }
     /// Sets the output notification (used by the driver running this stack).
     void set_output_handler(OutputHandler handler) { on_output_ = std::move(handler); }
+    /// The global messages the message handler is given; the stack drops the others (Verify
+    /// Node ID Global still gets the built-in answer), so a driver of many stacks need not
+    /// deliver them at all (StackGroup). nullopt, the default: every global message.
+    void set_global_messages(std::optional<std::vector<Mti>> mtis);
+    /// The CAN-MTIs of the global messages the handler takes; nullopt: every one.
+    const std::optional<std::vector<std::uint16_t>>& global_can_mtis() const {
+        return global_can_mtis_;
+    }
+    /// True when the message handler takes global messages of this CAN-MTI.
+    bool takes_global(std::uint16_t can_mti) const;
+    /// Looks alias mappings up in `cache`, which its owner learns from every frame of the
+    /// segment (the stacks of a StackGroup share one, as the virtual nodes of one interface do);
+    /// the stack then keeps no cache of its own, and restart() leaves the shared one alone.
+    /// nullptr: a cache of its own again, empty.
+    void share_alias_cache(std::shared_ptr<const AliasCache> cache);
 
     // ---- lifecycle ----
     /// Begins alias reservation; no effect when already started or silent.
     void start(TimePoint now);
     /// A reboot: drops all reassembly, datagram and pending state (outstanding datagrams are
-    /// reported kAborted), forgets the alias cache, and runs start-up again from the first
-    /// generator alias (the next one with NodeStackConfig::new_alias_on_restart). No AMR is
-    /// sent: a rebooting node just goes silent and starts over. Frames already in the output stay
-    /// there (they count as handed to the CAN controller). Ends silence.
+    /// reported kAborted), forgets its own alias cache (not a shared one), and runs start-up again
+    /// from the first generator alias (the next one with NodeStackConfig::new_alias_on_restart). No
+    /// AMR is sent: a rebooting node just goes silent and starts over. Frames already in the output
+    /// stay there (they count as handed to the CAN controller). Ends silence.
     void restart(TimePoint now);
     /// A crash: drops all state as restart() does but starts nothing; until restart() every frame
     /// is ignored (no answer, no alias defence) and nothing is sent. Owner timers still run, so
@@ -251,6 +267,11 @@ public:
     bool halted() const { return alias_.state() == AliasAllocator::State::kHalted; }
     /// True between go_silent() and the next restart().
     bool silent() const { return silent_; }
+    /// True when an inbound filter is set (it must see every frame of the segment).
+    bool has_inbound_filter() const { return static_cast<bool>(inbound_filter_); }
+    /// True while datagrams it sent wait to go out or for their acknowledgement (then it must
+    /// see every node's AMD and Initialization Complete, which end those to that node).
+    bool sending_datagrams() const { return sender_.queued() != 0; }
     /// Mappings learned about other nodes (node ID <-> alias).
     const AliasCache& alias_cache() const { return alias_.cache(); }
     /// The alias state machine (state, attempts).
@@ -331,7 +352,8 @@ private:
     std::multimap<TimePoint, TimerHandler> timers_;
     TimePoint now_{};
     std::optional<TimePoint> last_ame_;  // AMDs right after an AME answer it (no re-init)
-    std::optional<TimePoint> last_duplicate_pcer_;  // rate limit of duplicate_id_pcer
+    std::optional<TimePoint> last_duplicate_pcer_;               // rate limit of duplicate_id_pcer
+    std::optional<std::vector<std::uint16_t>> global_can_mtis_;  // set_global_messages()
 };
 
 }  // namespace olcb

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "openlcb/gc_test_util.hpp"
 
 namespace olcb {
@@ -246,6 +248,28 @@ TEST(AliasAllocator, NextAliasSkipsAliasesKnownInUse) {
     a.start(t0);
     a.on_frame(gc(":X19490343N;"), t0 + 1ms);
     EXPECT_EQ(a.alias(), 0x60D);
+}
+
+// A cache several nodes share: looked up, never written, and this node's own mapping in it is
+// no reason to skip an alias.
+TEST(AliasAllocator, ASharedCacheIsLookedUpButKeptByItsOwner) {
+    auto shared = std::make_shared<AliasCache>();
+    shared->add(0x343, kNodeId);  // its own mapping, from an earlier run
+    AliasAllocator a(kNodeId);
+    a.share_cache(shared);
+    a.start(t0);
+    EXPECT_EQ(a.alias(), 0x343);
+    a.on_frame(gc(":X1070112CN02010D000001;"), t0 + 1ms);
+    EXPECT_EQ(shared->size(), 1u) << "its owner learns the segment's frames";
+    EXPECT_EQ(&a.cache(), shared.get());
+
+    AliasAllocator b(kNodeId);
+    shared->add(0x343, kRunnerId);  // another node holds 0x343 now
+    b.share_cache(shared);
+    b.start(t0);
+    EXPECT_EQ(b.alias(), 0xBD9);
+    b.share_cache(nullptr);
+    EXPECT_EQ(b.cache().size(), 0u) << "a cache of its own again";
 }
 
 TEST(AliasAllocator, ReleaseSendsAmrWhenPermitted) {

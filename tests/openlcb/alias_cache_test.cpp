@@ -4,8 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include "openlcb/gc_test_util.hpp"
+
 namespace olcb {
 namespace {
+
+using test::gc;
 
 constexpr NodeId kNode(0x050101012200);
 constexpr NodeId kRunner(0x02010D000001);
@@ -72,6 +76,26 @@ TEST(AliasCache, RemoveForgetsOneMappingAndClearForgetsAll) {
     EXPECT_FALSE(c.alias_of(kRunner));
     c.add(0x12C, kRunner);  // usable again after clear()
     EXPECT_EQ(c.node_of(0x12C), kRunner);
+}
+
+// An observer of the whole segment learns what every frame says, its own node's too.
+TEST(AliasCache, LearnsWhatTheFramesOfTheSegmentSay) {
+    AliasCache c;
+    c.learn(gc(":X10701343N050101012200;"));  // AMD
+    c.learn(gc(":X1917012CN02010D000001;"));  // Verified Node ID
+    c.learn(gc(":X19100456N020000000002;"));  // Initialization Complete
+    EXPECT_EQ(c.node_of(0x343), kNode);
+    EXPECT_EQ(c.node_of(0x12C), kRunner);
+    EXPECT_EQ(c.node_of(0x456), NodeId(0x020000000002));
+    for (const char* nothing : {":X17050777N;", ":X10700777N;", ":X19490777N;", ":X19170458N0200;",
+                                ":S343N050101012201;", ":X1070212CN02010D000001;"}) {
+        c.learn(gc(nothing));  // CID, RID, Verify, truncated, standard, AME for one node
+    }
+    EXPECT_EQ(c.size(), 3u);
+    c.learn(gc(":X10703343N050101012200;"));  // AMR
+    EXPECT_FALSE(c.node_of(0x343));
+    c.learn(gc(":X10702999N;"));  // global AME
+    EXPECT_EQ(c.size(), 0u);
 }
 
 }  // namespace

@@ -4,6 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <optional>
+#include <vector>
+
 #include "base/error_codes.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/node_test_util.hpp"
@@ -199,6 +203,49 @@ TEST_F(NodeStackTest, EventReportWithPayloadIsReassembled) {
     EXPECT_EQ(seen[0].payload.back(), 0x22);
     EXPECT_FALSE(seen[0].destination.has_value());
     EXPECT_TRUE(take().empty());
+}
+
+// A handler that takes a few global messages: the stack drops the others before decoding them,
+// Verify Node ID Global still gets the built-in answer.
+TEST_F(NodeStackTest, TheHandlerIsGivenOnlyTheGlobalMessagesItTakes) {
+    std::vector<Mti> seen;
+    stack_.set_message_handler([&](const Message& m) {
+        seen.push_back(m.mti);
+        return true;
+    });
+    stack_.set_global_messages(
+        std::vector<Mti>{Mti::kIdentifyProducer, Mti::kEventReportWithPayload});
+    EXPECT_TRUE(stack_.takes_global(0x914));
+    EXPECT_FALSE(stack_.takes_global(0x547));
+    boot();
+    inject(":X19547123N0102030405060708;");  // Producer Identified
+    inject(":X19914123N0102030405060708;");  // Identify Producer
+    inject(":X19F16123N0102030405060708;");
+    inject(":X19F14123N2122;");
+    inject(":X19490123N;");
+    EXPECT_EQ(seen, (std::vector<Mti>{Mti::kIdentifyProducer, Mti::kEventReportWithPayload}));
+    EXPECT_EQ(take(), (Strings{":X19170343N050101012200;"}));
+    stack_.set_global_messages(std::nullopt);
+    inject(":X19547123N0102030405060708;");
+    EXPECT_EQ(seen.back(), Mti::kProducerIdentifiedUnknown);
+}
+
+// The stacks of one interface share a cache their driver keeps: a restart leaves it alone.
+TEST_F(NodeStackTest, ASharedAliasCacheOutlivesARestart) {
+    auto shared = std::make_shared<AliasCache>();
+    shared->add(0x12C, kRunnerId);
+    stack_.share_alias_cache(shared);
+    boot();
+    EXPECT_EQ(&stack_.alias_cache(), shared.get());
+    stack_.restart(net_.now());
+    net_.run_for(300ms);
+    EXPECT_EQ(&stack_.alias_cache(), shared.get());
+    Message verify;
+    verify.mti = Mti::kVerifyNodeIdAddressed;
+    verify.destination = NodeHandle{kRunnerId, 0};  // resolved through the shared cache
+    EXPECT_EQ(stack_.send_message(verify), SendStatus::kSent);
+    stack_.share_alias_cache(nullptr);
+    EXPECT_EQ(stack_.send_message(verify), SendStatus::kUnknownDestination);
 }
 
 TEST_F(NodeStackTest, NothingIsDispatchedOrSentBeforeInitialization) {
