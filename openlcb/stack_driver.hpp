@@ -6,22 +6,22 @@
 #include <deque>
 #include <memory>
 #include <optional>
-#include <vector>
 
 #include "openlcb/asio.hpp"
 #include "openlcb/can_frame.hpp"
 #include "openlcb/clock.hpp"
 #include "openlcb/node_stack.hpp"
+#include "openlcb/stack_group.hpp"
 #include "openlcb/transport.hpp"
 
 namespace olcb {
 
 /// Attaches NodeStacks to one Transport (in-process bus port, hub local endpoint, TCP client,
 /// SocketCAN) on an io_context. The attached stacks share the transport's segment: frames from
-/// the transport go to every stack; a frame a stack emits goes to the transport and to every
-/// other attached stack (transports never echo). One steady_timer is armed at the earliest
-/// deadline of all stacks; the minimum is recomputed once per batch of work (posted, coalesced),
-/// not once per frame.
+/// the transport go to the stacks, a frame a stack emits goes to the transport and to the other
+/// attached stacks (transports never echo); a StackGroup decides which stacks a frame concerns
+/// and keeps the deadlines. One steady_timer is armed at the earliest deadline of all stacks,
+/// re-armed once per batch of work (posted, coalesced), not once per frame.
 class StackDriver {
 public:
     /// Counters since construction.
@@ -30,11 +30,12 @@ public:
         std::uint64_t frames_out = 0;  ///< frames the stacks emitted (sent to the transport)
         std::uint64_t polls = 0;       ///< NodeStack::poll() calls made on timer expiry
         std::uint64_t timer_arms = 0;  ///< times the timer was (re)armed
+        std::uint64_t deliveries = 0;  ///< NodeStack::on_frame() calls made
     };
 
     /// A driver on io using transport (its frame handler is taken over); the transport must
-    /// outlive the driver.
-    StackDriver(boost::asio::io_context& io, Transport& transport);
+    /// outlive the driver. options: StackGroupOptions (simnode's stacks share one alias cache).
+    StackDriver(boost::asio::io_context& io, Transport& transport, StackGroupOptions options = {});
     /// Clears the transport handler; stacks still attached become undriven (their output
     /// handlers turn into no-ops), whether they are destroyed before or after the driver.
     ~StackDriver();
@@ -56,35 +57,27 @@ public:
     /// driver callback, where the running batch delivers it.
     void flush();
     /// Number of attached stacks.
-    std::size_t size() const { return count_; }
+    std::size_t size() const { return group_.size(); }
     /// Counters.
-    const Stats& stats() const { return stats_; }
+    Stats stats() const;
+    /// The stacks and what routes frames to them.
+    const StackGroup& group() const { return group_; }
 
 private:
-    struct Slot {
-        NodeStack* stack = nullptr;
-        bool dirty = false;
-    };
-
     void on_transport_frame(const CanFrame& frame);
     void process();
-    std::size_t drain_dirty(TimePoint now);
     void post_once(bool& pending, void (StackDriver::*step)());
     void post_rearm();
     void schedule();
     void rearm();
     void on_timer();
-    void mark_dirty(std::size_t index);
 
     boost::asio::io_context& io_;
     Transport& transport_;
     boost::asio::steady_timer timer_;
     std::optional<TimePoint> armed_at_;
-    std::vector<Slot> slots_;
-    std::size_t count_ = 0;
-    std::vector<std::size_t> dirty_;
+    StackGroup group_;
     std::deque<CanFrame> incoming_;
-    std::vector<CanFrame> scratch_;
     bool busy_ = false;
     bool posted_ = false;
     bool rearm_posted_ = false;
