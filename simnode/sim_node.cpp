@@ -18,6 +18,12 @@ namespace {
 
 constexpr std::uint8_t kConfigSpace = 0xFD;
 
+// The global messages the node answers (its faults' message hooks see no others); the other
+// nodes' announcements (Initialization Complete, Producer/Consumer Identified, ...) it ignores,
+// so a driver of many nodes need not hand them to it.
+constexpr Mti kAnsweredGlobals[] = {Mti::kVerifyNodeIdGlobal, Mti::kIdentifyEventsGlobal,
+                                    Mti::kIdentifyProducer, Mti::kIdentifyConsumer};
+
 }  // namespace
 
 namespace {
@@ -147,6 +153,8 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
     startup_events_ = memory_->events();
     if (faults_.watches()) find_watched();
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
+    stack_.set_global_messages(
+        std::vector<Mti>(std::begin(kAnsweredGlobals), std::end(kAnsweredGlobals)));
     stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
     stack_.set_initialized_handler([this] { on_initialized(); });
     stack_.set_stream_handler([this](const StreamEvent& e) { on_stream_event(e); });
@@ -205,16 +213,12 @@ namespace {
 
 // Whether msg asks this node for an answer (the ones the latency fault holds back).
 bool asks_answer(const Message& msg) {
-    switch (msg.mti) {
-        case Mti::kVerifyNodeIdGlobal:
-        case Mti::kIdentifyEventsGlobal:
-        case Mti::kIdentifyProducer:
-        case Mti::kIdentifyConsumer:
-            return true;
-        default:
-            return msg.destination.has_value() &&
-                   !NodeStack::never_rejected(static_cast<std::uint16_t>(msg.mti));
+    if (std::find(std::begin(kAnsweredGlobals), std::end(kAnsweredGlobals), msg.mti) !=
+        std::end(kAnsweredGlobals)) {
+        return true;
     }
+    return msg.destination.has_value() &&
+           !NodeStack::never_rejected(static_cast<std::uint16_t>(msg.mti));
 }
 
 }  // namespace
@@ -472,7 +476,7 @@ void SimNode::answer_datagram(const ReceivedDatagram& d) {
     }
     const bool write_reboot = written.restart;
     if (write_reboot) decision.reply.reset();  // the OK still says Reply Pending
-    send_answer(src, decision);
+    if (!std::exchange(unacknowledged_, false)) send_answer(src, decision);
     if (fx.stream_read) start_stream_read(src, *fx.stream_read);
     if (const auto silence = std::exchange(silence_after_answer_, {}); silence.count() > 0) {
         abort_node(silence);
@@ -531,7 +535,7 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
     memory::Decision decision = server_.handle(source, asked);
     if (decision.accepted && turn.accepted) turn.accepted();
     if (decision.accepted) silence_after_answer_ = turn.silence_after;
-    faults_.reply(asked, decision);
+    unacknowledged_ = faults_.reply(asked, decision);
     const memory::SideEffects& fx = decision.effects;
     if (decision.accepted && fx.unique_id_counter &&
         !memory_->store_unique_id_counter(*fx.unique_id_counter)) {

@@ -162,7 +162,10 @@ public:
         if (!start_audit() || !open_tap()) return kExitRuntime;
         open_client();
         if (!open_socketcan() || !open_serial()) return kExitRuntime;
-        driver_.emplace(io_, audit_ ? audit_->attach(*node_port_, hub_.get()) : *node_port_);
+        // One alias cache for all nodes, as one interface's virtual nodes have: a cache per
+        // node, each taught every node's announcement, made start-up N^2 (issue 32).
+        driver_.emplace(io_, audit_ ? audit_->attach(*node_port_, hub_.get()) : *node_port_,
+                        StackGroupOptions{.share_alias_cache = true});
         for (auto& node : nodes_) driver_->attach(node->stack());
         // Live control (docs/control.md): changes the nodes from the same io_context.
         registry_.emplace(nodes_, *driver_);
