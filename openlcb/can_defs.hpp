@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -20,6 +21,8 @@ inline constexpr std::uint32_t kMessageBit = 0x0800'0000;
 inline constexpr std::uint32_t kHeaderMask = 0x1FFF'FFFF;
 /// Mask of the 12-bit alias fields.
 inline constexpr std::uint16_t kAliasMask = 0x0FFF;
+/// Aliases a segment has (0x001-0xFFF; 0 is none): the most nodes one CAN segment holds.
+inline constexpr std::size_t kAliasCount = kAliasMask;
 
 /// CAN frame format of an OpenLCB message (bits 26-24).
 enum class FrameFormat : std::uint8_t {

@@ -14,6 +14,7 @@
 #include "cdi/parser.hpp"
 #include "cdi/schema_validator.hpp"
 #include "openlcb/asio.hpp"
+#include "openlcb/can_defs.hpp"
 #include "openlcb/can_timing.hpp"
 
 namespace olcb::simnode {
@@ -665,6 +666,12 @@ private:
         const auto memory_on = memory ? parse_bool(*memory) : std::optional<bool>(true);
         if (!memory_on)
             return fail(where + ": memory-config '" + *memory + "' must be true or false");
+        // More would contend for an alias for ever (issue 32: 5,000 nodes never started).
+        if (const std::uint64_t total = scenario_.nodes.size() + g.count;
+            total > can::kAliasCount) {
+            return fail(where + ": " + std::to_string(total) + " nodes on one segment, more than " +
+                        "its " + std::to_string(can::kAliasCount) + " aliases (one per node)");
+        }
         for (std::uint64_t k = 0; k < g.count; ++k) {
             NodeConfig config;
             config.node_id = NodeId(g.base.value() + k);

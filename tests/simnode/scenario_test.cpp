@@ -184,6 +184,21 @@ TEST(ScenarioTest, CountMakesConsecutiveNodeIds) {
     EXPECT_EQ(s->nodes[2].node_id.to_string(), "05.01.01.01.22.02");
 }
 
+// More nodes than a segment has aliases would contend for one for ever.
+TEST(ScenarioTest, NodesPastTheAliasesOfASegmentAreRefused) {
+    std::string error;
+    const auto full = parse(std::string(kOneNode) + "count = 4095\n", {}, error);
+    ASSERT_TRUE(full) << error;
+    EXPECT_EQ(full->nodes.size(), 4095u);
+    const std::string two_groups =
+        "cdi = default.xml\n[node.first]\nnode-id = 05.01.01.01.00.00\ncount = 4000\n"
+        "[node.more]\nnode-id = 05.01.01.02.00.00\ncount = 96\n";
+    EXPECT_FALSE(parse(two_groups, {}, error));
+    EXPECT_EQ(error,
+              "[node.more]: 4096 nodes on one segment, more than its 4095 aliases (one per "
+              "node)");
+}
+
 TEST(ScenarioTest, ControlBindsLoopbackUnlessToldOtherwise) {
     std::string error;
     auto s = parse(std::string(kOneNode) + "control = 12022\n", {}, error);
