@@ -33,6 +33,7 @@ if [ "${1:-}" = --e2e ]; then
 import glob, resource, subprocess, sys, time
 before, after, pairs, root = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4]
 sys.path.insert(0, f"{root}/bench")
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 import paired  # noqa: E402  (bench/paired.py: A B A B, per-pair ratios)
 files = sorted(glob.glob(f"{root}/../shared/corpus/cdi/*.xml"))
 files += sorted(glob.glob(f"{root}/scenarios/*.xml"))
