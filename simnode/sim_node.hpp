@@ -179,6 +179,7 @@ private:
     bool started_ = false;               // the first Initialization Complete went out
     // A request hook's silence once this answer is out (RequestTurn::silence_after).
     std::chrono::milliseconds silence_after_answer_{0};
+    bool unacknowledged_ = false;  // a fault keeps the current datagram's OK back
     std::uint8_t watched_space_ = 253;
     std::optional<std::uint32_t> watched_address_;  // see watched_address()
     std::vector<std::uint8_t> watched_snapshot_;    // its bytes when the node was created

@@ -4,6 +4,7 @@
 #include <variant>
 
 #include "base/error_codes.hpp"
+#include "memory/memory_config_defs.hpp"
 #include "memory/snip.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/can_timing.hpp"
@@ -543,6 +544,18 @@ MemResult Session::exchange(const NodeInfo& node, std::span<const std::uint8_t> 
     return result;
 }
 
+namespace {
+
+// Reset/Reboot and Factory Reset: the node may restart before its acknowledgement goes out.
+bool restarts_node(std::span<const std::uint8_t> payload) {
+    using memory::Command;
+    return payload.size() >= 2 && payload[0] == memory::kDatagramType &&
+           (payload[1] == memory::to_u8(Command::kResetReboot) ||
+            payload[1] == memory::to_u8(Command::kFactoryReset));
+}
+
+}  // namespace
+
 MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                                  bool always_reply, memory::Message* reply) {
     MemResult result;
@@ -564,12 +577,27 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
     // A transport that goes away mid-exchange ends the wait at once: no reply can come.
     const std::uint64_t losses = link_.losses();
     auto lost = [&] { return link_.losses() != losses; };
-    run_until([&] { return outcome_of(*id) != nullptr || find_reply() || lost(); }, ack_wait);
+    // A node that restarts without acknowledging a command (a Reset performed at once,
+    // OpenLcbCLib) may come back on another alias, where nothing aborts the datagram sent to the
+    // old one. Only commands that want no reply end there: a reply arriving after an early end
+    // would be taken for the next request's.
+    const std::uint32_t inits = track(node.id).initializations;
+    auto restarted = [&] { return !always_reply && came_back_elsewhere(node.id, inits, alias); };
+    run_until([&] { return outcome_of(*id) != nullptr || find_reply() || lost() || restarted(); },
+              ack_wait);
     const OutcomeRecord* oc = outcome_of(*id);
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
     if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !scan.index) {
         result.rejected = true;
         result.error = oc->outcome.error_code;
+        return result;
+    }
+    // The node came back on another alias before acknowledging, or ended a Reset's datagram by
+    // restarting: its new run answers nothing the old one was sent. (Other requests ended as
+    // kAborted by a re-initialization on the same alias may still be answered: that wait stays.)
+    const bool aborted = oc && oc->outcome.status == DatagramOutcome::Status::kAborted;
+    if (!scan.index && (restarted() || (aborted && restarts_node(payload)))) {
+        result.restarted = true;
         return result;
     }
     if (oc && oc->outcome.status == DatagramOutcome::Status::kAccepted) {
@@ -601,6 +629,12 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
     if (reply) *reply = *scan.decoded;
     take_reply(*scan.decoded, result);
     return result;
+}
+
+bool Session::came_back_elsewhere(NodeId id, std::uint32_t initializations,
+                                  std::uint16_t alias) const {
+    const NodeTrack t = track(id);
+    return t.initializations != initializations && t.alias != alias;
 }
 
 const Session::OutcomeRecord* Session::outcome_of(std::uint32_t datagram_id) const {

@@ -131,9 +131,10 @@ void ActiveFaults::request(RequestTurn& turn) const {
     each(on_, &FaultHooks::request, turn);
 }
 
-void ActiveFaults::reply(const memory::DecodeResult& asked, memory::Decision& decision) const {
+bool ActiveFaults::reply(const memory::DecodeResult& asked, memory::Decision& decision) const {
     ReplyTurn turn{asked, decision};
     each(on_, &FaultHooks::reply, turn);
+    return turn.unacknowledged;
 }
 
 void ActiveFaults::written(WriteTurn& turn) const {

@@ -129,6 +129,9 @@ struct WriteTurn {
 struct ReplyTurn {
     const memory::DecodeResult& asked;  ///< the request as the server saw it
     memory::Decision& decision;         ///< accepted or rejected; the reply, if any
+    /// Set by a hook: no Datagram Received OK goes out, the node acts at once (a Reset it
+    /// performs before acknowledging).
+    bool unacknowledged = false;
 };
 
 /// When a reply datagram goes out, relative to the Datagram Received OK that announces it.
@@ -233,7 +236,8 @@ public:
     void snip(memory::Snip& snip) const;
     void datagram(DatagramTurn& turn) const;
     void request(RequestTurn& turn) const;
-    void reply(const memory::DecodeResult& asked, memory::Decision& decision) const;
+    /// True when the answer goes out without its Datagram Received OK.
+    bool reply(const memory::DecodeResult& asked, memory::Decision& decision) const;
     void written(WriteTurn& turn) const;
     void answer(AnswerPlan& plan) const;
 

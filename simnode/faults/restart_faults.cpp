@@ -17,6 +17,14 @@ void next_alias_on_restart(NodeStackConfig& config, FaultValue) {
     config.new_alias_on_restart = true;
 }
 
+// Like OpenLcbCLib: Reset/Reboot restarts the node at once, before its Datagram Received OK.
+void reset_without_ack(ReplyTurn& turn, FaultValue) {
+    if (turn.decision.accepted && turn.asked.ok() &&
+        std::holds_alternative<memory::ResetReboot>(turn.asked.message)) {
+        turn.unacknowledged = true;
+    }
+}
+
 // The firmware trips over the value while building its SNIP reply.
 bool crash_on_snip(NodeLife& life, const Message& message, FaultValue v) {
     if (message.mti != Mti::kSnipRequest || !life.watched_changed()) return false;
@@ -88,6 +96,20 @@ std::vector<FaultDecl> restarts() {
                            "Verified Node ID) and sees nothing wrong",
             .verdict = Verdict::kNone,
             .hooks = {.stack_config = next_alias_on_restart},
+        },
+        {
+            .name = "reset-unacknowledged",
+            .order = 285,
+            .summary = "Reset/Reboot performed at once, without Datagram Received OK",
+            .rule_broken = "none broken: the acknowledgement of Reset/Reboot may be lost when the "
+                           "node restarts at once (fact sheet 5.4); OpenLcbCLib does this "
+                           "(`real-world.md` §7)",
+            .client_sees = "`20 A9` gets no Datagram Received OK: the node restarts at once and "
+                           "announces itself (CID..RID, AMD, Initialization Complete). A careful "
+                           "client follows the Initialization Complete instead of waiting out the "
+                           "acknowledgement timeout, and sees nothing wrong",
+            .verdict = Verdict::kNone,
+            .hooks = {.reply = reset_without_ack},
         },
     };
 }

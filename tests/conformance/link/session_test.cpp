@@ -59,6 +59,46 @@ TEST(NodeTrackTest, ANodeThatRestartsOnANewAliasIsReachedThere) {
     EXPECT_TRUE(b.session->ping(*node, 500ms));
 }
 
+// A Reset the node performs without acknowledging (OpenLcbCLib) ends when the node is back,
+// not after the acknowledgement and reply timeouts (simulated time: ~4 s before).
+void expect_quick_unacknowledged_reset(const std::vector<std::string>& faults) {
+    SimBench b(faults);
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const std::uint32_t inits = b.session->track(kDut).initializations;
+    static constexpr std::uint8_t kReset[] = {0x20, 0xA9};
+    const TimePoint sent = b.link->now();
+    const MemResult r = b.session->command(*node, kReset);
+    const Duration spent = b.link->now() - sent;
+    EXPECT_TRUE(r.restarted);
+    EXPECT_FALSE(r.ok || r.rejected || r.timed_out);
+    EXPECT_LT(spent, 1500ms) << std::chrono::duration_cast<milliseconds>(spent).count() << " ms";
+    ASSERT_TRUE(b.link->run_until(
+        [&] { return b.session->track(kDut).initializations == inits + 1; }, 2s));
+    // The next request is answered by the node's new run, on whichever alias it took.
+    const MemResult read = b.session->read(*node, Space::kCdi, 0, 5);
+    ASSERT_TRUE(read.ok) << read.error;
+    EXPECT_EQ(std::string(read.data.begin(), read.data.end()), "<?xml");
+}
+
+TEST(SessionTest, AnUnacknowledgedResetEndsWhenTheNodeIsBackOnANewAlias) {
+    expect_quick_unacknowledged_reset({"reset-unacknowledged", "new-alias-on-reboot"});
+}
+
+TEST(SessionTest, AnUnacknowledgedResetEndsWhenTheNodeIsBackOnItsAlias) {
+    expect_quick_unacknowledged_reset({"reset-unacknowledged"});
+}
+
+TEST(SessionTest, AnAcknowledgedResetIsOk) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    static constexpr std::uint8_t kReset[] = {0x20, 0xA9};
+    const MemResult r = b.session->command(*node, kReset);
+    EXPECT_TRUE(r.ok);
+    EXPECT_FALSE(r.restarted);
+}
+
 TEST(NodeTrackTest, ARestartOnTheSameAliasIsStillAReservation) {
     SimBench b;
     auto node = b.start();
