@@ -587,19 +587,7 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
               ack_wait);
     const OutcomeRecord* oc = outcome_of(*id);
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
-    if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected && !scan.index) {
-        result.rejected = true;
-        result.error = oc->outcome.error_code;
-        return result;
-    }
-    // The node came back on another alias before acknowledging, or ended a Reset's datagram by
-    // restarting: its new run answers nothing the old one was sent. (Other requests ended as
-    // kAborted by a re-initialization on the same alias may still be answered: that wait stays.)
-    const bool aborted = oc && oc->outcome.status == DatagramOutcome::Status::kAborted;
-    if (!scan.index && (restarted() || (aborted && restarts_node(payload)))) {
-        result.restarted = true;
-        return result;
-    }
+    if (!scan.index && ended_unanswered(oc, payload, restarted(), result)) return result;
     if (oc && oc->outcome.status == DatagramOutcome::Status::kAccepted) {
         result.reply_pending = datagram::is_reply_pending(oc->outcome.flags);
         result.reply_timeout_exponent = datagram::timeout_exponent(oc->outcome.flags);
@@ -629,6 +617,24 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
     if (reply) *reply = *scan.decoded;
     take_reply(*scan.decoded, result);
     return result;
+}
+
+bool Session::ended_unanswered(const OutcomeRecord* oc, std::span<const std::uint8_t> payload,
+                               bool back_elsewhere, MemResult& result) const {
+    if (oc && oc->outcome.status == DatagramOutcome::Status::kRejected) {
+        result.rejected = true;
+        result.error = oc->outcome.error_code;
+        return true;
+    }
+    // The node came back on another alias before acknowledging, or ended a Reset's datagram by
+    // restarting: its new run answers nothing the old one was sent. (Other requests ended as
+    // kAborted by a re-initialization on the same alias may still be answered: that wait stays.)
+    const bool aborted = oc && oc->outcome.status == DatagramOutcome::Status::kAborted;
+    if (back_elsewhere || (aborted && restarts_node(payload))) {
+        result.restarted = true;
+        return true;
+    }
+    return false;
 }
 
 bool Session::came_back_elsewhere(NodeId id, std::uint32_t initializations,

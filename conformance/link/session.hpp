@@ -259,6 +259,10 @@ private:
 
     MemResult exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                        bool always_reply, memory::Message* reply);
+    /// True when the exchange is over without a reply (result says why): the datagram was
+    /// rejected, or the node restarted (back_elsewhere: on another alias) and will not answer.
+    bool ended_unanswered(const OutcomeRecord* oc, std::span<const std::uint8_t> payload,
+                          bool back_elsewhere, MemResult& result) const;
     /// True when node id announced itself again (Initialization Complete) since it had
     /// `initializations`, on another alias than `alias`.
     bool came_back_elsewhere(NodeId id, std::uint32_t initializations, std::uint16_t alias) const;

@@ -73,8 +73,8 @@ void expect_quick_unacknowledged_reset(const std::vector<std::string>& faults) {
     EXPECT_TRUE(r.restarted);
     EXPECT_FALSE(r.ok || r.rejected || r.timed_out);
     EXPECT_LT(spent, 1500ms) << std::chrono::duration_cast<milliseconds>(spent).count() << " ms";
-    ASSERT_TRUE(b.link->run_until(
-        [&] { return b.session->track(kDut).initializations == inits + 1; }, 2s));
+    ASSERT_TRUE(
+        b.link->run_until([&] { return b.session->track(kDut).initializations == inits + 1; }, 2s));
     // The next request is answered by the node's new run, on whichever alias it took.
     const MemResult read = b.session->read(*node, Space::kCdi, 0, 5);
     ASSERT_TRUE(read.ok) << read.error;
