@@ -34,6 +34,46 @@ import threading
 import time
 
 
+def run_process(argv, timeout, env=None):
+    """Runs argv in its own session, killed after timeout seconds (None or 0: never); returns
+    (exit code or None on timeout, stdout, stderr, wall s, rusage of the child alone)."""
+    start = time.perf_counter()
+    proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, start_new_session=True, env=env)
+    expired = threading.Event()
+
+    def kill():
+        expired.set()
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+
+    timer = threading.Timer(timeout, kill) if timeout else None
+    if timer:
+        timer.start()
+    err_chunks = []
+    reader = threading.Thread(target=lambda: err_chunks.append(proc.stderr.read()))
+    reader.start()
+    try:
+        out = proc.stdout.read()
+        reader.join()
+        # wait4, not Popen.wait: the child's own CPU time, page faults and peak memory.
+        _, status, usage = os.wait4(proc.pid, 0)
+    except KeyboardInterrupt:  # the child is in its own session: Ctrl-C does not reach it
+        kill()
+        raise
+    wall = time.perf_counter() - start
+    if timer:
+        timer.cancel()
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    proc.stdout.close()
+    proc.stderr.close()
+    code = None if expired.is_set() else proc.returncode
+    return code, out.decode(errors="replace"), b"".join(err_chunks).decode(errors="replace"), \
+        wall, usage
+
+
 class Runner:
     """One side's command: runs it and turns its run into figures."""
 
@@ -42,37 +82,8 @@ class Runner:
         self.failures = []
 
     def __call__(self):
-        start = time.perf_counter()
-        proc = subprocess.Popen(self.argv, stdin=subprocess.DEVNULL,
-                                stdout=subprocess.PIPE if (self.gbench or self.figures)
-                                else subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL, start_new_session=True)
-        expired = threading.Event()
-
-        def kill():
-            expired.set()
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-
-        timer = threading.Timer(self.timeout, kill) if self.timeout else None
-        if timer:
-            timer.start()
-        try:
-            out = proc.stdout.read() if proc.stdout else b""
-            # wait4, not Popen.wait: this child's own CPU time and peak memory.
-            _, status, usage = os.wait4(proc.pid, 0)
-        except KeyboardInterrupt:  # the child is in its own session: Ctrl-C does not reach it
-            kill()
-            raise
-        wall = time.perf_counter() - start
-        if timer:
-            timer.cancel()
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        if proc.stdout:
-            proc.stdout.close()
-        if expired.is_set():
+        code, text, _, wall, usage = run_process(self.argv, self.timeout)
+        if code is None:
             self.failures.append("timeout")
             return None
         figures = {
@@ -80,9 +91,8 @@ class Runner:
             "cpu s": usage.ru_utime + usage.ru_stime,
             "peak rss MiB": usage.ru_maxrss / 1024,
         }
-        if proc.returncode != 0:
-            self.failures.append(f"exit {proc.returncode}")
-        text = (out or b"").decode(errors="replace")
+        if code != 0:
+            self.failures.append(f"exit {code}")
         if self.gbench:
             figures.update(gbench_figures(text))
         for name, pattern in self.figures:

@@ -41,12 +41,13 @@ import os
 import platform
 import re
 import resource
-import signal
 import statistics
 import subprocess
 import sys
-import threading
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from paired import run_process  # noqa: E402  (the one killable child runner)
 
 STANDARD_KEYS = {
     "name", "family_index", "per_family_instance_index", "run_name", "run_type", "repetitions",
@@ -62,39 +63,7 @@ def gbench_regex_escape(name):
 
 def run(argv, timeout, env=None):
     """Runs argv; returns (exit code or None on timeout, stdout, stderr, wall s, rusage)."""
-    start = time.perf_counter()
-    proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, start_new_session=True, env=env)
-    expired = threading.Event()
-
-    def kill():
-        expired.set()
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-
-    timer = threading.Timer(timeout, kill)
-    timer.start()
-    err_chunks = []
-    reader = threading.Thread(target=lambda: err_chunks.append(proc.stderr.read()))
-    reader.start()
-    try:
-        out = proc.stdout.read()
-        reader.join()
-        # wait4, not Popen.wait: the child's own CPU time, page faults and peak memory.
-        _, status, usage = os.wait4(proc.pid, 0)
-    except KeyboardInterrupt:  # the child is in its own session: Ctrl-C does not reach it
-        kill()
-        raise
-    wall = time.perf_counter() - start
-    timer.cancel()
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    proc.stdout.close()
-    proc.stderr.close()
-    code = None if expired.is_set() else proc.returncode
-    return code, out.decode(errors="replace"), b"".join(err_chunks).decode(errors="replace"), \
-        wall, usage
+    return run_process(argv, timeout, env)
 
 
 def sh(argv, cwd=None):
