@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "openlcb/can_defs.hpp"
 #include "simnode/node_registry.hpp"
 #include "simnode/scenario.hpp"
 
@@ -23,8 +24,9 @@ inline constexpr std::size_t kMaxControlBytes = 4096;
 /// Deepest nesting of arrays and objects a request line may have; a deeper one is refused
 /// unparsed. Requests nest two levels; nlohmann copies, compares and prints JSON recursively.
 inline constexpr std::size_t kMaxControlDepth = 32;
-/// Most nodes `add` lets simnode run, as many as one scenario node group may hold.
-inline constexpr std::size_t kMaxControlNodes = 100000;
+/// Most nodes `add` lets simnode run: one per alias of the segment, as a scenario may hold
+/// (more would contend for an alias for ever).
+inline constexpr std::size_t kMaxControlNodes = can::kAliasCount;
 
 /// Answers control requests on the nodes of a registry.
 class ControlCommands {

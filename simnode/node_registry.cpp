@@ -47,11 +47,6 @@ SimNode* NodeRegistry::add(const NodeConfig& config, std::string& error) {
         error = "node " + config.node_id.to_string() + " is already running";
         return nullptr;
     }
-    if (nodes_.size() >= max_nodes_) {
-        error = "not added: " + std::to_string(nodes_.size()) +
-                " nodes run, as many as the segment has aliases for";
-        return nullptr;
-    }
     // Refused before it opens anything: a process out of descriptors cannot accept a client.
     const std::size_t need = fds_needed() + node_fds(config);
     error = fd_shortage("not added: simnode", need, budget_);

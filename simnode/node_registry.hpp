@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "openlcb/can_defs.hpp"
 #include "openlcb/node_id.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/fd_budget.hpp"
@@ -36,9 +35,6 @@ public:
     void set_fd_budget(const FdBudget& budget) { budget_ = budget; }
     /// Descriptors the run needs now: the budget's fixed part and what the nodes hold.
     std::size_t fds_needed() const { return budget_.fixed + node_fds_; }
-    /// The most nodes add() lets run (default: one per alias of the segment, 4,095; more
-    /// would contend for an alias for ever).
-    void set_max_nodes(std::size_t max) { max_nodes_ = max; }
     /// Starts every node (StackDriver::start_all); nodes added later start at once.
     void start_all();
     /// True once start_all() ran.
@@ -46,7 +42,7 @@ public:
 
     /// Creates the node (its image directory too), attaches it and starts it when the others
     /// run; null with error set (a running node ID, a bad CDI, an unusable image directory, or
-    /// the descriptors it would hold passing the budget's limit, or no alias left for it).
+    /// the descriptors it would hold passing the budget's limit).
     SimNode* add(const NodeConfig& config, std::string& error);
     /// Takes the node off the segment: AMR for its alias (sent before this returns), then it is
     /// destroyed (its images stay on disk); false when no node has this ID.
@@ -64,7 +60,6 @@ private:
     StackDriver& driver_;
     FdBudget budget_;
     std::size_t node_fds_ = 0;  // what nodes_ hold (node_fds of their configs)
-    std::size_t max_nodes_ = can::kAliasCount;
     bool started_ = false;
 };
 

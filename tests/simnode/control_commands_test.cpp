@@ -314,6 +314,7 @@ TEST_F(ControlCommandsTest, AddIsBoundedInNodesBeforeBuildingThem) {
                                 {"count", "99999999999999999999999"},
                                 {"cdi", cdi}})),
               "one add makes at most 1000 nodes (count 99999999999999999999999)");
+    static_assert(kMaxControlNodes == 4095, "one node per alias of the segment");
     commands_.set_max_nodes(3);
     EXPECT_EQ(error_of(ask(Json{
                   {"cmd", "add"}, {"node-id", "05.01.01.01.30.00"}, {"count", 3}, {"cdi", cdi}})),

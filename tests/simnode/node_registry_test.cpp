@@ -93,18 +93,6 @@ TEST_F(NodeRegistryTest, ARunningNodeIdOrABadCdiIsRefused) {
     EXPECT_EQ(registry_.nodes().size(), 1u);
 }
 
-// A segment holds one node per alias: add() keeps to that, the default being 4,095.
-TEST_F(NodeRegistryTest, AddPastTheAliasesOfTheSegmentIsRefused) {
-    registry_.set_max_nodes(1);
-    std::string error;
-    ASSERT_TRUE(registry_.add(config(test::kNodeId), error)) << error;
-    EXPECT_EQ(registry_.add(config(kOther), error), nullptr);
-    EXPECT_EQ(error, "not added: 1 nodes run, as many as the segment has aliases for");
-    EXPECT_TRUE(registry_.remove(test::kNodeId));
-    error.clear();
-    EXPECT_TRUE(registry_.add(config(kOther), error)) << error;
-}
-
 TEST_F(NodeRegistryTest, RemoveReleasesTheAliasWithAnAmr) {
     std::string error;
     ASSERT_TRUE(registry_.add(config(test::kNodeId), error)) << error;
