@@ -113,6 +113,7 @@ if [ -x "$conform" ]; then
     took=$(echo "$(date +%s.%N) - $listed" | bc)
     found=$(grep -c '^05\.01\.01\.0' "$work/list" || true)
     printf '          --list: %s of %s nodes in %.3f s\n' "$found" "$wanted" "$took"
+    if [ "$found" != "$wanted" ]; then tail -n 3 "$work/list" | sed 's/^/          /'; fi
 fi
 
 stop_simnode
