@@ -179,6 +179,11 @@ MemResult CheckRun::note(MemResult r) {
     return r;
 }
 
+Duration reply_limit(const ProtocolOptions& options, unsigned exponent) {
+    return exponent == 0 ? options.max_reply_latency
+                         : Duration(std::chrono::seconds(1u << exponent));
+}
+
 void CheckRun::tally(const MemResult& r) {
     if (!r.not_sent.empty()) return;  // the node never saw it
     heard_.temporary_rejects += r.temporary_rejects;
@@ -188,7 +193,7 @@ void CheckRun::tally(const MemResult& r) {
     // No reply came, or the time includes our waits before resending a rejected request.
     if (r.reply_latency == Duration::zero() || r.temporary_rejects != 0) return;
     const auto over = [this](Duration latency, std::uint8_t n) {
-        return latency - (n == 0 ? o_.max_reply_latency : Duration(std::chrono::seconds(1u << n)));
+        return latency - reply_limit(o_, n);
     };
     if (!heard_.slowest_reply || over(r.reply_latency, r.reply_timeout_exponent) >
                                      over(*heard_.slowest_reply, heard_.slowest_exponent)) {

@@ -108,6 +108,10 @@ struct Heard {
     std::uint8_t slowest_exponent = 0;
 };
 
+/// How long a memory-config reply may take: the options' 750 ms, or the 2^N s a Datagram Received
+/// OK with timeout exponent N announced (MessageNetworkS §3.7, DatagramTransportS §4.2).
+Duration reply_limit(const ProtocolOptions& options, unsigned exponent);
+
 /// One node's protocol checks in progress.
 class CheckRun {
 public:

@@ -91,8 +91,7 @@ void memory_reply_latency(CheckRun& run, const CheckSpec& spec) {
     // MessageNetworkS §3.7: 750 ms "unless otherwise indicated": a Datagram Received OK with
     // timeout exponent N promises the reply within 2^N s (DatagramTransportS §4.2).
     const unsigned n = heard.slowest_exponent;
-    const Duration limit =
-        n == 0 ? run.options().max_reply_latency : Duration(std::chrono::seconds(1u << n));
+    const Duration limit = reply_limit(run.options(), n);
     const auto limit_ms = std::chrono::duration_cast<std::chrono::milliseconds>(limit).count();
     const std::string bound =
         n == 0 ? std::to_string(limit_ms) + " ms" : std::to_string(1u << n) + " s (announced)";

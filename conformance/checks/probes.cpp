@@ -147,11 +147,11 @@ bool sample_by_datagram(CheckRun& run, CdiDownload& d, std::size_t from, std::si
     const MemResult r = run.session().read_range(run.node(), Space::kCdi, at,
                                                  static_cast<std::uint32_t>(to - from), false);
     run.tally(r);
-    if (d.sampled.empty()) {
-        d.datagram = without_data(r);
-    } else {
+    // The first sample's outcome, then the second's flags added (or its failure in its place).
+    if (!d.sampled.empty() && r.ok) {
         merge_datagram_flags(d.datagram, r);
-        if (!r.ok) d.datagram = without_data(r);
+    } else {
+        d.datagram = without_data(r);
     }
     if (!d.sampled.empty()) d.sampled += ", ";
     d.sampled += hex(at, 8) + "-" + hex(static_cast<unsigned>(to - 1), 8);
