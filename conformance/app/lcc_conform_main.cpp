@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -287,14 +288,18 @@ void print_node_line(Session& session, const NodeInfo& n) {
 }
 
 int list_nodes(Session& session, std::vector<NodeInfo> nodes) {
-    // Nodes that appear while the others are asked for their names are listed too.
+    // Nodes that appear while the others are asked for their names are listed too; the session's
+    // list is only walked again when it grew, so a segment of thousands stays linear.
+    std::set<NodeId> listed;
+    for (const NodeInfo& n : nodes) listed.insert(n.id);
+    std::size_t walked = session.nodes_seen_count();
     for (std::size_t i = 0; i < nodes.size(); ++i) {
         print_node_line(session, nodes[i]);
+        if (session.nodes_seen_count() == walked) continue;
         for (const NodeInfo& seen : session.nodes_seen()) {
-            const bool known = std::any_of(nodes.begin(), nodes.end(),
-                                           [&](const NodeInfo& n) { return n.id == seen.id; });
-            if (!known) nodes.push_back(seen);
+            if (listed.insert(seen.id).second) nodes.push_back(seen);
         }
+        walked = session.nodes_seen_count();
     }
     return 0;
 }

@@ -349,6 +349,13 @@ std::vector<NodeInfo> Session::nodes_seen() const {
     return out;  // a std::map: already sorted by node ID
 }
 
+std::size_t Session::nodes_seen_count() const {
+    const NodeId me = link_.stack().node_id();
+    return static_cast<std::size_t>(
+        std::count_if(tracks_.begin(), tracks_.end(),
+                      [&](const auto& t) { return t.first != me && t.second.alias != 0; }));
+}
+
 std::vector<NodeInfo> Session::discover(Duration max, Duration quiet) {
     Message verify;
     verify.mti = Mti::kVerifyNodeIdGlobal;
@@ -357,13 +364,13 @@ std::vector<NodeInfo> Session::discover(Duration max, Duration quiet) {
     // Every Verified Node ID, Initialization Complete and AMD counts (the session tracks them).
     // Done when no new node appeared for `quiet`; with none at all, ask again until `max`: on a
     // busy machine or a big segment the first answers can take longer than any quiet period.
-    std::size_t known = nodes_seen().size();
+    std::size_t known = nodes_seen_count();
     while (link_.now() < deadline) {
         const Duration left = deadline - link_.now();
         const bool grew =
-            link_.run_until([&] { return nodes_seen().size() != known; }, std::min(quiet, left));
+            link_.run_until([&] { return nodes_seen_count() != known; }, std::min(quiet, left));
         if (grew) {
-            known = nodes_seen().size();
+            known = nodes_seen_count();
             continue;
         }
         if (known != 0) break;

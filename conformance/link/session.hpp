@@ -139,6 +139,7 @@ public:
                                    Duration quiet = std::chrono::milliseconds(500));
     /// Every node seen so far on the segment (ours excepted), by node ID.
     std::vector<NodeInfo> nodes_seen() const;
+    std::size_t nodes_seen_count() const;  // nodes_seen().size() without building the list
     /// Sends Verify Node ID global with id every 500 ms until that node answers or announces
     /// itself (Initialization Complete), at most `timeout`.
     std::optional<NodeInfo> find_node(NodeId id, Duration timeout = std::chrono::seconds(1));
