@@ -16,6 +16,7 @@
 #include "openlcb/asio.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/can_timing.hpp"
+#include "simnode/scenario_lookup.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -137,8 +138,10 @@ po::options_description general_options() {
         "list-faults", po::value<std::string>()->implicit_value("")->value_name("FORMAT"),
         "print every fault and exit; --list-faults=markdown prints docs/faults.md's table, "
         "=json the declarations")(
-        "scenario", po::value<std::string>()->value_name("FILE"),
-        "scenario .ini file (also accepted as the only positional argument)")(
+        "list-scenarios", "print the name and file of every scenario --scenario finds by name")(
+        "scenario", po::value<std::string>()->value_name("FILE|NAME"),
+        "scenario .ini file, or the name of one (--list-scenarios; e.g. io-board, "
+        "faults/int-byte-order); also accepted as the only positional argument")(
         "run-for", po::value<std::string>()->value_name("SECONDS"),
         "stop cleanly after SECONDS (default: run until SIGINT/SIGTERM)");
     return general;
@@ -257,6 +260,7 @@ struct CommandLine {
     bool list_faults = false;
     std::string list_faults_format;
     bool version = false;
+    bool list_scenarios = false;
 };
 
 std::optional<CommandLine> parse_command_line(std::span<const std::string> args,
@@ -284,6 +288,8 @@ std::optional<CommandLine> parse_command_line(std::span<const std::string> args,
             cl.list_faults_format = opt.value.empty() ? std::string() : opt.value.front();
         } else if (opt.string_key == "version") {
             cl.version = true;
+        } else if (opt.string_key == "list-scenarios") {
+            cl.list_scenarios = true;
         } else if (opt.string_key == "scenario") {
             if (cl.scenario) {
                 error = "more than one scenario file given";
@@ -778,16 +784,22 @@ std::optional<Scenario> build(const Raw& file, const Raw& cli, const fs::path& s
     return scenario;
 }
 
-// A relative scenario path missing in the working directory is looked up where default.ini
-// lives, so `simnode faults/int-byte-order.ini` works from anywhere (the fault files' Run: lines).
-fs::path find_scenario(const fs::path& given, std::span<const fs::path> default_scenarios) {
-    std::error_code ec;
-    if (given.is_absolute() || fs::exists(given, ec)) return given;
-    for (const auto& candidate : default_scenarios) {
-        const fs::path there = candidate.parent_path() / given;
-        if (fs::is_regular_file(there, ec)) return there.lexically_normal();
+// The scenario file the command line names: a path, or a name under scenario_dirs (so
+// `simnode faults/int-byte-order` works from anywhere, installed or built); "default" when it
+// names none and gives no node inline. Empty without error: everything is inline.
+std::optional<fs::path> scenario_file(const CommandLine& cl, std::span<const fs::path> dirs,
+                                      std::string& error) {
+    if (!cl.scenario && (cl.raw.top.contains("node-id") || !cl.raw.sections.empty())) {
+        return fs::path();
     }
-    return given;
+    const std::string given = cl.scenario.value_or("default");
+    if (auto found = find_scenario(given, dirs)) return found;
+    if (cl.scenario) {
+        error = "no scenario '" + given + "': no such file, nor a name of --list-scenarios";
+    } else {
+        error = "no scenario: give a scenario file, or --node-id and --cdi (see --help)";
+    }
+    return std::nullopt;
 }
 
 }  // namespace
@@ -796,8 +808,8 @@ std::string help_text() {
     std::ostringstream out;
     out << "usage: simnode [--scenario] [FILE.ini] [OPTIONS]\n"
            "       simnode ctl HOST:PORT COMMAND [ARGS...]   (live control; simnode ctl --help)\n"
-           "Runs simulated OpenLCB nodes. Without a scenario file and without --node-id it runs\n"
-           "scenarios/default.ini. Every option is also a key of the .ini file; keys of a\n"
+           "Runs simulated OpenLCB nodes. Without a scenario and without --node-id it runs the\n"
+           "scenario named default. Every option is also a key of the .ini file; keys of a\n"
            "[node.NAME] section are given on the command line as --node.NAME.KEY=VALUE.\n"
            "See docs/scenarios.md.\n";
     out << cli_options();
@@ -805,7 +817,7 @@ std::string help_text() {
 }
 
 std::optional<Arguments> parse_arguments(std::span<const std::string> args,
-                                         std::span<const fs::path> default_scenarios,
+                                         std::span<const fs::path> scenario_dirs,
                                          std::string& error) {
     auto cl = parse_command_line(args, error);
     if (!cl) return std::nullopt;
@@ -814,24 +826,14 @@ std::optional<Arguments> parse_arguments(std::span<const std::string> args,
     result.list_faults = cl->list_faults;
     result.list_faults_format = cl->list_faults_format;
     result.version = cl->version;
-    if (result.help || result.list_faults || result.version) return result;
-
-    fs::path file;
-    if (cl->scenario) {
-        file = find_scenario(*cl->scenario, default_scenarios);
-    } else if (!cl->raw.top.contains("node-id") && cl->raw.sections.empty()) {
-        for (const auto& candidate : default_scenarios) {
-            std::error_code ec;
-            if (fs::is_regular_file(candidate, ec)) {
-                file = candidate;
-                break;
-            }
-        }
-        if (file.empty()) {
-            error = "no scenario: give a scenario file, or --node-id and --cdi (see --help)";
-            return std::nullopt;
-        }
+    result.list_scenarios = cl->list_scenarios;
+    if (result.help || result.list_faults || result.version || result.list_scenarios) {
+        return result;
     }
+
+    const auto found = scenario_file(*cl, scenario_dirs, error);
+    if (!found) return std::nullopt;
+    const fs::path& file = *found;
     Raw file_raw;
     if (!file.empty()) {
         const auto text = base::read_file(file, error);

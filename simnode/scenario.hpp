@@ -63,18 +63,20 @@ struct Arguments {
     bool list_faults = false;  ///< --list-faults: print fault_names() and exit
     /// --list-faults=FORMAT: "" (one line per fault), "markdown" or "json".
     std::string list_faults_format;
-    bool version = false;  ///< --version: print the program's version and exit
-    Scenario scenario;     ///< filled unless help or list_faults
+    bool version = false;         ///< --version: print the program's version and exit
+    bool list_scenarios = false;  ///< --list-scenarios: print scenario_names() and exit
+    Scenario scenario;            ///< filled unless help or list_faults
 };
 
 /// The --help text (usage line and every option).
 std::string help_text();
 
-/// Parses the command line (args without the program name). The scenario file is --scenario,
-/// else a positional path, else (when no node-id is given inline) the first existing file of
-/// default_scenarios. Command-line values override the file's (fault values are added).
+/// Parses the command line (args without the program name). The scenario is --scenario, else a
+/// positional argument: a path, or a name looked up in scenario_dirs (scenario_lookup.hpp); else
+/// (when no node-id is given inline) the name "default". Command-line values override the
+/// file's (fault values are added).
 std::optional<Arguments> parse_arguments(std::span<const std::string> args,
-                                         std::span<const std::filesystem::path> default_scenarios,
+                                         std::span<const std::filesystem::path> scenario_dirs,
                                          std::string& error);
 
 /// Reads a scenario from .ini text whose relative paths are relative to base_dir, then applies

@@ -35,6 +35,7 @@
 #include "simnode/node_registry.hpp"
 #include "simnode/resident_memory.hpp"
 #include "simnode/scenario.hpp"
+#include "simnode/scenario_lookup.hpp"
 #include "simnode/sim_node.hpp"
 
 namespace {
@@ -56,20 +57,12 @@ constexpr std::uint32_t kClientFramesPerSecond = 20000;
 // Keeps a flood in the hub's queues, where its backpressure sees it, not in the kernel's.
 constexpr std::size_t kHubSendBufferBytes = std::size_t{64} * 1024;
 
-// Where `simnode` without arguments finds scenarios/default.ini: the source tree this binary was
-// built from, next to the binary (build tree or install prefix), then the working directory.
-std::vector<fs::path> default_scenarios() {
-    std::vector<fs::path> out;
-    const fs::path source_root = fs::path(__FILE__).parent_path().parent_path().parent_path();
-    out.push_back(source_root / "scenarios" / "default.ini");
+// Where this binary finds scenarios by name (scenario_lookup.hpp): the source tree from its
+// build tree, the installed data beside it (or where it was to be installed) otherwise.
+std::vector<fs::path> this_scenario_dirs() {
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        out.push_back(exe.parent_path() / "../../scenarios/default.ini");
-        out.push_back(exe.parent_path() / "../share/simnode/scenarios/default.ini");
-    }
-    out.push_back(fs::path("scenarios") / "default.ini");
-    return out;
+    return scenario_dirs(ec ? fs::path() : exe, built_scenario_places());
 }
 
 void say(const std::string& line) {
@@ -510,6 +503,23 @@ int list_faults(const std::string& format) {
     return 0;
 }
 
+// --list-scenarios: the name first, as --list-faults, so completion takes the first word.
+int list_scenarios(std::span<const fs::path> dirs) {
+    const auto scenarios = scenario_names(dirs);
+    if (scenarios.empty()) {
+        std::cerr << "simnode: no scenario found in";
+        for (const auto& dir : dirs) std::cerr << " " << dir.string();
+        std::cerr << "\n";
+        return kExitRuntime;
+    }
+    for (const auto& [name, file] : scenarios) {
+        std::string padded = name;
+        padded.resize(std::max<std::size_t>(name.size() + 1, 32), ' ');
+        std::cout << padded << file.string() << "\n";
+    }
+    return 0;
+}
+
 }  // namespace
 
 static int main_checked(int argc, char** argv) {
@@ -517,9 +527,9 @@ static int main_checked(int argc, char** argv) {
     if (!args.empty() && args.front() == "ctl") {
         return run_ctl(std::span(args).subspan(1), std::cout, std::cerr);
     }
-    const auto defaults = default_scenarios();
+    const auto dirs = this_scenario_dirs();
     std::string error;
-    const auto parsed = parse_arguments(args, defaults, error);
+    const auto parsed = parse_arguments(args, dirs, error);
     if (!parsed) {
         std::cerr << "simnode: " << error << "\n";
         return kExitUsage;
@@ -533,6 +543,7 @@ static int main_checked(int argc, char** argv) {
         return 0;
     }
     if (parsed->list_faults) return list_faults(parsed->list_faults_format);
+    if (parsed->list_scenarios) return list_scenarios(dirs);
     // A peer closing its socket must not kill the process.
     ::signal(SIGPIPE, SIG_IGN);
     // The soft limit (often 1,024) is a default, not a choice: the hard one is what may be used.

@@ -23,6 +23,24 @@ TEST(SimnodeCli, HelpListsEveryKey) {
     }
 }
 
+// Scenarios by name: this build's binary lists and runs the source tree's, from any directory.
+TEST(SimnodeCli, ListsAndRunsScenariosByName) {
+    const auto [code, out] = run_program(SIMNODE_PATH, {"--list-scenarios"});
+    EXPECT_EQ(code, 0);
+    const std::string line = out.substr(out.find("faults/int-byte-order "));
+    EXPECT_TRUE(line.substr(0, line.find('\n'))
+                    .ends_with(" " + source_path("scenarios/faults/int-byte-order.ini").string()))
+        << out;
+    TempDir images("simnode-by-name");
+    const auto [rc, ran] =
+        run_program(SIMNODE_PATH, {"--scenario", "io-board", "--image-dir", images.str(),
+                                   "--listen", "127.0.0.1:0", "--run-for", "0.3"});
+    EXPECT_EQ(rc, 0) << ran;
+    EXPECT_NE(ran.find("cdi " + source_path("scenarios/io-board.xml").string()), std::string::npos)
+        << ran;
+    EXPECT_EQ(run_program(SIMNODE_PATH, {"--scenario", "no-such-scenario"}).first, 2);
+}
+
 TEST(SimnodeCli, BadInputIsAUsageError) {
     EXPECT_EQ(run_program(SIMNODE_PATH, {"--bogus"}).first, 2);
     EXPECT_EQ(run_program(SIMNODE_PATH, {"--fault", "no-such-fault"}).first, 2);
