@@ -156,6 +156,8 @@ po::options_description check_options() {
         "html", po::value<std::string>(),
         "write one self-contained HTML page to FILE: checks, memory map (on every exit)")(
         "no-color", "no colour even on a terminal")(
+        "failures-only", "text report: leave out the passes and the unrelated skips")(
+        "quiet,q", "text report: only the failures and the summary")(
         "csv", "backup: write CSV rows (key,value,type,space,address,size)")(
         "dry-run", "restore: print what would change (key, node value, file value), write nothing")(
         "allow-unknown",
@@ -183,7 +185,9 @@ void print_help(const po::options_description& opts) {
            "                     read, 2 when FILE cannot be opened (docs/decode.md)\n"
            "Without --node, backup, restore and diff use the node a backup's '# node' line\n"
            "names, else the only node on the bus (several: they are listed). docs/backup.md\n\n"
-           "Checks every node found (or --node ID) and prints one line per check.\n"
+           "Checks every node found (or --node ID) and prints what failed first (each FAIL\n"
+           "and WARN with the checks it left unjudged), then the passes as one block of IDs,\n"
+           "then the totals with the IDs that failed.\n"
            "Exit status: 0 every check passed, 1 a check failed, 2 usage or connection "
            "error,\nthe link went down during the run, or a node did not come back (its backup "
            "is kept\nand the restore command printed).\n\n"
@@ -329,6 +333,11 @@ RunOptions run_options(const po::variables_map& vm) {
     return ro;
 }
 
+TextDetail text_detail(const po::variables_map& vm) {
+    if (vm.count("quiet")) return TextDetail::kQuiet;
+    return vm.count("failures-only") ? TextDetail::kFailuresOnly : TextDetail::kFull;
+}
+
 // Nodes seen during the run that were not checked (they appeared later); other lcc-conform
 // runs on the segment (the tool's own ID range) are not devices and are left out.
 std::vector<std::string> late_nodes(Session& session, const std::vector<NodeInfo>& checked) {
@@ -402,7 +411,7 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         std::cerr << "lcc-conform: " << run.error << "\n";
         return out.finish({}, run, kUsage);
     }
-    const bool colour = is_terminal(1) && !vm.count("no-color");
+    const TextStyle style{is_terminal(1) && !vm.count("no-color"), text_detail(vm)};
     // The selection of the node being run (a protocol-only node's is narrower).
     CheckSelection selection = ro.selection;
     ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
@@ -439,7 +448,7 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
                       << (t.protocol_only.empty() ? "" : " (" + t.protocol_only + ")") << "\n";
         }
         reports.push_back(run_node(session, t.node, one, protocol, std::cerr));
-        write_text(std::cout, reports.back(), colour);
+        write_text(std::cout, reports.back(), style);
         if (stop_requested() || !link.up()) break;  // the next node cannot be reached either
     }
     if (targets.size() > 1 || !run.other_runs.empty()) print_node_summaries(reports, run);

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <iosfwd>
 #include <string>
 #include <string_view>
@@ -56,9 +57,33 @@ Summary summarize(const std::vector<NodeReport>& reports);
 /// ANSI colour on the status word when colour is true. No trailing newline.
 std::string format_check(const CheckResult& check, bool colour);
 
-/// The whole text report of one node: a header, one line per check, the restore outcome, the
-/// totals, then one line per thing not tested naming the option that tests it.
-void write_text(std::ostream& out, const NodeReport& report, bool colour);
+/// How much of a node's report the text shows (lcc-conform's --failures-only and -q).
+enum class TextDetail : std::uint8_t {
+    kFull,          ///< header, findings, the passes and other skips, summary, what was not tested
+    kFailuresOnly,  ///< the same without the passes and the skips that have no failed cause
+    kQuiet,         ///< the findings and the summary only
+};
+
+/// The text report's form: colour on the status words, and how much it shows.
+struct TextStyle {
+    bool colour = false;
+    TextDetail detail = TextDetail::kFull;
+};
+
+/// The whole text report of one node, what is wrong first, so a reader meets the first FAIL in
+/// the first lines: the header (node, identity, timing); every FAIL and WARN in run order, each
+/// followed by the SKIPs that "depend on" it (directly or through another SKIP); the passes as
+/// one block of IDs ("PASS  89 checks: id id ...") and the other SKIPs, one line each; then the
+/// summary: the restore outcome, the totals, the IDs that failed and warned, and one line per
+/// thing not tested naming the option that tests it. The same on a terminal and in a file.
+void write_text(std::ostream& out, const NodeReport& report, TextStyle style);
+/// write_text() of everything, with colour or not.
+inline void write_text(std::ostream& out, const NodeReport& report, bool colour) {
+    write_text(out, report, TextStyle{colour, TextDetail::kFull});
+}
+
+/// The ID a SKIP "depends on <id>: why" names ("" for any other result).
+std::string_view depends_on(const CheckResult& check);
 
 /// The JSON report of docs/report.schema.json: {"schema_version", "tool", "run", "nodes": [...]}
 /// for any number of nodes.

@@ -2,6 +2,7 @@
 // prove a restore), the check lines of the text report, and the lcc-conform invocation.
 #pragma once
 
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -118,16 +119,30 @@ inline std::pair<int, std::string> conform(const std::vector<std::string>& args,
     return run_program(LCC_CONFORM_PATH, args, timeout);
 }
 
-/// The status of every check line "STATUS  id  message" of the text report.
+/// The status of every check of the text report: each line "STATUS  id  message" (a SKIP under
+/// the FAIL it depends on is indented), and each ID of the passes' block "PASS  N checks: id id"
+/// with its indented continuation lines.
 inline std::vector<std::pair<std::string, std::string>> check_lines(const std::string& out) {
     std::vector<std::pair<std::string, std::string>> lines;
     std::istringstream in(out);
+    bool in_passes = false;
     for (std::string line; std::getline(in, line);) {
         std::istringstream words(line);
-        std::string status, id;
+        std::string status, id, word;
         words >> status >> id;
-        if (status == "PASS" || status == "FAIL" || status == "WARN" || status == "SKIP")
+        if (status == "PASS" && !id.empty() && std::isdigit(static_cast<unsigned char>(id[0]))) {
+            words >> word;  // "checks:"
+            while (words >> word) lines.emplace_back("PASS", word);
+            in_passes = true;
+        } else if (status == "PASS" || status == "FAIL" || status == "WARN" || status == "SKIP") {
             lines.emplace_back(status, id);
+            in_passes = false;
+        } else if (in_passes && line.starts_with(" ")) {
+            std::istringstream ids(line);
+            while (ids >> word) lines.emplace_back("PASS", word);
+        } else {
+            in_passes = false;
+        }
     }
     return lines;
 }
