@@ -21,10 +21,16 @@ const AcdiProbe* has_acdi(CheckRun& run, const CheckSpec& spec) {
 }
 
 void version_byte(CheckRun& run, const CheckSpec& spec, const MemResult& r, unsigned want,
-                  const char* what) {
+                  std::uint8_t space, const char* element) {
     const bool readable = r.ok && !r.data.empty();
-    run.out(spec).judge(readable && r.data[0] == want, what, std::to_string(want),
-                        readable ? std::to_string(r.data[0]) : "unreadable: " + describe(r));
+    const std::string where = "space " + std::to_string(space) + " byte 0";
+    const std::string seen = readable ? std::to_string(r.data[0]) : "unreadable: " + describe(r);
+    const bool ok = readable && r.data[0] == want;
+    run.out(spec).judge(
+        ok,
+        ok ? where + " equals " + element
+           : where + " is " + seen + ", " + element + " says " + std::to_string(want),
+        std::to_string(want), seen);
 }
 
 // A string slot of an ACDI block: its bytes up to the NUL (all of them when there is none).
@@ -39,15 +45,13 @@ std::string_view slot(const std::vector<std::uint8_t>& block, std::size_t offset
 void acdi_manufacturer_version(CheckRun& run, const CheckSpec& spec) {
     const AcdiProbe* blocks = has_acdi(run, spec);
     if (!blocks) return;
-    version_byte(run, spec, blocks->manufacturer_result, blocks->acdi->fixed,
-                 "space 252 byte 0 equals <acdi fixed>");
+    version_byte(run, spec, blocks->manufacturer_result, blocks->acdi->fixed, 252, "<acdi fixed>");
 }
 
 void acdi_user_version(CheckRun& run, const CheckSpec& spec) {
     const AcdiProbe* blocks = has_acdi(run, spec);
     if (!blocks) return;
-    version_byte(run, spec, blocks->user_result, blocks->acdi->var,
-                 "space 251 byte 0 equals <acdi var>");
+    version_byte(run, spec, blocks->user_result, blocks->acdi->var, 251, "<acdi var>");
 }
 
 void acdi_space_info(CheckRun& run, const CheckSpec& spec) {
@@ -61,6 +65,12 @@ void acdi_space_info(CheckRun& run, const CheckSpec& spec) {
         if (!i.present) return std::string(i.answered ? "not present" : "no answer");
         return std::to_string(i.highest_address) + (i.read_only ? " RO" : " RW");
     };
+    auto said = [](std::uint8_t space, const SpaceInfo& i) {
+        const std::string name = "space " + std::to_string(space);
+        if (!i.present) return name + (i.answered ? " not present" : " not answered");
+        return name + " highest " + std::to_string(i.highest_address) +
+               (i.read_only ? " read-only" : " writable");
+    };
     const std::string got = seen(fc) + " / " + seen(fb);
     if (!fc.answered || !fb.answered)
         return run.out(spec).skip(
@@ -72,7 +82,8 @@ void acdi_space_info(CheckRun& run, const CheckSpec& spec) {
     const bool room = fc.present && fc.highest_address >= 124 && fb.present &&
                       fb.highest_address >= 127 && !fb.read_only;
     if (!room)
-        return run.out(spec).fail("Space Info: 252 and 251 too small, absent or 251 read-only",
+        return run.out(spec).fail("Space Info says " + said(0xFC, fc) + ", " + said(0xFB, fb) +
+                                      ": the ACDI blocks need 252 to 124, 251 to 127 writable",
                                   ">= 124 / >= 127 RW", got);
     const bool exact = fc.read_only && fc.highest_address == 124 && fb.highest_address == 127;
     if (exact) return run.out(spec).pass("Space Info: 252 read-only highest 124, 251 highest 127");

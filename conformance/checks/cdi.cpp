@@ -50,8 +50,11 @@ void cdi_space_info(CheckRun& run, const CheckSpec& spec) {
     if (!ff.answered) return run.out(spec).skip("Get Address Space Information not answered");
     if (!ff.present && !run.probe<CdiDownload>().read_ok)
         return run.out(spec).skip("space 0xFF not present and no CDI read: the node has no CDI");
-    run.out(spec).judge(ff.present && ff.read_only, "Space Info for 0xFF: present and read-only",
-                        "present, read-only", ff.present ? "writable" : "not present");
+    const std::string seen = ff.present ? "writable" : "not present";
+    run.out(spec).judge(ff.present && ff.read_only,
+                        ff.present && ff.read_only ? "Space Info for 0xFF: present and read-only"
+                                                   : "Space Info says space 0xFF is " + seen,
+                        "present, read-only", seen);
 }
 
 void cdi_read(CheckRun& run, const CheckSpec& spec) {
@@ -78,8 +81,11 @@ void cdi_read(CheckRun& run, const CheckSpec& spec) {
 void cdi_nul_terminated(CheckRun& run, const CheckSpec& spec) {
     if (!downloaded(run, spec)) return;
     const CdiDownload& d = run.probe<CdiDownload>();
-    run.out(spec).judge(d.nul_found, "space 0xFF holds a NUL-terminated string", "a NUL",
-                        "no NUL in " + std::to_string(d.text.size()) + " bytes");
+    const std::string seen = "no NUL in " + std::to_string(d.text.size()) + " bytes";
+    run.out(spec).judge(d.nul_found,
+                        d.nul_found ? "space 0xFF holds a NUL-terminated string"
+                                    : "space 0xFF holds " + seen + " read",
+                        "a NUL", seen);
 }
 
 void cdi_nul_at_highest(CheckRun& run, const CheckSpec& spec) {

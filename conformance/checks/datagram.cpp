@@ -38,9 +38,13 @@ void datagram_reply_pending(CheckRun& run, const CheckSpec& spec) {
         return run.out(spec).skip(
             "depends on datagram.ok-before-reply: the Datagram Received OK "
             "came after the reply");
-    run.out(spec).judge(d.datagram.reply_pending,
-                        "Datagram Received OK has Reply Pending in " + reads_judged(d), "flag 0x80",
-                        "flags without 0x80");
+    const bool pending = d.datagram.reply_pending;
+    run.out(spec).judge(pending,
+                        pending ? "Datagram Received OK has Reply Pending in " + reads_judged(d)
+                                : "Datagram Received OK without Reply Pending (flag 0x80 clear) "
+                                  "in " +
+                                      reads_judged(d) + ", yet a read reply followed",
+                        "flag 0x80", "flags without 0x80");
 }
 
 void datagram_temporary_rejects(CheckRun& run, const CheckSpec& spec) {

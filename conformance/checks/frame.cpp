@@ -7,14 +7,20 @@ namespace {
 
 void ame_answered(CheckRun& run, const CheckSpec& spec) {
     const FrameProbe& p = run.probe<FrameProbe>();
-    run.out(spec).judge(p.amd >= 2, "AME (global and with the node ID) answered with AMD",
-                        "2 AMD frames", std::to_string(p.amd) + " AMD frame(s)");
+    const std::string seen = std::to_string(p.amd) + " AMD frame(s)";
+    run.out(spec).judge(p.amd >= 2,
+                        p.amd >= 2 ? "AME (global and with the node ID) answered with AMD"
+                                   : "2 AMEs (global and with the node ID) answered with " + seen,
+                        "2 AMD frames", seen);
 }
 
 void cid_defended(CheckRun& run, const CheckSpec& spec) {
     const FrameProbe& p = run.probe<FrameProbe>();
-    run.out(spec).judge(p.rid >= 1, "CID carrying the node's alias answered with RID", "RID",
-                        "no RID within the answer window");
+    run.out(spec).judge(p.rid >= 1,
+                        p.rid >= 1 ? "CID carrying the node's alias answered with RID"
+                                   : "CID carrying the node's alias: no RID within the answer "
+                                     "window",
+                        "RID", "no RID within the answer window");
 }
 
 }  // namespace

@@ -193,9 +193,11 @@ void ame_bit28(CheckRun& run, const CheckSpec& spec) {
         return run.from_node(f) && is_control(f, can::ControlFrame::kAmd) && carries(f, id);
     };
     s.run_until([&] { return scan.any(amd); }, run.options().answer_window);
+    const std::string what =
+        "AME with the node ID and header bit 28 clear (" + hex(ame.id, 8) + ")";
     run.out(spec).judge(
         scan.found().has_value(),
-        "AME with the node ID and header bit 28 clear (" + hex(ame.id, 8) + ") answered with AMD",
+        what + (scan.found() ? " answered with AMD" : ": no AMD within the answer window"),
         "AMD with the node ID", "no AMD within the answer window");
 }
 

@@ -95,8 +95,12 @@ void memory_reply_latency(CheckRun& run, const CheckSpec& spec) {
     const auto limit_ms = std::chrono::duration_cast<std::chrono::milliseconds>(limit).count();
     const std::string bound =
         n == 0 ? std::to_string(limit_ms) + " ms" : std::to_string(1u << n) + " s (announced)";
-    run.out(spec).judge(latency <= limit, "memory-config replies within " + bound, "<= " + bound,
-                        "slowest " + std::to_string(ms) + " ms");
+    const bool ok = latency <= limit;
+    run.out(spec).judge(
+        ok,
+        ok ? "memory-config replies within " + bound
+           : "slowest memory-config reply took " + std::to_string(ms) + " ms, over " + bound,
+        "<= " + bound, "slowest " + std::to_string(ms) + " ms");
 }
 
 void memory_options_acdi_flags(CheckRun& run, const CheckSpec& spec) {
@@ -115,8 +119,12 @@ void memory_options_acdi_flags(CheckRun& run, const CheckSpec& spec) {
     std::string want = std::string(r252 ? "0x0800 set" : "0x0800 clear") +
                        (r251 ? ", 0x0400 set" : ", 0x0400 clear") +
                        (w251 ? ", 0x0200 set" : ", 0x0200 clear");
-    run.out(spec).judge(ok, "Options flags 0x0800/0x0400/0x0200 agree with spaces 252/251",
-                        std::move(want), "available commands " + hex(c));
+    const std::string pass = "Options flags 0x0800/0x0400/0x0200 agree with spaces 252/251";
+    run.out(spec).judge(ok,
+                        ok ? pass
+                           : "Options available commands " + hex(c) + " disagree with spaces " +
+                                 "252/251 (wanted " + want + ")",
+                        want, "available commands " + hex(c));
 }
 
 void memory_space_info_layout(CheckRun& run, const CheckSpec& spec) {
@@ -132,16 +140,21 @@ void memory_space_info_layout(CheckRun& run, const CheckSpec& spec) {
             continue;
         }
         const bool big = info.present && e.end > 0 && info.highest_address + 1 >= e.end;
-        run.out(spec, sp).judge(
-            big, "Space Info of space " + hex(sp, 2) + " covers the CDI layout",
-            "highest >= " + std::to_string(e.end - 1),
-            info.present ? "highest " + std::to_string(info.highest_address) : "not present");
+        const std::string seen =
+            info.present ? "highest " + std::to_string(info.highest_address) : "not present";
+        run.out(spec, sp).judge(big,
+                                big ? "Space Info of space " + hex(sp, 2) + " covers the CDI layout"
+                                    : "Space Info of space " + hex(sp, 2) + " says " + seen +
+                                          ", the CDI lays out bytes to " +
+                                          std::to_string(e.end - 1),
+                                "highest >= " + std::to_string(e.end - 1), seen);
     }
 }
 
 void memory_read_byte6_form(CheckRun& run, const CheckSpec& spec) {
     const FormProbe& p = run.probe<FormProbe>();
-    run.out(spec).judge(p.byte6.ok, "read of space " + hex(p.space, 2) + " in the byte-6 form",
+    const std::string what = "read of space " + hex(p.space, 2) + " in the byte-6 form";
+    run.out(spec).judge(p.byte6.ok, p.byte6.ok ? what : what + ": " + describe(p.byte6),
                         "Read Reply OK with 8 bytes", describe(p.byte6));
 }
 
@@ -149,7 +162,9 @@ void memory_read_short_form(CheckRun& run, const CheckSpec& spec) {
     const FormProbe& p = run.probe<FormProbe>();
     if (!p.short_form)
         return run.out(spec).skip("space " + hex(p.space, 2) + " has only the byte-6 form");
-    run.out(spec).judge(p.short_form->ok, "read of space " + hex(p.space, 2) + " in the short form",
+    const std::string what = "read of space " + hex(p.space, 2) + " in the short form";
+    run.out(spec).judge(p.short_form->ok,
+                        p.short_form->ok ? what : what + ": " + describe(*p.short_form),
                         "Read Reply OK with 8 bytes", describe(*p.short_form));
 }
 
@@ -169,7 +184,10 @@ void memory_reply_form(CheckRun& run, const CheckSpec& spec) {
     if (p.short_form) judge("short-form read of " + hex(p.space, 2), p.space, true, *p.short_form);
     if (const MemResult& cdi = run.probe<CdiDownload>().datagram; cdi.ok)
         judge("CDI read of 0xFF", 0xFF, true, cdi);
-    run.out(spec).judge(seen.empty(), "replies use the form of the request", expected, seen);
+    run.out(spec).judge(seen.empty(),
+                        seen.empty() ? "replies use the form of the request"
+                                     : seen + ", not the form of the request",
+                        expected, seen);
 }
 
 void memory_read_short_at_end(CheckRun& run, const CheckSpec& spec) {
@@ -253,8 +271,12 @@ void memory_lock(CheckRun& run, const CheckSpec& spec) {
         return run.out(spec).skip("another tool took the lock meanwhile (" + id(second) + ", " +
                                   id(released) + "): lock check not judged");
     const bool ok = *first == me && second && *second == me && released && *released == 0;
-    run.out(spec).judge(ok, "reserve holds our ID, another ID does not take it, zeros release it",
-                        "ours, ours, 0", id(first) + ", " + id(second) + ", " + id(released));
+    const std::string seen = id(first) + ", " + id(second) + ", " + id(released);
+    run.out(spec).judge(ok,
+                        ok ? "reserve holds our ID, another ID does not take it, zeros release it"
+                           : "lock reserve, reserve by another ID, release answered " + seen +
+                                 " (ours: " + NodeId(me).to_string() + ")",
+                        "ours, ours, 0", seen);
     if (released && *released != 0) lock_cmd(run, 0, last);
 }
 

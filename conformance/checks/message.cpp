@@ -18,14 +18,18 @@ void oir_unknown_mti(CheckRun& run, const CheckSpec& spec) {
 }
 
 void verify_addressed(CheckRun& run, const CheckSpec& spec) {
-    run.out(spec).judge(run.probe<FrameProbe>().verified,
-                        "Verify Node ID addressed answered with Verified Node ID",
+    const bool verified = run.probe<FrameProbe>().verified;
+    run.out(spec).judge(verified,
+                        verified ? "Verify Node ID addressed answered with Verified Node ID"
+                                 : "Verify Node ID addressed: no Verified Node ID came",
                         "Verified Node ID", "no answer");
 }
 
 void verify_global(CheckRun& run, const CheckSpec& spec) {
     auto found = run.session().find_node(run.node().id, run.options().answer_window);
-    run.out(spec).judge(found.has_value(), "Verify Node ID global with the node ID answered",
+    run.out(spec).judge(found.has_value(),
+                        found ? "Verify Node ID global with the node ID answered"
+                              : "Verify Node ID global with the node ID: no Verified Node ID came",
                         "Verified Node ID", "no answer");
 }
 
@@ -41,8 +45,11 @@ void unknown_global_ignored(CheckRun& run, const CheckSpec& spec) {
 }
 
 void pip_answered(CheckRun& run, const CheckSpec& spec) {
-    run.out(spec).judge(run.probe<PipProbe>().reply.has_value(),
-                        "Protocol Support Inquiry answered", "Protocol Support Reply", "no reply");
+    const bool answered = run.probe<PipProbe>().reply.has_value();
+    run.out(spec).judge(answered,
+                        answered ? "Protocol Support Inquiry answered"
+                                 : "Protocol Support Inquiry: no Protocol Support Reply came",
+                        "Protocol Support Reply", "no reply");
 }
 
 void no_unsolicited(CheckRun& run, const CheckSpec& spec) {

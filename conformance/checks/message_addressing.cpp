@@ -128,8 +128,9 @@ void silent_to_other(CheckRun& run, const CheckSpec& spec, std::string SilenceAn
     if (!a.judged)
         return run.out(spec).skip("other sources spoke in every silence window: not judged");
     const std::string& seen = a.*seen_of;
+    const std::string sent = what + " addressed to alias " + hex(a.other, 3) + " (no node's)";
     run.out(spec).judge(seen.empty(),
-                        what + " addressed to alias " + hex(a.other, 3) + " (no node's) ignored",
+                        seen.empty() ? sent + " ignored" : sent + " answered with " + seen,
                         "silence", seen.empty() ? "" : seen + " from the node");
 }
 

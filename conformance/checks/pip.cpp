@@ -4,41 +4,60 @@
 namespace olcb::conform::checks {
 namespace {
 
+// What the node showed of a protocol, either way, for a FAIL's headline: "PIP SNIP bit clear,
+// but the node answers SNIP requests".
+struct Behaviour {
+    const char* name;  // the bit's
+    const char* does;
+    const char* does_not;
+};
+
+// what: the PASS message.
 void bit_agrees(CheckRun& run, const CheckSpec& spec, Protocol bit, bool works,
-                const std::string& what) {
+                const std::string& what, const Behaviour& b) {
     const auto& pip = run.probe<PipProbe>().reply;
     if (!pip)
         return run.out(spec).skip("depends on message.pip-answered: no Protocol Support Reply");
     const bool set = pip->has(bit);
-    run.out(spec).judge(set == works, what, works ? "bit set" : "bit clear",
-                        set ? "bit set" : "bit clear");
+    const std::string state = set ? "bit set" : "bit clear";
+    run.out(spec).judge(set == works,
+                        set == works ? what
+                                     : "PIP " + std::string(b.name) + " " + state + ", but " +
+                                           (works ? b.does : b.does_not),
+                        works ? "bit set" : "bit clear", state);
 }
 
 void pip_snip_bit(CheckRun& run, const CheckSpec& spec) {
     bit_agrees(run, spec, Protocol::kSnip, run.probe<SnipProbe>().raw.has_value(),
-               "PIP SNIP bit agrees with the SNIP answer");
+               "PIP SNIP bit agrees with the SNIP answer",
+               {"SNIP bit", "the node answers SNIP requests", "the node does not answer SNIP"});
 }
 
 void pip_datagram_bit(CheckRun& run, const CheckSpec& spec) {
     bit_agrees(run, spec, Protocol::kDatagram, datagrams_answered(run),
-               "PIP Datagram bit agrees with datagram answers");
+               "PIP Datagram bit agrees with datagram answers",
+               {"Datagram bit", "the node answers datagrams", "no datagram was answered"});
 }
 
 void pip_memory_config_bit(CheckRun& run, const CheckSpec& spec) {
     bit_agrees(run, spec, Protocol::kMemoryConfiguration, memory_works(run),
-               "PIP Memory Configuration bit agrees with memory answers");
+               "PIP Memory Configuration bit agrees with memory answers",
+               {"Memory Configuration bit", "the node answers memory-config requests",
+                "no memory-config request was answered"});
 }
 
 void pip_cdi_bit(CheckRun& run, const CheckSpec& spec) {
     bit_agrees(run, spec, Protocol::kCdi, run.probe<CdiDownload>().read_ok,
-               "PIP CDI bit agrees with space 0xFF");
+               "PIP CDI bit agrees with space 0xFF",
+               {"CDI bit", "space 0xFF reads as a CDI", "space 0xFF could not be read"});
 }
 
 void pip_acdi_bit(CheckRun& run, const CheckSpec& spec) {
     const CdiDownload& cdi = run.probe<CdiDownload>();
     if (!cdi.document) return run.out(spec).skip("depends on cdi.well-formed: no CDI document");
     bit_agrees(run, spec, Protocol::kAcdi, cdi.document->acdi.has_value(),
-               "PIP ACDI bit iff the CDI has <acdi/>");
+               "PIP ACDI bit iff the CDI has <acdi/>",
+               {"ACDI bit", "the CDI has <acdi/>", "the CDI has no <acdi/>"});
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // Safety rule: before the next variable, or any other request, the variable under test holds its
 // original bytes again and they read back; the one request made while a test value is in place
 // is that variable's own read-back (for the ACDI user name: the SNIP reply that reports it).
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -92,6 +93,30 @@ std::string decoded_text(const cdi::Element& e, std::span<const std::uint8_t> by
 // Bound on the bytes shown per value and on the values kept per variable for the memory map.
 constexpr std::size_t kHexShown = 32;
 constexpr std::size_t kValuesKept = 32;
+// Bytes of a value shown in a headline (expected and seen carry more).
+constexpr std::size_t kHeadlineHex = 8;
+
+// "6396 (18 FC)": bytes decoded as the variable's type, with the bytes.
+std::string value_and_bytes(const cdi::Element& e, std::uint32_t size, const Bytes& bytes) {
+    const std::string value = bytes.size() == size ? decoded_text(e, bytes) : std::string();
+    const std::string hex = hex_bytes(bytes, kHeadlineHex);
+    return value.empty() ? hex : value + " (" + hex + ")";
+}
+
+// The headline of a value that read back wrong: what was written and what came back, each
+// decoded, and the pattern when it is one a reader would otherwise have to spot in the bytes
+// (the bytes in reverse order, the node keeping the value it had before the write).
+std::string wrong_value(const Probe& p, const std::string& label, const Bytes& wrote,
+                        const Bytes& read, const Bytes& before) {
+    const std::string written = label + " (" + hex_bytes(wrote, kHeadlineHex) + ")";
+    const std::string got = value_and_bytes(*p.element, p.size, read);
+    if (read == before) return p.key + ": node kept " + got + " after writing " + written;
+    std::string out = p.key + ": wrote " + written + ", read back " + got;
+    if (read.size() > 1 && read.size() == wrote.size() &&
+        std::equal(read.begin(), read.end(), wrote.rbegin()))
+        out += read.size() == 2 ? ": bytes swapped" : ": bytes reversed";
+    return out;
+}
 
 // (label, bytes) of every test value of a probe, in order.
 std::vector<std::pair<std::string, Bytes>> test_writes(const Probe& p) {
@@ -250,8 +275,8 @@ private:
                     p.key + ": read back after writing " + label + " failed (" + code_text(r) + ")",
                     hex_bytes(bytes), "error " + code_text(r));
             } else if (r.data != bytes) {
-                fail(p.key + ": " + label + " reads back as " + hex_bytes(r.data), hex_bytes(bytes),
-                     hex_bytes(r.data));
+                fail(wrong_value(p, label, bytes, r.data, in_flight_.front().original),
+                     hex_bytes(bytes), hex_bytes(r.data));
             }
         }
         if (r.ok) {
@@ -355,7 +380,9 @@ std::string EncodingRun::not_run_reason() const {
         case Stop::kNodeDied:
             return "not run: the node stopped answering or restarted (see node.*)";
         case Stop::kRestoreFailed:
-            return "not run: an original value did not read back, writing stopped";
+            // Named as the cause, so the report shows these SKIPs under that FAIL.
+            return "depends on encoding.original-restored: an original value did not read back, "
+                   "writing stopped";
         case Stop::kNotSent:
             return "not run: lcc-conform kept a write back (" + not_sent_ + ")";
         case Stop::kNone:
@@ -399,8 +426,8 @@ void EncodingRun::add_tally_results(std::vector<CheckResult>& out) const {
         const std::string cut = not_run_reason();
         if (t.failures) {
             c.status = Status::kFail;
-            c.message = std::to_string(t.failures) + " of " + std::to_string(t.values) +
-                        " written values wrong; first: " + t.first_message;
+            c.message = t.first_message + "; " + std::to_string(t.failures) + " of " +
+                        std::to_string(t.values) + " written values wrong";
             c.expected = t.expected;
             c.seen = t.seen;
         } else if (t.refusals) {
@@ -479,9 +506,10 @@ bool EncodingRun::judge_snip_name(const std::string& key, CheckResult& c) {
     c.expected = show_node_text(kSnipTestName);
     c.seen = name ? show_node_text(*name, true, name->size()) : "no SNIP reply";
     c.status = name && *name == kSnipTestName ? Status::kPass : Status::kFail;
-    c.message = c.status == Status::kPass ? "SNIP user name follows a write to space 251"
-                : name                    ? "SNIP user name does not follow space 251"
-                                          : "no SNIP reply after writing the user name";
+    c.message =
+        c.status == Status::kPass ? "SNIP user name follows a write to space 251"
+        : name ? "SNIP user name reads " + c.seen + " after writing " + c.expected + " to space 251"
+               : "no SNIP reply after writing the user name";
     if (c.status == Status::kPass) c.expected.clear(), c.seen.clear();
     return true;
 }
