@@ -1,16 +1,20 @@
 // The lcc-conform --html page: run summary, a check table per node with status filters, and the
 // memory map of every space with each variable's verdict. The filter follows the URL fragment:
-// "#status=FAIL,WARN" shows only those rows.
+// "#status=FAIL,WARN" shows only those rows. What is wrong comes first: each table lists its
+// FAILs, then its WARNs, then the rest in run order, and a run with any FAIL or WARN opens
+// showing only those (issue 34: readers met 42 passing rows before the first FAIL).
 "use strict";
 
 (() => {
     const { el, plural } = Page;
     const kStatuses = ["PASS", "FAIL", "WARN", "SKIP"];
+    // The colours of page.css (--pass, --fail, --skip, --protected): Okabe-Ito hues, told apart
+    // with any colour vision; "overlap" (map.js) is a black-and-yellow hatch, never a verdict's.
     const kVerdicts = [
-        ["verified", "#2e8540"],
-        ["failed", "#c62828"],
-        ["skipped", "#7a8291"],
-        ["protected", "#7b4fc4"],
+        ["verified", "#00795a"],
+        ["failed", "#c24400"],
+        ["skipped", "#737b8c"],
+        ["protected", "#a8508a"],
     ];
     const data = Page.data();
     const app = document.getElementById("app");
@@ -53,10 +57,20 @@
         return card;
     }
 
+    // Without "#status=", the findings when there are any, else every row.
+    function defaultFilter() {
+        const s = data.run.summary || {};
+        return (s.fail || 0) + (s.warn || 0) > 0 ? new Set(["FAIL", "WARN"]) : new Set(kStatuses);
+    }
+
     function readFilter() {
         const text = Page.hashParams().get("status");
-        if (text === null) return new Set(kStatuses);
+        if (text === null) return defaultFilter();
         return new Set(text.toUpperCase().split(",").filter((s) => kStatuses.includes(s)));
+    }
+
+    function sameSet(a, b) {
+        return a.size === b.size && [...a].every((x) => b.has(x));
     }
 
     function applyFilter(shown) {
@@ -76,7 +90,7 @@
                 const shown = readFilter();
                 if (shown.has(status)) shown.delete(status);
                 else shown.add(status);
-                Page.setHashParam("status", shown.size === kStatuses.length ? null : kStatuses.filter((s) => shown.has(s)).join(","));
+                Page.setHashParam("status", sameSet(shown, defaultFilter()) ? null : kStatuses.filter((s) => shown.has(s)).join(","));
                 applyFilter(shown);
             });
             filterButtons.set(status, button);
@@ -126,7 +140,10 @@
         const thead = el("thead");
         thead.append(head);
         const body = el("tbody");
-        for (const check of node.checks) body.append(checkRow(check));
+        const rank = { FAIL: 0, WARN: 1 };
+        const ordered = node.checks.map((check, i) => [rank[check.status] ?? 2, i, check]);
+        ordered.sort((a, b) => a[0] - b[0] || a[1] - b[1]);
+        for (const [, , check] of ordered) body.append(checkRow(check));
         table.append(cols, thead, body);
         return table;
     }
@@ -188,19 +205,19 @@
         card.append(chips(node.summary));
         if (node.incomplete) card.append(el("div", "banner error", "The run of this node could not finish: " + node.restore));
         const id = node.identity || {};
-        card.append(
-            Page.kv([
-                ["Manufacturer", id.manufacturer],
-                ["Model", id.model],
-                ["Hardware", id.hardware_version],
-                ["Software", id.software_version],
-                ["User name", id.user_name],
-                ["User description", id.user_description],
-                ["Started", node.started],
-                ["Elapsed", ms(node.elapsed_s)],
-                ["Memory afterwards", node.restore],
-            ]),
-        );
+        // The checks before the node's identity, so a failing run's first row is on the first
+        // screen (tests/e2e/html_page_test.cpp).
+        const identity = Page.kv([
+            ["Manufacturer", id.manufacturer],
+            ["Model", id.model],
+            ["Hardware", id.hardware_version],
+            ["Software", id.software_version],
+            ["User name", id.user_name],
+            ["User description", id.user_description],
+            ["Started", node.started],
+            ["Elapsed", ms(node.elapsed_s)],
+            ["Memory afterwards", node.restore],
+        ]);
         card.append(el("h3", "", "Checks"));
         const shown = el("div", "shown-count");
         counters.push(() => {
@@ -208,7 +225,7 @@
             const visible = [...rows].filter((r) => !r.hidden).length;
             shown.textContent = visible + " of " + plural(rows.length, "check") + " shown";
         });
-        card.append(shown, checkTable(node), memoryMaps(node));
+        card.append(shown, checkTable(node), el("h3", "", "Node"), identity, memoryMaps(node));
         return card;
     }
 

@@ -232,7 +232,8 @@ const Page = (() => {
         if (listed < space.variable_count) info.push(listed + " listed, the rest summarized");
         info.push(plural(space.gaps.length, "gap"), plural(space.overlaps.length, "overlap"));
         box.append(el("div", "mm-info", info.join(" \u00b7 ")));
-        const common = [["gap", "#e3e7ee"], ["overlap", "#c62828"]];
+        // The overlap's hatch (page.css --overlap) shares no colour with any verdict or type.
+        const common = [["gap", "#e3e7ee"], ["overlap", "repeating-linear-gradient(45deg, #000 0 3px, #f0e442 3px 6px)"]];
         if (space.summaries.length) common.push(["not listed", "#9aa3b5"]);
         box.append(legend((opt.legend || []).concat(common)));
         if (space.end <= space.begin) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -241,6 +242,43 @@ TEST_F(HtmlPage, ConformFaultScenarioWithTheFailFilter) {
     EXPECT_NE(detail.find("<td>-1000</td><td>FC 18</td><td>6396</td><td>18 FC</td>"),
               std::string::npos)
         << detail;
+}
+
+// Issue 34: a failing run's page opens on what failed. Without a fragment it shows the FAIL and
+// WARN rows only, FAILs first, and the first row is on the first screen (1280x900): a probe
+// script after the page's own notes where the first shown row is, at the top of the page (the
+// dump of a page is bounded).
+TEST_F(HtmlPage, AFailingRunOpensOnItsFailures) {
+    const fs::path page = work_.path() / "failing.html";
+    const auto [code, text] = conform_html("scenarios/faults/int-byte-order.ini", page);
+    EXPECT_EQ(code, 1) << text;
+    std::string html = read_text(page);
+    const nlohmann::json data = page_data(html);
+    ASSERT_TRUE(data.is_object());
+    const nlohmann::json& node = data["nodes"][0];
+    std::size_t findings = 0;
+    for (const auto& c : node["checks"]) findings += c["status"] == "FAIL" || c["status"] == "WARN";
+    ASSERT_GT(findings, 0u);
+    html.insert(html.rfind("</body>"),
+                "<script>{const row = [...document.querySelectorAll('tr.check')]"
+                ".find((r) => !r.hidden); const box = row.getBoundingClientRect();"
+                "const note = document.createElement('div'); note.dataset.firstRow = "
+                "row.dataset.status + ' ' + (box.top >= 0 && box.bottom <= window.innerHeight ? "
+                "'on-screen' : 'below'); document.getElementById('app').prepend(note);}"
+                "</script>\n");
+    std::ofstream(page, std::ios::binary | std::ios::trunc) << html;
+    const PageView v = view(page, "", "conform-opens-on-failures", 900);
+    expect_clean(v);
+    EXPECT_EQ(count(v.dom, "data-first-row=\"FAIL on-screen\""), 1u) << v.dom.substr(0, 3000);
+    EXPECT_EQ(count(v.dom, "hidden=\"\">"), node["checks"].size() - findings);
+    EXPECT_EQ(count(v.dom, "aria-pressed=\"true\""), 2u);  // FAIL and WARN
+    // The rows in order: every FAIL before the first row of another status.
+    const auto first_other = std::min({v.dom.find("<tr class=\"check s-warn\""),
+                                       v.dom.find("<tr class=\"check s-pass\""),
+                                       v.dom.find("<tr class=\"check s-skip\"")});
+    ASSERT_NE(first_other, std::string::npos);
+    EXPECT_LT(v.dom.find("<tr class=\"check s-fail\""), first_other);
+    EXPECT_EQ(v.dom.find("<tr class=\"check s-fail\"", first_other), std::string::npos);
 }
 
 // The console check itself: a page whose script throws is caught.
