@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -30,6 +31,16 @@ TEST(FaultCatalogTest, DocsCarryTheGeneratedTable) {
     ASSERT_NE(b, std::string::npos);
     ASSERT_NE(e, std::string::npos);
     EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()), format_fault_markdown())
+        << "regenerate with: ci/update-faults-doc [BUILD_DIR]";
+}
+
+// README says how many faults there are, twice: ci/update-faults-doc writes both from the table.
+TEST(FaultCatalogTest, ReadmeCountsTheDeclarations) {
+    const std::string readme = read_doc(std::filesystem::path(OLCB_SOURCE_DIR) / "README.md");
+    const std::string n = std::to_string(fault_decls().size());
+    EXPECT_NE(readme.find("with " + n + " named faults"), std::string::npos)
+        << "regenerate with: ci/update-faults-doc [BUILD_DIR]";
+    EXPECT_TRUE(std::regex_search(readme, std::regex("each of the\\s+" + n + " faults")))
         << "regenerate with: ci/update-faults-doc [BUILD_DIR]";
 }
 
