@@ -176,6 +176,16 @@ std::size_t DatagramSender::abort_to(std::uint16_t dest_alias) {
     return dropped;
 }
 
+bool DatagramSender::settle(std::uint32_t id, TimePoint now) {
+    for (std::size_t i = 0; i < entries_.size(); ++i) {
+        if (entries_[i].id != id) continue;
+        if (entries_[i].phase != Phase::kWaitingAck) return false;
+        finish(i, DatagramOutcome::Status::kUnacknowledged, 0, 0, now);
+        return true;
+    }
+    return false;
+}
+
 std::optional<CanFrame> DatagramSender::pop_frame() {
     return pop(outbox_);
 }
@@ -330,6 +340,13 @@ bool DatagramReceiver::reject(std::uint16_t source_alias, std::uint16_t code) {
     outbox_.push_back(addressed_reply(
         Mti::kDatagramRejected, alias_, source_alias,
         {static_cast<std::uint8_t>(code >> 8), static_cast<std::uint8_t>(code & 0xFF)}));
+    Slot* s = find(source_alias);
+    const bool held = s && s->complete;
+    if (held) erase(source_alias);
+    return held;
+}
+
+bool DatagramReceiver::release(std::uint16_t source_alias) {
     Slot* s = find(source_alias);
     const bool held = s && s->complete;
     if (held) erase(source_alias);

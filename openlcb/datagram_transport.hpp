@@ -38,6 +38,8 @@ struct DatagramOutcome {
         kRejected,  ///< Datagram Rejected (or OIR) with a permanent code, or resends exhausted
         kTimedOut,  ///< no answer within ack_timeout (error_code = 0x2010)
         kAborted,   ///< abort_all() or abort_to() dropped it
+        /// settle(): the receiver answered it some other way (its reply came) and sends no OK
+        kUnacknowledged,
     };
     std::uint32_t id = 0;  ///< what send() returned
     std::uint16_t dest_alias = 0;
@@ -73,6 +75,10 @@ public:
     /// Drops every queued and outstanding datagram to dest_alias (that node re-initialized, so
     /// no ack will come), reporting each as kAborted; returns how many were dropped.
     std::size_t abort_to(std::uint16_t dest_alias);
+    /// Ends datagram id, still waiting for its OK, as kUnacknowledged: the owner knows it was
+    /// received (its reply came) from a receiver that never acknowledges, so the next datagram to
+    /// that destination goes now instead of after ack_timeout. False when id waits for no OK.
+    bool settle(std::uint32_t id, TimePoint now);
 
     /// Next frame to transmit.
     std::optional<CanFrame> pop_frame();
@@ -151,6 +157,9 @@ public:
     /// Sends Datagram Rejected with code to source_alias and frees its buffer; returns false when
     /// no datagram from it was waiting (the reject is still sent).
     bool reject(std::uint16_t source_alias, std::uint16_t code);
+    /// Frees the buffer of a delivered datagram from source_alias without answering it (the
+    /// owner answers by other means, or not at all); false when none from it was waiting.
+    bool release(std::uint16_t source_alias);
 
     /// Next frame to transmit.
     std::optional<CanFrame> pop_frame();

@@ -526,6 +526,16 @@ bool NodeStack::reject_datagram(std::uint16_t src, std::uint16_t code) {
     return held;
 }
 
+bool NodeStack::release_datagram(std::uint16_t src) {
+    return receiver_.release(src);
+}
+
+bool NodeStack::settle_datagram(std::uint32_t id, TimePoint now) {
+    const bool settled = sender_.settle(id, now);
+    collect();  // the outcome now (its owner waits on it), and the next datagram to that node
+    return settled;
+}
+
 void NodeStack::push_frame(const CanFrame& frame) {
     if (out_.size() - out_head_ >= config_.max_output_frames) {
         ++dropped_frames_;

@@ -234,6 +234,11 @@ public:
     /// Answers a delivered datagram from src with Datagram Rejected code; false when none from
     /// src was waiting (the reject still goes).
     bool reject_datagram(std::uint16_t src, std::uint16_t code);
+    /// Frees a delivered datagram from src without answering it (see DatagramReceiver::release).
+    bool release_datagram(std::uint16_t src);
+    /// Ends a sent datagram whose reply came without an OK (see DatagramSender::settle); its
+    /// kUnacknowledged outcome goes to the outcome handler before this returns.
+    bool settle_datagram(std::uint32_t id, TimePoint now);
     /// Opens an outgoing stream to dest (see StreamTransport::open); nullopt when streams are off,
     /// the node is not Initialized or too many streams are open.
     std::optional<std::uint32_t> open_stream(NodeHandle dest, std::uint16_t buffer,

@@ -178,6 +178,19 @@ TEST(DatagramReceiver, SameSourceBeforeAnswerIsBusy) {
     EXPECT_EQ(d->payload, (std::vector<std::uint8_t>{1}));
 }
 
+TEST(DatagramReceiver, ReleaseFreesTheBufferWithoutAnswer) {
+    auto r = receiver({.max_buffers = 1});
+    r.on_frame(gc(":X1A34312CN01;"), t0);
+    ASSERT_TRUE(r.pop_datagram());
+    EXPECT_TRUE(r.release(0x12C));
+    EXPECT_TRUE(drain(r).empty()) << "released, not answered";
+    EXPECT_EQ(r.buffers_in_use(), 0u);
+    EXPECT_FALSE(r.release(0x12C)) << "nothing held any more";
+    r.on_frame(gc(":X1A34312CN02;"), t0);
+    EXPECT_TRUE(r.pop_datagram()) << "the one buffer is free for the next datagram";
+    EXPECT_TRUE(drain(r).empty());
+}
+
 TEST(DatagramReceiver, StalePartialAbandoned) {
     auto r = receiver({.reassembly_timeout = 3s});
     r.on_frame(gc(":X1B34312CN0102030405060708;"), t0);
@@ -357,6 +370,26 @@ TEST(DatagramSender, TimeoutStartsNextQueuedDatagram) {
     s.poll(t0 + 3s);
     EXPECT_EQ(drain(s), (Strings{":X1A34312CN02;"}));
     EXPECT_EQ(s.next_deadline(), t0 + 6s);
+}
+
+TEST(DatagramSender, SettleEndsTheWaitAndStartsTheNextDatagram) {
+    auto s = sender();
+    auto first = s.send(0x343, std::vector<std::uint8_t>{1}, t0);
+    auto second = s.send(0x343, std::vector<std::uint8_t>{2}, t0);
+    ASSERT_TRUE(first && second);
+    drain(s);
+    EXPECT_FALSE(s.settle(*second, t0 + 10ms)) << "still queued: nothing to settle";
+    EXPECT_TRUE(s.settle(*first, t0 + 10ms));
+    EXPECT_EQ(drain(s), (Strings{":X1A34312CN02;"})) << "goes at once, not after 3 s";
+    auto out = s.pop_outcome();
+    ASSERT_TRUE(out);
+    EXPECT_EQ(out->id, *first);
+    EXPECT_EQ(out->status, Status::kUnacknowledged);
+    EXPECT_EQ(out->error_code, 0);
+    EXPECT_EQ(s.next_deadline(), t0 + 10ms + 3s) << "the second waits for its own OK";
+    EXPECT_FALSE(s.settle(*first, t0 + 20ms)) << "already ended";
+    s.on_frame(gc(":X19A28343N012C;"), t0 + 20ms);
+    EXPECT_EQ(s.pop_outcome()->id, *second) << "an OK belongs to the datagram in flight";
 }
 
 TEST(DatagramSender, RefusesBadRequests) {
