@@ -560,14 +560,24 @@ memory::Decision SimNode::decide(std::uint16_t src, std::span<const std::uint8_t
 void SimNode::send_answer(std::uint16_t src, memory::Decision& decision) {
     const std::uint8_t flags =
         datagram::ok_flags(decision.reply_pending, decision.reply_timeout_exponent);
+    AnswerPlan plan;
+    plan.index = replies_;
+    faults_.answer(plan);
+    if (plan.no_ok) {
+        // The buffer must still be freed, or the node rejects every datagram after the fourth.
+        stack_.release_datagram(src);
+        if (decision.reply) {
+            ++replies_;
+            send_reply(src, decision.reply_bytes());
+        }
+        return;
+    }
     if (!decision.reply) {
         stack_.accept_datagram(src, flags);
         return;
     }
+    ++replies_;
     std::vector<std::uint8_t> reply = decision.reply_bytes();
-    AnswerPlan plan;
-    plan.index = replies_++;
-    faults_.answer(plan);
     if (plan.reply_first) {
         send_reply(src, std::move(reply));
         stack_.accept_datagram(src, flags);

@@ -10,6 +10,10 @@ void reply_before_ok(AnswerPlan& plan, FaultValue) {
     plan.reply_first = true;
 }
 
+void never_ok(AnswerPlan& plan, FaultValue) {
+    plan.no_ok = true;
+}
+
 void busy_first(DatagramTurn& turn, FaultValue v) {
     if (turn.index < v.value) turn.reject = base::to_u16(base::ErrorCode::kBufferUnavailable);
 }
@@ -30,6 +34,22 @@ std::vector<FaultDecl> datagram_faults() {
             .category = "datagram",
             .checks = {"datagram.ok-before-reply"},
             .hooks = {.answer = reply_before_ok},
+        },
+        {
+            .name = "reply-without-ack",
+            .order = 185,
+            .summary = "accepted datagrams never get a Datagram Received OK; replies still come",
+            .rule_broken = "Datagram: every datagram is answered with Datagram Received OK or "
+                           "Datagram Rejected (fact sheet 4)",
+            .client_sees = "no Datagram Received OK for any accepted datagram (reads, writes, "
+                           "commands, Read Stream); its reply datagram or stream comes as usual, "
+                           "rejects still go. A client that waits for each OK before its next "
+                           "datagram waits out its timeout every time; a careful one notes it "
+                           "once and takes the replies as they come",
+            .verdict = Verdict::kFail,
+            .category = "datagram",
+            .checks = {"datagram.ok-before-reply"},
+            .hooks = {.answer = never_ok},
         },
         {
             .name = "reject-temporary",

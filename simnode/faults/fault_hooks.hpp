@@ -134,10 +134,12 @@ struct ReplyTurn {
     bool unacknowledged = false;
 };
 
-/// When a reply datagram goes out, relative to the Datagram Received OK that announces it.
+/// When a reply datagram goes out, relative to the Datagram Received OK that announces it
+/// (asked for every accepted datagram; index counts the reply datagrams sent before it).
 struct AnswerPlan {
     std::uint64_t index = 0;   ///< reply datagrams this node sent before this one
     bool reply_first = false;  ///< the reply goes out before the OK
+    bool no_ok = false;        ///< no Datagram Received OK at all; the reply still goes
     Duration delay{0};         ///< the reply is held back this long after the OK
 };
 
