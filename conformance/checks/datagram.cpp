@@ -21,6 +21,14 @@ std::string reads_judged(const CdiDownload& d) {
 void datagram_ok_before_reply(CheckRun& run, const CheckSpec& spec) {
     if (!datagram_read(run, spec)) return;
     const CdiDownload& d = run.probe<CdiDownload>();
+    // Noted by the session over the whole run so far, not only the CDI reads.
+    const NodeTrack t = run.session().track(run.node().id);
+    if (t.never_acks)
+        return run.out(spec).fail(
+            "no Datagram Received OK or Rejected for " + std::to_string(t.unacknowledged) +
+                " datagrams whose replies came (the first waited out the timeout; later replies "
+                "were taken as they came)",
+            "Datagram Received OK (or Rejected) for every datagram", "replies without any OK");
     if (d.datagram.datagram_ok_seen)
         return run.out(spec).pass("Datagram Received OK precedes the read reply in " +
                                   reads_judged(d));
@@ -62,9 +70,8 @@ std::vector<CheckSpec> datagram_checks() {
         {"datagram.ok-before-reply", 130, Category::kDatagram,
          "DatagramTransportS §6; MemoryConfigurationS §4.4; MemoryConfigurationTN §2.4.5",
          Strength::kShall,
-         "every datagram is answered with Datagram Received OK or Rejected; only the technical "
-         "note "
-         "orders the OK before the reply (a late OK WARNs)",
+         "every datagram is answered with Datagram Received OK or Rejected (none at all FAILs); "
+         "only the technical note orders the OK before the reply (a late OK WARNs)",
          "", "(every datagram read of the CDI) Datagram Received OK arrives before each read reply",
          datagram_ok_before_reply},
         {"datagram.reply-pending", 140, Category::kDatagram, "MemoryConfigurationS §4.4",

@@ -467,6 +467,10 @@ void update_complete(CheckRun& run, const CheckSpec& spec) {
         return out.fail("Update Complete (20 A8) rejected with " +
                             (r.error ? hex(r.error) : std::string("no error code")),
                         "Datagram Received OK", describe(r));
+    if (r.unacknowledged)
+        return out.skip(
+            "depends on datagram.ok-before-reply: Update Complete (20 A8) got no answer from a "
+            "node that acknowledges no datagram");
     if (!r.ok && !restarted)
         return out.fail("Update Complete (20 A8): " + describe(r), "Datagram Received OK",
                         describe(r));

@@ -158,9 +158,7 @@ Session::Session(Link& link) : link_(link) {
         if (messages_.size() < kMaxMessages) messages_.push_back({msg, link_.now(), ++seq_});
         link_.stack().accept_datagram(d.source_alias);
     });
-    stack.set_outcome_handler([this](const DatagramOutcome& o) {
-        outcomes_[o.id] = OutcomeRecord{o, link_.now(), ++seq_};
-    });
+    stack.set_outcome_handler([this](const DatagramOutcome& o) { on_outcome(o); });
     stack.set_stream_handler([this](const StreamEvent& e) {
         if (stream_events_.size() < kMaxMessages) stream_events_.push_back(e);
     });
@@ -567,10 +565,10 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
                                  bool always_reply, memory::Message* reply) {
     MemResult result;
     const bool request_short = is_short_form(payload);
+    const std::uint16_t alias = alias_of(node);
+    auto id = send_datagram_after(alias, payload);
     const std::size_t mark = messages_.size();
     const TimePoint sent_at = link_.now();
-    const std::uint16_t alias = alias_of(node);
-    auto id = link_.stack().send_datagram(alias, payload, sent_at);
     if (!id) {
         result.error = base::to_u16(base::ErrorCode::kTemporary);
         result.rejected = true;
@@ -590,8 +588,13 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
     // would be taken for the next request's.
     const std::uint32_t inits = track(node.id).initializations;
     auto restarted = [&] { return !always_reply && came_back_elsewhere(node.id, inits, alias); };
+    // A node noted as never acknowledging sends no OK to wait for: only its reply or a reject.
+    const bool never_acks = track(node.id).never_acks;
     run_until([&] { return outcome_of(*id) != nullptr || find_reply() || lost() || restarted(); },
-              ack_wait);
+              never_acks && !always_reply ? answer_timeout_ : ack_wait);
+    if (never_acks && !always_reply && !scan.index && !lost() && !restarted() &&
+        no_answer_settled(*id))
+        return unacknowledged_result();
     const OutcomeRecord* oc = outcome_of(*id);
     if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
     if (!scan.index && ended_unanswered(oc, payload, restarted(), result)) return result;
@@ -614,15 +617,28 @@ MemResult Session::send_exchange(const NodeInfo& node, std::span<const std::uint
         result.datagram_ok_seen = oc && oc->outcome.status == DatagramOutcome::Status::kAccepted;
         return result;
     }
+    replied(*id, node.id);
     const Event& ev = messages_[*scan.index];
-    oc = outcome_of(*id);
-    result.datagram_ok_seen =
-        oc && oc->outcome.status == DatagramOutcome::Status::kAccepted && oc->seq < ev.seq;
-    if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
-    result.reply_latency = ev.at - sent_at;
+    time_reply(outcome_of(*id), ev, sent_at, result);
     result.reply_in_request_form = is_short_form(ev.message.payload) == request_short;
     if (reply) *reply = *scan.decoded;
     take_reply(*scan.decoded, result);
+    return result;
+}
+
+void Session::time_reply(const OutcomeRecord* oc, const Event& reply, TimePoint sent_at,
+                         MemResult& result) const {
+    result.datagram_ok_seen =
+        oc && oc->outcome.status == DatagramOutcome::Status::kAccepted && oc->seq < reply.seq;
+    if (oc && oc->outcome.attempts > 1) result.temporary_rejects = oc->outcome.attempts - 1;
+    result.reply_latency = reply.at - sent_at;
+}
+
+MemResult Session::unacknowledged_result() {
+    MemResult result;
+    result.unacknowledged = true;
+    result.timed_out = true;
+    result.error = base::to_u16(base::ErrorCode::kTimeout);
     return result;
 }
 
@@ -648,6 +664,53 @@ bool Session::came_back_elsewhere(NodeId id, std::uint32_t initializations,
                                   std::uint16_t alias) const {
     const NodeTrack t = track(id);
     return t.initializations != initializations && t.alias != alias;
+}
+
+void Session::on_outcome(const DatagramOutcome& o) {
+    outcomes_[o.id] = OutcomeRecord{o, link_.now(), ++seq_};
+    auto it = replied_unacked_.find(o.id);
+    if (it == replied_unacked_.end()) return;
+    // Its reply came and its OK never did: every later datagram to this node would wait the
+    // whole timeout behind the one before (DatagramTransportS: one outstanding per destination).
+    if (o.status == DatagramOutcome::Status::kTimedOut) {
+        if (NodeTrack* t = track_for(it->second)) {
+            t->never_acks = true;
+            ++t->unacknowledged;
+        }
+    }
+    replied_unacked_.erase(it);
+}
+
+std::optional<std::uint32_t> Session::send_datagram_after(std::uint16_t alias,
+                                                          std::span<const std::uint8_t> payload) {
+    // Queued behind an unanswered one, a datagram would leave up to the ack timeout later than
+    // asked, and its reply would look that slow.
+    if (auto last = last_datagram_.find(alias); last != last_datagram_.end()) {
+        const std::uint32_t before = last->second;
+        const std::uint64_t losses = link_.losses();
+        link_.run_until(
+            [&] { return outcome_of(before) || link_.losses() != losses; },
+            link_.stack().config().datagram_sender.ack_timeout + std::chrono::milliseconds(500));
+    }
+    auto id = link_.stack().send_datagram(alias, payload, link_.now());
+    if (id) last_datagram_[alias] = *id;
+    return id;
+}
+
+bool Session::no_answer_settled(std::uint32_t datagram_id) {
+    if (const OutcomeRecord* oc = outcome_of(datagram_id))
+        return oc->outcome.status == DatagramOutcome::Status::kTimedOut;
+    return link_.stack().settle_datagram(datagram_id, link_.now());
+}
+
+void Session::replied(std::uint32_t datagram_id, NodeId node) {
+    if (outcome_of(datagram_id) || replied_unacked_.contains(datagram_id)) return;
+    NodeTrack* t = track_for(node);
+    if (t && t->never_acks) {
+        if (link_.stack().settle_datagram(datagram_id, link_.now())) ++t->unacknowledged;
+        return;
+    }
+    replied_unacked_[datagram_id] = node;
 }
 
 const Session::OutcomeRecord* Session::outcome_of(std::uint32_t datagram_id) const {

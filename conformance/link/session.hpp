@@ -52,6 +52,9 @@ struct MemResult {
     Duration reply_latency{};           ///< request sent -> reply datagram received
     unsigned temporary_rejects = 0;     ///< 0x2xxx rejects that were retried
     bool restarted = false;  ///< the node re-initialized before acknowledging: no answer comes
+    /// No answer came from a node noted as never acknowledging (NodeTrack::never_acks): whether
+    /// it took the request is unknown (timed_out is set too).
+    bool unacknowledged = false;
     /// A write the ledger's gate kept back: nothing was sent (not_sent says why).
     std::string not_sent;
 };
@@ -104,6 +107,12 @@ struct NodeTrack {
     /// (Session::excuse_reservations).
     std::uint32_t reservations = 0;
     TimePoint last_heard{};  ///< time of the last frame from its current alias
+    /// A datagram of ours whose reply came got no Datagram Received OK (nor Rejected) within
+    /// the sender's timeout: the node is noted once as not acknowledging, and from then on each
+    /// reply ends its datagram's wait (the next request goes at once).
+    bool never_acks = false;
+    /// Datagrams answered by their reply without an OK: the one that timed out, then the settled.
+    std::uint32_t unacknowledged = 0;
 };
 
 /// A Read Reply OK that carried fewer bytes than asked.
@@ -270,6 +279,22 @@ private:
     MemResult send_exchange(const NodeInfo& node, std::span<const std::uint8_t> payload,
                             bool always_reply, memory::Message* reply);
     const OutcomeRecord* outcome_of(std::uint32_t datagram_id) const;
+    /// The reply to datagram_id came: when its OK has not, either the node is known not to
+    /// acknowledge (the datagram is settled now) or the outcome handler decides when it ends.
+    void replied(std::uint32_t datagram_id, NodeId node);
+    /// Sends a datagram once the previous one to alias has ended, so it leaves (and its reply
+    /// is timed) now; nullopt when the stack refused it.
+    std::optional<std::uint32_t> send_datagram_after(std::uint16_t alias,
+                                                     std::span<const std::uint8_t> payload);
+    void on_outcome(const DatagramOutcome& o);
+    /// Whether the reply's OK came first, the request's retries and its latency.
+    void time_reply(const OutcomeRecord* oc, const Event& reply, TimePoint sent_at,
+                    MemResult& result) const;
+    /// A request to a node that never acknowledges ended without an answer.
+    static MemResult unacknowledged_result();
+    /// A datagram to a node that never acknowledges got neither reply nor reject in time: ended
+    /// now (or by the sender's timeout already); false when it was answered after all.
+    bool no_answer_settled(std::uint32_t datagram_id);
     struct StreamWait;  // session_stream.cpp
     bool stream_progress(StreamWait& w);
     void stream_event(StreamWait& w, const StreamEvent& e);
@@ -288,6 +313,8 @@ private:
     std::vector<Event> messages_;
     std::vector<CanFrame> frames_;
     std::map<std::uint32_t, OutcomeRecord> outcomes_;
+    std::map<std::uint32_t, NodeId> replied_unacked_;  // replied datagrams waiting for their OK
+    std::map<std::uint16_t, std::uint32_t> last_datagram_;  // the latest datagram to each alias
     std::uint64_t seq_ = 0;
     bool injecting_ = false;  // frames we inject are not the node's: tracking skips them
     std::map<NodeId, NodeTrack> tracks_;

@@ -10,6 +10,7 @@ namespace olcb::conform {
 
 // The state of one read while it runs.
 struct Session::StreamWait {
+    NodeId node;
     std::uint16_t alias = 0;
     std::uint8_t did = 0;
     std::uint32_t request = 0;  // datagram id of the Read Stream command
@@ -79,11 +80,17 @@ bool Session::stream_progress(StreamWait& w) {
             w.failed = true;
         }
     }
+    if (w.reply_done) replied(w.request, w.node);
     if (auto it = outcomes_.find(w.request); it != outcomes_.end()) {
         const DatagramOutcome& o = it->second.outcome;
         w.result.mem.datagram_ok_seen = o.status == DatagramOutcome::Status::kAccepted;
         w.result.mem.reply_pending = datagram::is_reply_pending(o.flags);
-        if (o.status != DatagramOutcome::Status::kAccepted) {
+        // A Read Stream answered by its reply but never acknowledged is noted (on_outcome) and
+        // read on: the stream and its reply show the node took it.
+        const bool answered_unacked =
+            w.reply_done && (o.status == DatagramOutcome::Status::kTimedOut ||
+                             o.status == DatagramOutcome::Status::kUnacknowledged);
+        if (o.status != DatagramOutcome::Status::kAccepted && !answered_unacked) {
             w.result.mem.rejected = o.status == DatagramOutcome::Status::kRejected;
             w.result.mem.timed_out = o.status == DatagramOutcome::Status::kTimedOut;
             w.result.mem.error = o.error_code;
@@ -110,18 +117,20 @@ void Session::stream_hold(StreamWait& w) {
 StreamReadResult Session::read_stream(const NodeInfo& node, memory::Space space,
                                       std::uint32_t address, const StreamReadOptions& options) {
     StreamWait w;
+    w.node = node.id;
     w.alias = alias_of(node);
     w.did = next_stream_id_;
     next_stream_id_ =
         static_cast<std::uint8_t>(next_stream_id_ == 0xFE ? 0x40 : next_stream_id_ + 1);
     w.options = options;
+    const auto payload = memory::encode(
+        memory::ReadStream{space, address, 0xFF, w.did, options.count, options.form});
+    link_.stack().expect_stream(w.alias, w.did, options.buffer, options.hold.count() == 0);
+    auto id = send_datagram_after(w.alias, payload);
+    // Marked after the wait for an earlier datagram: what came meanwhile answers other requests.
     w.message_mark = messages_.size();
     w.event_mark = stream_events_.size();
     const TimePoint sent_at = link_.now();
-    link_.stack().expect_stream(w.alias, w.did, options.buffer, options.hold.count() == 0);
-    const auto payload = memory::encode(
-        memory::ReadStream{space, address, 0xFF, w.did, options.count, options.form});
-    auto id = link_.stack().send_datagram(w.alias, payload, sent_at);
     if (!id) {
         w.result.mem.error = base::to_u16(base::ErrorCode::kTemporary);
         w.result.mem.rejected = true;

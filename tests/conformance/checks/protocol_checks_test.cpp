@@ -182,6 +182,7 @@ INSTANTIATE_TEST_SUITE_P(
         FaultCase{"space-info-short", Category::kAcdi},
         FaultCase{"reply-form", Category::kMemory, Status::kWarn},
         FaultCase{"no-datagram-ack", Category::kDatagram, Status::kWarn},
+        FaultCase{"reply-without-ack", Category::kDatagram},
         FaultCase{"slow-reply", Category::kMemory},
         FaultCase{"alias-conflict-ignored", Category::kFrame},
         FaultCase{"unsolicited-traffic", Category::kMessage, Status::kWarn},

@@ -99,6 +99,50 @@ TEST(SessionTest, AnAcknowledgedResetIsOk) {
     EXPECT_FALSE(r.restarted);
 }
 
+// A node that replies but never acknowledges (reply-without-ack) costs one acknowledgement
+// timeout, when it is noted; then each reply ends its datagram's wait and the next read goes at
+// once, its latency timed from when it left, not from when it was queued.
+TEST(SessionTest, ANodeThatNeverAcknowledgesIsNotedOnceThenItsRepliesAreTaken) {
+    SimBench b({"reply-without-ack"});
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const Duration ack_timeout = b.link->stack().config().datagram_sender.ack_timeout;
+    TimePoint start = b.link->now();
+    for (int i = 0; i < 10; ++i) {
+        const MemResult r = b.session->read(*node, Space::kCdi, 0, 5);
+        ASSERT_TRUE(r.ok) << "read " << i << ": " << r.error;
+        EXPECT_FALSE(r.datagram_ok_seen);
+        EXPECT_LT(r.reply_latency, 100ms) << "read " << i << " timed from its queueing";
+    }
+    const Duration spent = b.link->now() - start;
+    EXPECT_LT(spent, ack_timeout + 1s) << std::chrono::duration_cast<milliseconds>(spent).count();
+    const NodeTrack t = b.session->track(kDut);
+    EXPECT_TRUE(t.never_acks);
+    EXPECT_EQ(t.unacknowledged, 10u);
+    // A command with no reply cannot be confirmed: it ends after the answer window, marked.
+    static constexpr std::uint8_t kUpdateComplete[] = {0x20, 0xA8};
+    start = b.link->now();
+    const MemResult r = b.session->command(*node, kUpdateComplete);
+    EXPECT_TRUE(r.unacknowledged && r.timed_out);
+    EXPECT_FALSE(r.ok);
+    EXPECT_LE(b.link->now() - start, b.session->answer_timeout() + 50ms);
+    EXPECT_TRUE(b.session->read(*node, Space::kCdi, 0, 5).ok) << "the next read goes at once";
+}
+
+TEST(SessionTest, AnOkAfterTheReplyIsNoNeverAcknowledgingNode) {
+    SimBench b({"no-datagram-ack"});  // the reply first, then the OK
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    for (int i = 0; i < 3; ++i) {
+        const MemResult r = b.session->read(*node, Space::kCdi, 0, 5);
+        ASSERT_TRUE(r.ok) << r.error;
+    }
+    b.link->run_until([] { return false; }, 100ms);  // the last OK comes in
+    const NodeTrack t = b.session->track(kDut);
+    EXPECT_FALSE(t.never_acks);
+    EXPECT_EQ(t.unacknowledged, 0u);
+}
+
 TEST(NodeTrackTest, ARestartOnTheSameAliasIsStillAReservation) {
     SimBench b;
     auto node = b.start();
