@@ -5,6 +5,7 @@
 
 #include "base/run_sort.hpp"
 #include "cdi/layout.hpp"
+#include "cdi/variable_name.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -56,8 +57,8 @@ void warn_span_overlaps(const Layout& layout, const std::vector<Span>& spans,
         diagnostics.push_back(
             {Severity::kWarning, b.element().pos.line,
              std::to_string(overlaps) + " variable(s) overlap an earlier one in space " +
-                 std::to_string(space) + ", e.g. '" + b.path() + "' at " +
-                 std::to_string(b.address()) + " overlaps '" + a.path() + "' at " +
+                 std::to_string(space) + ", e.g. '" + variable_name(layout, b) + "' at " +
+                 std::to_string(b.address()) + " overlaps '" + variable_name(layout, a) + "' at " +
                  std::to_string(a.address()) + ".." + std::to_string(a.address() + a.size())});
     }
 }

@@ -6,6 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cdi/variable_name.hpp"
+
 namespace olcb::cdi {
 namespace {
 
@@ -47,6 +49,20 @@ std::string type_of(const Element& e) {
     return e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind);
 }
 
+// A bar is too narrow for a whole name: its own name, or for an unnamed variable its innermost
+// replica's CDI name, else the part of the name it contributes ("child3").
+std::string label_of(const Cursor& c) {
+    const Element& e = c.element();
+    if (!e.name.empty()) return e.name;
+    for (std::size_t level = c.group_depth(); level-- > 0;) {
+        const Element& g = c.group(level);
+        if (g.replication <= 1) continue;
+        std::string name = replica_name(g, c.replica(level));
+        if (!name.empty()) return name;
+    }
+    return variable_name_part(e);
+}
+
 class MapBuilder {
 public:
     MapBuilder(const Layout& layout, const MemoryMapOptions& options)
@@ -78,8 +94,9 @@ public:
             } else if (const std::size_t level = unlisted_level(c); level < c.group_depth()) {
                 c = skip_replicas(c, level, m);
             } else {
-                m.variables.push_back({c.path(), type_of(c.element()), c.segment_index(),
-                                       c.address(), c.size(), c.ordinal()});
+                m.variables.push_back({variable_name(layout_, c), replica_names(c), label_of(c),
+                                       type_of(c.element()), c.segment_index(), c.address(),
+                                       c.size(), c.ordinal()});
                 c.next();
             }
         }
@@ -118,8 +135,9 @@ private:
         const std::uint64_t from = c.replica(level);
         const std::uint64_t to = next_listed(from, group.replication);
         const std::uint64_t skipped = saturating_mul(to - from, counter_.per_replica(group));
-        m.summaries.push_back({group.name.empty() ? "(group)" : group.name, c.path(), from,
-                               to - from, skipped, replicas_range(c, level, from, to)});
+        m.summaries.push_back({group.name.empty() ? "(group)" : group.name,
+                               variable_name(layout_, c), from, to - from, skipped,
+                               replicas_range(c, level, from, to)});
         return layout_.at(saturating_add(c.ordinal(), skipped));
     }
 
@@ -127,7 +145,8 @@ private:
     Cursor skip_segment(const Cursor& c, SpaceMap& m) {
         const std::uint64_t end = segment_first_[c.segment_index() + 1];
         const std::uint64_t address = std::min(c.address(), m.end);
-        m.summaries.push_back({"", c.path(), 0, 0, end - c.ordinal(), {address, m.end - address}});
+        m.summaries.push_back(
+            {"", variable_name(layout_, c), 0, 0, end - c.ordinal(), {address, m.end - address}});
         return layout_.at(end);
     }
 
@@ -208,7 +227,9 @@ std::vector<SpaceMap> build_memory_map(const Layout& layout, const MemoryMapOpti
 nlohmann::json memory_map_json(const SpaceMap& map) {
     nlohmann::json variables = nlohmann::json::array();
     for (const MapVariable& v : map.variables) {
-        variables.push_back({{"path", v.path},
+        variables.push_back({{"name", v.name},
+                             {"replica", v.replica},
+                             {"label", v.label},
                              {"type", v.type},
                              {"segment", v.segment},
                              {"address", v.address},
@@ -218,7 +239,7 @@ nlohmann::json memory_map_json(const SpaceMap& map) {
     nlohmann::json summaries = nlohmann::json::array();
     for (const MapSummary& s : map.summaries) {
         summaries.push_back({{"group", s.group},
-                             {"first_path", s.first_path},
+                             {"first_name", s.first_name},
                              {"first_replica", s.first_replica},
                              {"replicas", s.replicas},
                              {"variables", s.variables},

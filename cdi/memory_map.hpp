@@ -1,5 +1,5 @@
 // The memory map of a laid-out CDI for display: per memory space, the variables with their
-// paths, types, addresses and sizes, the bytes no variable uses (gaps) and the bytes several
+// names, types, addresses and sizes, the bytes no variable uses (gaps) and the bytes several
 // variables share (overlaps). Replication stays bounded: the first replicas of a group (and its
 // last) are listed, the others summarized as one run, so replication="1000000" costs one entry.
 #pragma once
@@ -17,8 +17,10 @@ namespace olcb::cdi {
 
 /// One listed variable of a memory map.
 struct MapVariable {
-    std::string path;           ///< Cursor::path(), e.g. "Settings/Port[2](Port 2)/On event"
-    std::string type;           ///< "int", "string", ... (the element name for unknown elements)
+    std::string name;     ///< variable_name(), e.g. "Settings.Port(1).On event"
+    std::string replica;  ///< replica_names(), e.g. "Port 2" ("" when the CDI names none)
+    std::string label;    ///< short bar label: its own name, else its replica's, else its part
+    std::string type;     ///< "int", "string", ... (the element name for unknown elements)
     std::uint32_t segment = 0;  ///< index in Document::segments
     std::uint64_t address = 0;  ///< absolute address of the first byte
     std::uint64_t size = 0;     ///< bytes
@@ -36,7 +38,7 @@ struct MapRange {
 /// MemoryMapOptions::max_variables.
 struct MapSummary {
     std::string group;                ///< the group's name ("(group)" when unnamed)
-    std::string first_path;           ///< the path of the first variable not listed
+    std::string first_name;           ///< variable_name() of the first variable not listed
     std::uint64_t first_replica = 0;  ///< 0-based index of the first replica not listed
     std::uint64_t replicas = 0;       ///< replicas not listed (0 for the max_variables cut)
     std::uint64_t variables = 0;      ///< variables not listed
@@ -71,8 +73,9 @@ struct MemoryMapOptions {
 std::vector<SpaceMap> build_memory_map(const Layout& layout, const MemoryMapOptions& options = {});
 
 /// The map of one space as JSON: {"space", "segments", "name", "begin", "end", "variable_count",
-/// "variables": [{"path", "type", "segment", "address", "size", "ordinal"}], "summaries":
-/// [{"group", "first_path", "first_replica", "replicas", "variables", "address", "size"}],
+/// "variables": [{"name", "replica", "label", "type", "segment", "address", "size", "ordinal"}],
+/// "summaries":
+/// [{"group", "first_name", "first_replica", "replicas", "variables", "address", "size"}],
 /// "gaps": [{"address", "size"}], "overlaps": [{"address", "size"}]}.
 nlohmann::json memory_map_json(const SpaceMap& map);
 

@@ -10,6 +10,7 @@
 #include "base/utf8.hpp"
 #include "cdi/string_codec.hpp"
 #include "cdi/validator.hpp"
+#include "cdi/variable_name.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -311,7 +312,7 @@ std::string acdi_block_conflict(const Layout& layout) {
     layout.visit([&](const Cursor& c) {
         if ((c.space() != 0xFC && c.space() != 0xFB) || c.size() == 0 || fits_acdi_field(c))
             return true;
-        conflict += (conflict.empty() ? "" : ", ") + c.path() + " (space " +
+        conflict += (conflict.empty() ? "" : ", ") + variable_name(layout, c) + " (space " +
                     std::to_string(c.space()) + " bytes " + std::to_string(c.address()) + ".." +
                     std::to_string(c.address() + c.size() - 1) + ")";
         return ++listed < 8;

@@ -106,21 +106,12 @@ const Page = (() => {
         return size > 0 ? hex(address) + "\u2013" + hex(address + size - 1) : hex(address);
     }
 
-    // A bar's label: the variable's name, or for an unnamed one ("(int)") its replica's name.
-    function leaf(path) {
-        const parts = path.split("/");
-        const last = parts[parts.length - 1];
-        if (!last.startsWith("(") || parts.length < 2) return last;
-        const replica = /\(([^()]+)\)$/.exec(parts[parts.length - 2]);
-        return replica ? replica[1] : last;
-    }
-
     // Every bar, gap and overlap of a space, as items with [start, end) and a class.
     function mapItems(space, opt) {
         const items = [];
         space.variables.forEach((v, i) => {
             const cls = opt.classOf ? opt.classOf(v, i) : "t-" + v.type;
-            items.push({ kind: "var", i, start: v.address, end: v.address + v.size, cls: "mm-var " + cls, label: leaf(v.path) });
+            items.push({ kind: "var", i, start: v.address, end: v.address + v.size, cls: "mm-var " + cls, label: v.label });
         });
         space.summaries.forEach((s, i) => {
             const what = s.replicas ? s.group + " " + (s.first_replica + 1) + "\u2013" + (s.first_replica + s.replicas) : "not listed";
@@ -150,7 +141,7 @@ const Page = (() => {
     function describe(space, item, opt, inPanel) {
         if (item.kind === "var") {
             const v = space.variables[item.i];
-            const lines = [v.path, v.type + " \u00b7 " + plural(v.size, "byte") + " \u00b7 " + rangeText(v.address, v.size)];
+            const lines = [v.replica ? v.name + " (" + v.replica + ")" : v.name, v.type + " \u00b7 " + plural(v.size, "byte") + " \u00b7 " + rangeText(v.address, v.size)];
             return opt.describe ? lines.concat(opt.describe(v, item.i, inPanel)) : lines;
         }
         if (item.kind === "summary") {
@@ -158,7 +149,7 @@ const Page = (() => {
             const head = s.replicas
                 ? s.group + ": replicas " + (s.first_replica + 1) + "\u2013" + (s.first_replica + s.replicas) + " not listed"
                 : "the rest of the segment is not listed";
-            return [head, plural(s.variables, "variable") + " \u00b7 " + rangeText(s.address, s.size), "first: " + s.first_path];
+            return [head, plural(s.variables, "variable") + " \u00b7 " + rangeText(s.address, s.size), "first: " + s.first_name];
         }
         const r = item.kind === "gap" ? space.gaps[item.i] : space.overlaps[item.i];
         const what = item.kind === "gap" ? "gap: no variable uses these bytes" : "overlap: several variables use these bytes";

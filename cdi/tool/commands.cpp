@@ -19,6 +19,7 @@
 #include "cdi/rule_finding.hpp"
 #include "cdi/string_codec.hpp"
 #include "cdi/validator.hpp"
+#include "cdi/variable_name.hpp"
 
 namespace olcb::cdi::tool {
 
@@ -192,10 +193,49 @@ int run_validate(const std::vector<std::string>& args) {
     return status;
 }
 
+namespace {
+
+// The variable's type as lcc-cdi names it (the tag of an unknown element).
+std::string type_name(const Element& e) {
+    return e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind);
+}
+
+// One variable of `layout --json`. The name is the JMRI backup key (cdi/variable_name.hpp); the
+// replicas' CDI names (repname) follow only when the CDI gives some, as the label a
+// configuration tool shows.
+void print_layout_json(std::ostream& out, const Layout& layout, const Cursor& c, bool first) {
+    const Element& e = c.element();
+    nlohmann::json v = {{"name", variable_name(layout, c)},
+                        {"type", type_name(e)},
+                        {"space", c.space()},
+                        {"address", c.address()},
+                        {"size", c.size()}};
+    if (std::string replicas = replica_names(c); !replicas.empty()) v["replica"] = replicas;
+    add_details(e, v);
+    // The CDI's names are untrusted bytes: invalid UTF-8 becomes U+FFFD, never an exception
+    // half-way through the array.
+    out << (first ? "\n" : ",\n")
+        << v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// One variable of `layout`, a tab-separated line (the same fields as the JSON).
+void print_layout_text(std::ostream& out, const Layout& layout, const Cursor& c) {
+    const Element& e = c.element();
+    out << display(variable_name(layout, c)) << "\t" << display(type_name(e)) << "\tspace "
+        << c.space() << "\taddress " << c.address() << "\tsize " << c.size();
+    if (std::string replicas = replica_names(c); !replicas.empty())
+        out << "\treplica " << display(replicas);
+    std::string details = details_text(e);
+    if (!details.empty()) out << "\t" << display(details);
+    out << "\n";
+}
+
+}  // namespace
+
 int run_layout(const std::vector<std::string>& args) {
     po::options_description options("lcc-cdi layout options");
     options.add_options()("json",
-                          "print JSON: {\"variables\":[{\"path\",\"type\",\"space\","
+                          "print JSON: {\"variables\":[{\"name\",\"type\",\"space\","
                           "\"address\",\"size\",...}]}");
     po::variables_map vm;
     if (parse_args(args, options, "lcc-cdi layout [--json] FILE", vm)) return kExitOk;
@@ -209,26 +249,10 @@ int run_layout(const std::vector<std::string>& args) {
     if (json) out << "{\"variables\":[";
     bool first = true;
     loaded->layout.visit([&](const Cursor& c) {
-        const Element& e = c.element();
         if (json) {
-            nlohmann::json v = {
-                {"path", c.path()},
-                {"type", e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind)},
-                {"space", c.space()},
-                {"address", c.address()},
-                {"size", c.size()}};
-            add_details(e, v);
-            // The CDI's names are untrusted bytes: invalid UTF-8 becomes U+FFFD, never an
-            // exception half-way through the array.
-            out << (first ? "\n" : ",\n")
-                << v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+            print_layout_json(out, loaded->layout, c, first);
         } else {
-            out << display(c.path()) << "\t"
-                << display(e.kind == ElementKind::kUnknown ? e.tag : kind_name(e.kind))
-                << "\tspace " << c.space() << "\taddress " << c.address() << "\tsize " << c.size();
-            std::string details = details_text(e);
-            if (!details.empty()) out << "\t" << display(details);
-            out << "\n";
+            print_layout_text(out, loaded->layout, c);
         }
         first = false;
     });

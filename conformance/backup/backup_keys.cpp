@@ -1,30 +1,13 @@
 #include "conformance/backup/backup_keys.hpp"
 
-#include "conformance/backup/backup_values.hpp"
+#include "cdi/variable_name.hpp"
 
 namespace olcb::conform {
 
-namespace {
-
-std::string part_name(const std::string& name, std::size_t index) {
-    return name.empty() ? "child" + std::to_string(index) : escape_backup_text(name);
-}
-
-}  // namespace
-
+// The name every tool shows (cdi/variable_name.hpp) is the backup key: one function, so they
+// cannot drift apart.
 std::string jmri_backup_key(const cdi::Layout& layout, const cdi::Cursor& c) {
-    const cdi::Segment& seg = layout.document().segments[c.segment_index()];
-    std::string key =
-        seg.name.empty() ? "seg" + std::to_string(seg.content_index) : escape_backup_text(seg.name);
-    for (std::size_t level = 0; level < c.group_depth(); ++level) {
-        const cdi::Element& g = c.group(level);
-        key += '.';
-        key += part_name(g.name, g.content_index);
-        if (g.replication > 1) key += "(" + std::to_string(c.replica(level)) + ")";
-    }
-    key += '.';
-    key += part_name(c.element().name, c.element().content_index);
-    return key;
+    return cdi::variable_name(layout, c);
 }
 
 bool is_backed_up(const cdi::Element& e) {

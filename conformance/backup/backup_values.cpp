@@ -3,7 +3,6 @@
 #include <charconv>
 #include <utility>
 
-#include "base/hex.hpp"
 #include "cdi/decimal.hpp"
 #include "cdi/value_codec.hpp"
 
@@ -22,34 +21,6 @@ void append_utf8(std::string& out, std::uint32_t cp) {
         out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
         out += static_cast<char>(0x80 | (cp & 0x3F));
     }
-}
-
-// Decodes the UTF-8 sequence at text[i]; its code point and length, or length 0 when invalid.
-std::pair<std::uint32_t, std::size_t> decode_utf8(std::string_view text, std::size_t i) {
-    const auto b0 = static_cast<unsigned char>(text[i]);
-    std::size_t len = b0 < 0x80         ? 1
-                      : (b0 >> 5) == 6  ? 2
-                      : (b0 >> 4) == 14 ? 3
-                      : (b0 >> 3) == 30 ? 4
-                                        : 0;
-    if (len == 0 || i + len > text.size()) return {0, 0};
-    std::uint32_t cp = len == 1 ? b0 : b0 & (0x7F >> len);
-    for (std::size_t k = 1; k < len; ++k) {
-        const auto b = static_cast<unsigned char>(text[i + k]);
-        if ((b & 0xC0) != 0x80) return {0, 0};
-        cp = (cp << 6) | (b & 0x3F);
-    }
-    return {cp, len};
-}
-
-bool needs_escape(std::uint32_t cp) {
-    return cp == '=' || cp == '\\' || cp < 0x20 || (cp >= 0x7F && cp <= 0x9F) ||
-           (cp >= 0xD800 && cp <= 0xDFFF) || cp == 0xFFFE || cp == 0xFFFF;
-}
-
-// Lower-case hex, as OpenLCB_Java writes it (keys must match its files exactly).
-std::string hex4(std::uint32_t v) {
-    return "\\x" + base::hex_digits(v & 0xFFFF, 4, base::HexCase::kLower);
 }
 
 constexpr bool valid_int_size(std::uint64_t size) {
@@ -99,28 +70,6 @@ std::optional<std::vector<std::uint8_t>> string_bytes(std::uint64_t size, std::s
 }
 
 }  // namespace
-
-std::string escape_backup_text(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (std::size_t i = 0; i < text.size();) {
-        auto [cp, len] = decode_utf8(text, i);
-        // Not UTF-8: the byte is kept visible as its code point; the format has no way to say
-        // "raw byte", so it comes back as that character (a restore then finds it too long).
-        if (len == 0) {
-            out += hex4(static_cast<unsigned char>(text[i]));
-            ++i;
-            continue;
-        }
-        if (needs_escape(cp)) {
-            out += hex4(cp);
-        } else {
-            out.append(text.substr(i, len));
-        }
-        i += len;
-    }
-    return out;
-}
 
 std::string unescape_backup_text(std::string_view text) {
     if (text.find('\\') == std::string_view::npos) return std::string(text);

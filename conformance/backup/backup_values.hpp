@@ -11,11 +11,13 @@
 #include <vector>
 
 #include "cdi/document.hpp"
+#include "cdi/variable_name.hpp"
 
 namespace olcb::conform {
 
 /// A string value escaped for a backup line: `=`, `\` and control characters as \x + 4 hex.
-std::string escape_backup_text(std::string_view text);
+/// In cdi/ because variable names (the backup keys) are escaped the same way.
+using cdi::escape_backup_text;
 /// The inverse of escape_backup_text (either hex case); malformed escapes are kept as written.
 std::string unescape_backup_text(std::string_view text);
 

@@ -202,14 +202,14 @@ EventAnswers EventAnswers::ask(CheckRun& run, IdentifyTo to) {
 struct EventVar {
     std::uint8_t space = 0;
     std::uint32_t address = 0;
-    std::string path, key, protection;
+    std::string key, protection;
     std::optional<std::uint64_t> value;
 };
 
 struct EventVars {
     std::vector<EventVar> vars;
     bool capped = false;                  ///< the CDI has more than kMaxEventVars
-    std::vector<std::string> unreadable;  ///< "path: what the read did"
+    std::vector<std::string> unreadable;  ///< "name: what the read did"
 };
 
 EventVars event_vars(const cdi::Layout& layout) {
@@ -223,7 +223,6 @@ EventVars event_vars(const cdi::Layout& layout) {
         if (c.space() > 0xFF || c.address() > 0xFFFFFFF7u) return true;
         out.vars.push_back({static_cast<std::uint8_t>(c.space()),
                             static_cast<std::uint32_t>(c.address()),
-                            c.path(),
                             jmri_backup_key(layout, c),
                             protection_reason(layout, c),
                             {}});
@@ -250,7 +249,7 @@ void read_values(Session& s, const NodeInfo& node, EventVars& ev,
             if (r.ok && r.data.size() >= at + 8) {
                 v[k].value = EventId::from_bytes(std::span(r.data).subspan(at, 8))->value();
             } else {
-                ev.unreadable.push_back(v[k].path + ": " + describe(r));
+                ev.unreadable.push_back(v[k].key + ": " + describe(r));
             }
         }
         i = j;
@@ -406,7 +405,7 @@ void identify_addressed(CheckRun& run, const CheckSpec& spec) {
 std::map<std::uint64_t, std::string> distinct_ids(const EventVars& ev) {
     std::map<std::uint64_t, std::string> ids;
     for (const EventVar& v : ev.vars)
-        if (v.value && *v.value != 0) ids.emplace(*v.value, v.path);
+        if (v.value && *v.value != 0) ids.emplace(*v.value, v.key);
     return ids;
 }
 

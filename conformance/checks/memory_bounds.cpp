@@ -105,7 +105,7 @@ std::string protected_at(CheckRun& run, std::uint8_t sp, std::uint32_t address) 
     const cdi::Cursor c = layout->find(sp, address);
     if (!c.valid()) return {};
     const std::string why = protection_reason(*layout, c);
-    return why.empty() ? "" : c.path() + " (" + why + ")";
+    return why.empty() ? "" : jmri_backup_key(*layout, c) + " (" + why + ")";
 }
 
 // Writes original back at once and reads it again: "" when it came back, else what is wrong.
@@ -389,7 +389,8 @@ std::optional<MaskTarget> mask_target(CheckRun& run) {
             std::find(writable.begin(), writable.end(), sp) == writable.end() ||
             !protection_reason(*layout, c).empty())
             return true;
-        found = MaskTarget{sp, static_cast<std::uint32_t>(c.address()), c.path()};
+        found =
+            MaskTarget{sp, static_cast<std::uint32_t>(c.address()), jmri_backup_key(*layout, c)};
         return false;
     });
     return found;

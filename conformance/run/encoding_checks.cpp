@@ -194,7 +194,6 @@ EncodingPlan plan_encoding(const cdi::Layout& layout, const EncodingOptions& opt
                 static_cast<std::uint8_t>(c.space()),
                 static_cast<std::uint32_t>(c.address()),
                 static_cast<std::uint32_t>(c.size()),
-                c.path(),
                 key,
                 boundary_values(e, options.blob),
                 protection,

@@ -39,8 +39,7 @@ struct Probe {
     std::uint8_t space = 0;
     std::uint32_t address = 0;
     std::uint32_t size = 0;
-    std::string path;  ///< Cursor::path()
-    std::string key;   ///< the backup key (what --exclude / --only match)
+    std::string key;  ///< the variable's name, its backup key (what --exclude / --only match)
     std::vector<cdi::Value> values;
     /// Why the variable is protected ("" when it is not); probed only with --write-protected
     /// and never given a test value across a Reset/Reboot.

@@ -47,7 +47,7 @@ TEST(LayoutOverlap, OverlapWarningNamesBothVariables) {
     EXPECT_EQ(d.severity, Severity::kWarning);
     EXPECT_EQ(d.line, 3u);
     EXPECT_NE(d.message.find("2 variable(s) overlap"), std::string::npos) << d.message;
-    EXPECT_NE(d.message.find("'S/high' at 0 overlaps 'S/word' at 0..2"), std::string::npos)
+    EXPECT_NE(d.message.find("'S.high' at 0 overlaps 'S.word' at 0..2"), std::string::npos)
         << d.message;
 }
 

@@ -14,6 +14,7 @@
 
 #include "cdi/cdi_test_util.hpp"
 #include "cdi/parser.hpp"
+#include "cdi/variable_name.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -54,7 +55,9 @@ TEST(MemoryMap, ListsVariablesWithPathsTypesAndAddresses) {
     EXPECT_EQ(m.begin, 16u);
     EXPECT_EQ(m.end, 34u);
     ASSERT_EQ(m.variables.size(), 3u);
-    EXPECT_EQ(m.variables[0].path, "Settings/A");
+    EXPECT_EQ(m.variables[0].name, "Settings.A");
+    EXPECT_EQ(m.variables[0].replica, "");
+    EXPECT_EQ(m.variables[0].label, "A");
     EXPECT_EQ(m.variables[0].type, "int");
     EXPECT_EQ(m.variables[1].type, "string");
     EXPECT_EQ(m.variables[1].address, 18u);
@@ -101,16 +104,17 @@ TEST(MemoryMap, ReplicationListsTheFirstReplicasAndTheLastAndSummarizesTheRest) 
     const SpaceMap m = build_memory_map(*laid->layout).at(0);
     // Replicas 1-16 and 1000, 2 variables each, then After.
     ASSERT_EQ(m.variables.size(), 17u * 2 + 1);
-    EXPECT_EQ(m.variables[32].path, "S/Port[1000](Port 1000)/X");
+    EXPECT_EQ(m.variables[32].name, "S.Port(999).X");
+    EXPECT_EQ(m.variables[32].replica, "Port 1000");
     EXPECT_EQ(m.variables[32].address, 999u * 3);
-    EXPECT_EQ(m.variables.back().path, "S/After");
+    EXPECT_EQ(m.variables.back().name, "S.After");
     ASSERT_EQ(m.summaries.size(), 1u);
     const MapSummary& s = m.summaries[0];
     EXPECT_EQ(s.group, "Port");
     EXPECT_EQ(s.first_replica, 16u);
     EXPECT_EQ(s.replicas, 983u);
     EXPECT_EQ(s.variables, 983u * 2);
-    EXPECT_EQ(s.first_path, "S/Port[17](Port 17)/X");
+    EXPECT_EQ(s.first_name, "S.Port(16).X");
     EXPECT_EQ(s.range, (MapRange{48, 2949}));
     EXPECT_TRUE(m.gaps.empty());  // the summary covers its bytes
     expect_accounted(m);
@@ -180,12 +184,14 @@ TEST(MemoryMap, JsonCarriesEveryField) {
                             "variables", "summaries", "gaps", "overlaps"})
         EXPECT_TRUE(s.contains(key)) << key;
     EXPECT_EQ(s["variable_count"], 41);
-    EXPECT_EQ(s["variables"][0]["path"], "S/(int)");
-    for (const char* key : {"path", "type", "segment", "address", "size", "ordinal"})
+    EXPECT_EQ(s["variables"][0]["name"], "S.child1");
+    EXPECT_EQ(s["variables"][0]["label"], "child1");
+    for (const char* key :
+         {"name", "replica", "label", "type", "segment", "address", "size", "ordinal"})
         EXPECT_TRUE(s["variables"][0].contains(key)) << key;
     ASSERT_EQ(s["summaries"].size(), 1u);
     for (const char* key :
-         {"group", "first_path", "first_replica", "replicas", "variables", "address", "size"})
+         {"group", "first_name", "first_replica", "replicas", "variables", "address", "size"})
         EXPECT_TRUE(s["summaries"][0].contains(key)) << key;
     EXPECT_EQ(s["gaps"][0]["address"], 1);
     EXPECT_EQ(s["gaps"][0]["size"], 1);
@@ -212,11 +218,11 @@ TEST(MemoryMap, CorpusMapsAgreeWithTheLayout) {
             for (const MapVariable& v : m.variables) {
                 const Cursor c = laid.layout->at(v.ordinal);
                 ASSERT_TRUE(c.valid()) << entry.path();
-                EXPECT_EQ(c.path(), v.path) << entry.path();
+                EXPECT_EQ(variable_name(*laid.layout, c), v.name) << entry.path();
                 EXPECT_EQ(c.address(), v.address) << entry.path();
                 for (const MapRange& g : m.gaps) {
                     EXPECT_TRUE(v.address + v.size <= g.address || g.address + g.size <= v.address)
-                        << entry.path() << " " << v.path;
+                        << entry.path() << " " << v.name;
                 }
             }
         }

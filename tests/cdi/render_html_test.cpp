@@ -69,7 +69,8 @@ TEST(RenderHtml, CdiPageDataCarriesStructureHintsAndReplicas) {
     const nlohmann::json& map = j["memory_map"];
     ASSERT_EQ(map.size(), 2u);
     const nlohmann::json& last = map[1]["variables"][map[1]["variables"].size() - 2];
-    EXPECT_EQ(last["path"], "Settings/Port[4](Port 4)/Output");
+    EXPECT_EQ(last["name"], "Settings.Port(3).Output");
+    EXPECT_EQ(last["replica"], "Port 4");
     EXPECT_EQ(last["replicas"], nlohmann::json::array({3}));
     EXPECT_EQ(last["element"], (*port)["children"][3]["id"]);
     const std::string page = render_html(*laid.layout, "default.xml");

@@ -235,7 +235,7 @@ TEST_F(HtmlPage, ConformFaultScenarioWithTheFailFilter) {
     EXPECT_NE(v.dom.find(std::to_string(fails) + " of "), std::string::npos);
     expect_map_bars(v.dom, node["memory_map"], verdict_class);
     EXPECT_GE(count(v.dom, "mm-var v-failed mm-start"), 1u);  // Trim, where writing stopped
-    const auto panel = v.dom.find("<div class=\"mm-detail\"><strong>Settings/Trim</strong>");
+    const auto panel = v.dom.find("<div class=\"mm-detail\"><strong>Settings.Trim</strong>");
     ASSERT_NE(panel, std::string::npos);
     const std::string detail = v.dom.substr(panel, v.dom.find("</table>", panel) - panel);
     EXPECT_NE(detail.find("verdict: failed"), std::string::npos) << detail;

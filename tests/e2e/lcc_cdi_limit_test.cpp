@@ -70,7 +70,7 @@ TEST(LccCdiLimit, AFileOfExactlyTheLimitIsRead) {
     const RunResult r = lcc_cdi("layout " + path.string());
     EXPECT_EQ(r.out.find("over the CDI limit"), std::string::npos) << r.out;
     EXPECT_EQ(r.status, 0) << r.out;
-    EXPECT_EQ(r.out, "(space 253)/(int)\tint\tspace 253\taddress 0\tsize 1\n");
+    EXPECT_EQ(r.out, "seg0.child0\tint\tspace 253\taddress 0\tsize 1\n");
 }
 
 TEST(LccCdiLimit, ADeviceWithoutEndIsRefusedNotReadForever) {

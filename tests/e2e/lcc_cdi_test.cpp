@@ -92,8 +92,9 @@ TEST(LccCdi, LayoutJsonOfSample) {
     // Port group: 4 replicas of 33 bytes from 46; the last replica's Output at 46 + 3*33 + 32.
     EXPECT_EQ(vars[11]["address"], 46);
     EXPECT_EQ(vars[26]["address"], 46 + 3 * 33 + 32);
-    EXPECT_NE(vars[26]["path"].get<std::string>().find("[4]"), std::string::npos)
-        << vars[26]["path"];
+    EXPECT_EQ(vars[26]["name"], "Settings.Port(3).Output");
+    EXPECT_EQ(vars[26]["replica"], "Port 4");
+    EXPECT_FALSE(vars[0].contains("replica"));  // only where the CDI names the replica
     EXPECT_EQ(vars[27]["type"], "action");
     EXPECT_EQ(vars[27]["address"], 178);
     EXPECT_EQ(vars[2]["map"].size(), 2U);
@@ -104,6 +105,14 @@ TEST(LccCdi, LayoutTextOneLinePerVariable) {
     ASSERT_EQ(r.status, 0);
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 28);
     EXPECT_NE(r.out.find("space 253\taddress 178\tsize 1"), std::string::npos) << r.out;
+    // Named as its backup key; the CDI's replica name beside it, not in it.
+    EXPECT_NE(r.out.find("\nSettings.Port(0).Port name\tstring\tspace 253\taddress 46\tsize 16"
+                         "\treplica Port 1\n"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("\nSettings.Trim\tint\tspace 253\taddress 1\tsize 2\tsigned"),
+              std::string::npos)
+        << r.out;
 }
 
 TEST(LccCdi, RenderShowsTree) {
@@ -182,11 +191,13 @@ TEST(LccCdi, EveryScenarioCdiValidatesWithoutAFinding) {
     EXPECT_GE(files, 3);
 }
 
-// A <name> holding bytes that are not UTF-8 (0xFF 0xFE): still a layout, as valid JSON.
+// A <name> and a <repname> holding bytes that are not UTF-8 (0xFF 0xFE): still a layout, as
+// valid JSON.
 std::string cdi_with_invalid_utf8() {
     std::string text = default_with_first_line("<?xml version=\"1.0\"?>");
     const std::size_t name = text.find("<name>", text.find("<segment")) + 6;
     text.insert(name, "\xFF\xFE");
+    text.insert(text.find("<repname>") + 9, "\xFF\xFE");
     return text;
 }
 
@@ -197,6 +208,8 @@ TEST(LccCdi, LayoutJsonReplacesInvalidUtf8AndStaysValid) {
     const auto json = nlohmann::json::parse(r.out, nullptr, false);
     ASSERT_FALSE(json.is_discarded()) << r.out;
     ASSERT_EQ(json.at("variables").size(), 28U);
+    // A name shows the bytes as a backup key escapes them; a replica name, as U+FFFD.
+    EXPECT_EQ(json["variables"][0]["name"], "\\x00ff\\x00feNode identity.User Name");
     EXPECT_NE(json.dump().find("\xEF\xBF\xBD"), std::string::npos) << r.out;  // U+FFFD
 
     RunResult warned = lcc_cdi("layout --json " + bad, true);

@@ -67,7 +67,7 @@ TEST(MemoryBoundsTest, DefaultNodePassesAndMemoryIsUnchanged) {
     EXPECT_TRUE(contains(fb.message, "refused with 0x1082")) << fb.message;
     // The last byte of 0xFD is an <action>: no crossing write may include it.
     const CheckResult& fd = expect_status(ran.results, "memory.write-past-end.fd", Status::kSkip);
-    EXPECT_TRUE(contains(fd.message, "Settings/Flash LEDs (<action> triggers a command)"))
+    EXPECT_TRUE(contains(fd.message, "Settings.Flash LEDs (<action> triggers a command)"))
         << fd.message;
     EXPECT_EQ(find_check(ran.results, "memory.write-past-end.ff"), nullptr);
     EXPECT_EQ(find_check(ran.results, "memory.write-past-end.fc"), nullptr);

@@ -110,10 +110,9 @@ TEST_F(Fixture, GoodNodePassesEveryCheckAndNeverWritesTheAction) {
         }
     }
     // Line(1..10)/N sampled to 3 replicas; the action (address 25) untouched.
-    EXPECT_EQ(
-        std::count_if(probes.begin(), probes.end(),
-                      [](const Probe& p) { return p.path.find("Line") != std::string::npos; }),
-        3);
+    EXPECT_EQ(std::count_if(probes.begin(), probes.end(),
+                            [](const Probe& p) { return p.key.find("Line") != std::string::npos; }),
+              3);
     for (const auto& p : probes) EXPECT_NE(p.element->kind, cdi::ElementKind::kAction);
 }
 

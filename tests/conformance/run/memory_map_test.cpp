@@ -34,16 +34,16 @@ constexpr const char* kCdi = R"(<?xml version="1.0"?><cdi><segment space="253"><
 <group replication="100"><name>Port</name><int><name>Mode</name></int></group>
 </segment><segment space="255"><int><name>Fixed</name></int></segment></cdi>)";
 
-const cdi::MapVariable* find(const MemoryMapSpace& s, const std::string& path) {
+const cdi::MapVariable* find(const MemoryMapSpace& s, const std::string& name) {
     for (const auto& v : s.map.variables) {
-        if (v.path == path) return &v;
+        if (v.name == name) return &v;
     }
     return nullptr;
 }
 
-const VariableVerdict* verdict_of(const MemoryMapSpace& s, const std::string& path) {
+const VariableVerdict* verdict_of(const MemoryMapSpace& s, const std::string& name) {
     for (std::size_t i = 0; i < s.map.variables.size(); ++i) {
-        if (s.map.variables[i].path == path) return &s.verdicts[i];
+        if (s.map.variables[i].name == name) return &s.verdicts[i];
     }
     return nullptr;
 }
@@ -65,35 +65,34 @@ TEST_F(NodeMemoryMap, VerdictsFollowTheRulesThatKeptVariablesUnwritten) {
     ASSERT_EQ(spaces.size(), 2u);
     const MemoryMapSpace& s = spaces[0];
     ASSERT_EQ(s.verdicts.size(), s.map.variables.size());
-    EXPECT_EQ(verdict_of(s, "S/Internal data/Version")->verdict, MapVerdict::kProtected);
-    EXPECT_EQ(verdict_of(s, "S/Go")->verdict, MapVerdict::kProtected);
-    EXPECT_NE(verdict_of(s, "S/Raw")->reason.find("--blob"), std::string::npos);
-    EXPECT_NE(verdict_of(s, "S/Port[2]/Mode")->reason.find("not sampled"), std::string::npos);
+    EXPECT_EQ(verdict_of(s, "S.Internal data.Version")->verdict, MapVerdict::kProtected);
+    EXPECT_EQ(verdict_of(s, "S.Go")->verdict, MapVerdict::kProtected);
+    EXPECT_NE(verdict_of(s, "S.Raw")->reason.find("--blob"), std::string::npos);
+    EXPECT_NE(verdict_of(s, "S.Port(1).Mode")->reason.find("not sampled"), std::string::npos);
     // Planned, but the checks never reached it.
-    EXPECT_NE(verdict_of(s, "S/Plain")->reason.find("beyond"), std::string::npos);
-    EXPECT_NE(verdict_of(spaces[1], "(space 255)/Fixed")->reason.find("read-only"),
-              std::string::npos);
-    evidence.planned = {find(s, "S/Plain")->ordinal};
+    EXPECT_NE(verdict_of(s, "S.Plain")->reason.find("beyond"), std::string::npos);
+    EXPECT_NE(verdict_of(spaces[1], "seg1.Fixed")->reason.find("read-only"), std::string::npos);
+    evidence.planned = {find(s, "S.Plain")->ordinal};
     const auto planned = map(evidence);
-    EXPECT_NE(verdict_of(planned[0], "S/Plain")->reason.find("not reached"), std::string::npos);
+    EXPECT_NE(verdict_of(planned[0], "S.Plain")->reason.find("not reached"), std::string::npos);
     evidence.protection.exclude = {"*Plain*"};
     const auto excluded = map(evidence);
-    EXPECT_NE(verdict_of(excluded[0], "S/Plain")->reason.find("--exclude"), std::string::npos);
+    EXPECT_NE(verdict_of(excluded[0], "S.Plain")->reason.find("--exclude"), std::string::npos);
     evidence.not_written = "--read-only: no write";
     const auto read_only = map(evidence);
-    EXPECT_EQ(verdict_of(read_only[0], "S/Plain")->reason, "--read-only: no write");
-    EXPECT_EQ(verdict_of(read_only[0], "S/Internal data/Version")->verdict, MapVerdict::kProtected);
+    EXPECT_EQ(verdict_of(read_only[0], "S.Plain")->reason, "--read-only: no write");
+    EXPECT_EQ(verdict_of(read_only[0], "S.Internal data.Version")->verdict, MapVerdict::kProtected);
 }
 
 TEST_F(NodeMemoryMap, TestedVerdictsAreKeptUnlessTheLinkWentDown) {
     MapEvidence evidence;
     const auto first = map(evidence);
-    const std::uint64_t plain = find(first[0], "S/Plain")->ordinal;
+    const std::uint64_t plain = find(first[0], "S.Plain")->ordinal;
     VariableVerdict failed{MapVerdict::kFailed, "reads back as 00", "5", "05", {}};
     failed.values.push_back({"255", "FF", "00", "0", "", false});
     evidence.tested.push_back({plain, failed});
     const auto spaces = map(evidence);
-    const VariableVerdict* v = verdict_of(spaces[0], "S/Plain");
+    const VariableVerdict* v = verdict_of(spaces[0], "S.Plain");
     EXPECT_EQ(v->verdict, MapVerdict::kFailed);
     ASSERT_EQ(v->values.size(), 1u);
     EXPECT_EQ(v->values[0].read, "00");
@@ -107,7 +106,7 @@ TEST_F(NodeMemoryMap, TestedVerdictsAreKeptUnlessTheLinkWentDown) {
     EXPECT_FALSE(var["values"][0]["ok"].get<bool>());
     evidence.not_judged = "not judged: the link went down mid-run";
     const auto unjudged = map(evidence);
-    const VariableVerdict* after = verdict_of(unjudged[0], "S/Plain");
+    const VariableVerdict* after = verdict_of(unjudged[0], "S.Plain");
     EXPECT_EQ(after->verdict, MapVerdict::kSkipped);
     EXPECT_EQ(after->reason, evidence.not_judged);
 }
@@ -197,7 +196,7 @@ TEST_F(MemoryMapRun, CleanNodeVerifiesEveryTestedVariable) {
     std::size_t verified = 0;
     for (std::size_t i = 0; i < settings->verdicts.size(); ++i) {
         const VariableVerdict& v = settings->verdicts[i];
-        EXPECT_NE(v.verdict, MapVerdict::kFailed) << settings->map.variables[i].path;
+        EXPECT_NE(v.verdict, MapVerdict::kFailed) << settings->map.variables[i].name;
         if (v.verdict != MapVerdict::kVerified) continue;
         ++verified;
         EXPECT_FALSE(v.original_bytes.empty());
@@ -206,10 +205,9 @@ TEST_F(MemoryMapRun, CleanNodeVerifiesEveryTestedVariable) {
     }
     // 9 settings plus Ports 1 and 4 (4 variables each); the action is protected, 2 and 3 skipped.
     EXPECT_EQ(verified, 9u + 8u);
-    EXPECT_EQ(verdict_of(*settings, "Settings/Flash LEDs")->verdict, MapVerdict::kProtected);
-    EXPECT_EQ(verdict_of(*settings, "Settings/Port[2](Port 2)/On event")->verdict,
-              MapVerdict::kSkipped);
-    const VariableVerdict* trim = verdict_of(*settings, "Settings/Trim");
+    EXPECT_EQ(verdict_of(*settings, "Settings.Flash LEDs")->verdict, MapVerdict::kProtected);
+    EXPECT_EQ(verdict_of(*settings, "Settings.Port(1).On event")->verdict, MapVerdict::kSkipped);
+    const VariableVerdict* trim = verdict_of(*settings, "Settings.Trim");
     ASSERT_NE(trim, nullptr);
     EXPECT_EQ(trim->values.front().value, "-1000");
     EXPECT_EQ(trim->values.front().written, "FC 18");
@@ -222,7 +220,7 @@ TEST_F(MemoryMapRun, LittleEndianIntsFailWithTheBytesReadBack) {
     const NodeReport r = run(faults);
     const MemoryMapSpace* settings = space_of(r, 253);
     ASSERT_NE(settings, nullptr);
-    const VariableVerdict* trim = verdict_of(*settings, "Settings/Trim");
+    const VariableVerdict* trim = verdict_of(*settings, "Settings.Trim");
     ASSERT_NE(trim, nullptr);
     EXPECT_EQ(trim->verdict, MapVerdict::kFailed);
     EXPECT_FALSE(trim->reason.empty());
@@ -231,9 +229,9 @@ TEST_F(MemoryMapRun, LittleEndianIntsFailWithTheBytesReadBack) {
     EXPECT_TRUE(swapped);
     // A one-byte int cannot be stored in the wrong order; after Trim's original failed to read
     // back, nothing further was written.
-    EXPECT_EQ(verdict_of(*settings, "Settings/Enabled")->verdict, MapVerdict::kVerified);
-    EXPECT_EQ(verdict_of(*settings, "Settings/Label")->verdict, MapVerdict::kSkipped);
-    EXPECT_NE(verdict_of(*settings, "Settings/Label")->reason.find("not reached"),
+    EXPECT_EQ(verdict_of(*settings, "Settings.Enabled")->verdict, MapVerdict::kVerified);
+    EXPECT_EQ(verdict_of(*settings, "Settings.Label")->verdict, MapVerdict::kSkipped);
+    EXPECT_NE(verdict_of(*settings, "Settings.Label")->reason.find("not reached"),
               std::string::npos);
 }
 
