@@ -166,7 +166,7 @@ po::options_description node_options() {
         "initial user description of a fresh image ({n}, {id} as above)")(
         "fault", po::value<std::vector<std::string>>()->value_name("NAME"),
         "misbehave as NAME (repeatable; see --list-faults, docs/faults.md)")(
-        "watch-variable", po::value<std::string>()->value_name("PATH"),
+        "watch-variable", po::value<std::string>()->value_name("NAME"),
         "the variable abort-on-value and factory-reset-on-version-change watch, as "
         "lcc-cdi layout names it (default: the first <int> of space 253)")(
         "memory-config", po::value<std::string>()->value_name("BOOL"),

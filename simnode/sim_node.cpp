@@ -10,6 +10,7 @@
 
 #include "base/error_codes.hpp"
 #include "cdi/schema_validator.hpp"
+#include "cdi/variable_name.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/datagram_defs.hpp"
 
@@ -62,7 +63,7 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     if (!config.watch_variable.empty()) {
         bool found = false;
         model->layout->visit([&](const cdi::Cursor& c) {
-            found = c.path() == config.watch_variable;
+            found = cdi::names_variable(*model->layout, c, config.watch_variable);
             return !found;
         });
         if (!found) {
@@ -170,7 +171,7 @@ void SimNode::find_watched() {
     const std::string& wanted = config_.watch_variable;
     memory().model().layout->visit([&](const cdi::Cursor& c) {
         if (wanted.empty() ? c.space() != kConfigSpace || c.element().kind != cdi::ElementKind::kInt
-                           : c.path() != wanted)
+                           : !cdi::names_variable(*memory().model().layout, c, wanted))
             return true;
         watched_space_ = static_cast<std::uint8_t>(c.space());
         watched_address_ = static_cast<std::uint32_t>(c.address());

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "cdi/layout.hpp"
+#include "cdi/variable_name.hpp"
 #include "memory/acdi.hpp"
 #include "simnode/sim_node.hpp"
 
@@ -29,7 +30,7 @@ std::optional<VariableRef> acdi_user_variable(std::uint64_t address) {
     for (const auto& [offset, element] : {std::pair{acdi::kUserNameOffset, &name},
                                           std::pair{acdi::kUserDescriptionOffset, &description}}) {
         if (address >= offset && address < offset + element->size) {
-            return VariableRef{offset, element->size, element, "ACDI/" + element->name};
+            return VariableRef{offset, element->size, element, "ACDI." + element->name};
         }
     }
     return std::nullopt;
@@ -51,7 +52,9 @@ std::optional<VariableRef> NodeProfile::variable_at(std::uint8_t space,
                                                     std::uint64_t address) const {
     if (cdi_ && cdi_->layout) {
         const cdi::Cursor c = cdi_->layout->find(space, address);
-        if (c.valid()) return VariableRef{c.address(), c.size(), &c.element(), c.path()};
+        if (c.valid())
+            return VariableRef{c.address(), c.size(), &c.element(),
+                               cdi::variable_name(*cdi_->layout, c)};
     }
     const bool acdi = cdi_ && cdi_->document->acdi.has_value();
     if (acdi && space == memory::to_u8(acdi::kUserSpace)) return acdi_user_variable(address);

@@ -29,7 +29,7 @@ struct VariableRef {
     std::uint64_t address = 0;              ///< its first byte
     std::uint64_t size = 0;                 ///< its bytes
     const cdi::Element* element = nullptr;  ///< what it is (never null in a found ref)
-    std::string path;                       ///< "Settings/Port[2](Port 2)/On event"
+    std::string name;                       ///< cdi::variable_name(): "Settings.Port(1).On event"
     /// One past its last byte.
     std::uint64_t end() const { return address + size; }
 };

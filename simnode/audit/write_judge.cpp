@@ -20,7 +20,7 @@ std::string describe(std::uint8_t space, const VariableRef& v) {
     return "<" +
            std::string(v.element->tag.empty() ? cdi::kind_name(v.element->kind)
                                               : v.element->tag.c_str()) +
-           "> '" + v.path + "'" + where;
+           "> '" + v.name + "'" + where;
 }
 
 void add_frames(std::vector<CanFrame>& to, std::span<const CanFrame> frames) {

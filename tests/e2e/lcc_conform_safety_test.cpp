@@ -92,7 +92,7 @@ std::vector<std::string> printed_restore(const std::string& text) {
 
 TEST(LccConformSafety, ANodeThatNeverComesBackLeavesAWorkingRestoreCommand) {
     Simnode n(source_path("scenarios/default.ini"),
-              {"--fault", "abort-on-value=12000", "--watch-variable", "Node identity/User Name"});
+              {"--fault", "abort-on-value=12000", "--watch-variable", "Node identity.User Name"});
     ASSERT_NE(n.port, 0);
     TempDir out("lcc-conform-safety-out");
     const auto before = snapshot_images(n.images.path());

@@ -44,7 +44,7 @@ TEST(NodeProfile, EveryByteOfAVariableFindsItWithItsPath) {
         EXPECT_EQ(v->address, 1u);
         EXPECT_EQ(v->size, 2u);
         EXPECT_EQ(v->end(), 3u);
-        EXPECT_EQ(v->path, "Settings/Trim");
+        EXPECT_EQ(v->name, "Settings.Trim");
         ASSERT_NE(v->element, nullptr);
     }
     EXPECT_FALSE(p.variable_at(0xFD, 179)) << "past the segment";
@@ -57,11 +57,11 @@ TEST(NodeProfile, WithAcdiTheUserStringsAreVariablesWhereTheCdiLaysOutNone) {
     ASSERT_TRUE(name);
     EXPECT_EQ(name->address, 1u);
     EXPECT_EQ(name->size, 63u);
-    EXPECT_EQ(name->path, "ACDI/User Name");
+    EXPECT_EQ(name->name, "ACDI.User Name");
     const auto description = p.variable_at(0xFB, 127);
     ASSERT_TRUE(description);
     EXPECT_EQ(description->address, 64u);
-    EXPECT_EQ(description->path, "ACDI/User Description");
+    EXPECT_EQ(description->name, "ACDI.User Description");
     EXPECT_FALSE(p.variable_at(0xFB, 0)) << "the version byte is the firmware's";
     EXPECT_FALSE(p.variable_at(0xFB, 128));
     const auto speed = p.variable_at(0xFD, 5);

@@ -22,7 +22,7 @@ TEST_F(MemoryRules, AWriteOfPartOfAnIntOrAcrossTwoVariablesStraddles) {
     const auto f = found(RuleId::kMemoryWriteStraddles);
     ASSERT_EQ(f.size(), 1u);  // all about Trim
     EXPECT_EQ(f[0].count, 3u);
-    EXPECT_NE(f[0].message.find("'Settings/Trim'"), std::string::npos) << f[0].message;
+    EXPECT_NE(f[0].message.find("'Settings.Trim'"), std::string::npos) << f[0].message;
 }
 
 TEST_F(MemoryRules, ConsecutiveWritesOfOneRangeAreOneWrite) {
@@ -81,7 +81,7 @@ TEST_F(MemoryRules, ValuesOutsideAMapAreFindings) {
     write(0xFD, 15, {0});  // Mode: 1, 2 or 3
     const auto f = found(RuleId::kCdiNotInMap);
     ASSERT_EQ(f.size(), 2u);
-    EXPECT_NE(f[0].message.find("'Settings/Enabled'"), std::string::npos) << f[0].message;
+    EXPECT_NE(f[0].message.find("'Settings.Enabled'"), std::string::npos) << f[0].message;
 }
 
 TEST_F(MemoryRules, AnActionWrittenWithAnotherValueIsAFinding) {
@@ -121,7 +121,7 @@ TEST(WriteJudge, AWholeVariableIsJudgedByItsCdiValueRules) {
     ASSERT_EQ(v.size(), 1u);
     EXPECT_EQ(v[0].rule, RuleId::kCdiIntOutOfRange);
     EXPECT_EQ(v[0].key, "FD:00000001");
-    EXPECT_NE(v[0].message.find("'Settings/Trim'"), std::string::npos) << v[0].message;
+    EXPECT_NE(v[0].message.find("'Settings.Trim'"), std::string::npos) << v[0].message;
     EXPECT_THAT(judge(j, 0xFD, 1, {0x07, 0xD0}, false), IsEmpty()) << "coverage only";
 }
 
