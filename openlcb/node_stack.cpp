@@ -206,6 +206,7 @@ void NodeStack::enter_permitted() {
     sender_.set_alias(a);
     if (!initialized_ || config_.reinitialize_after_alias_change) {
         send_initialization_complete();
+        logged_in_at_ = now_;
         initialized_ = true;
         flush_pending();
         if (on_initialized_) on_initialized_();

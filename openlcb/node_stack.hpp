@@ -293,6 +293,9 @@ public:
     std::uint64_t dropped_frames() const { return dropped_frames_; }
     /// Number of times Initialization Complete was sent.
     std::uint32_t initializations() const { return initializations_; }
+    /// When it last became Initialized after reserving an alias (a start-up or restart; not a
+    /// reinitialize() on the same alias); the epoch before the first.
+    TimePoint logged_in_at() const { return logged_in_at_; }
 
     /// True for MTIs never answered with OIR when unhandled: OIR and TDE themselves and the
     /// replies (PSR, SNIP reply, Datagram OK/Rejected, stream replies/data, traction reply).
@@ -354,6 +357,7 @@ private:
     Message scratch_;  // single-frame global messages are decoded here without allocating
     std::uint64_t dropped_frames_ = 0;
     std::uint32_t initializations_ = 0;
+    TimePoint logged_in_at_{};
     std::multimap<TimePoint, TimerHandler> timers_;
     TimePoint now_{};
     std::optional<TimePoint> last_ame_;  // AMDs right after an AME answer it (no re-init)

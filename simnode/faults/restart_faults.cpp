@@ -1,4 +1,5 @@
 // Restart faults: nodes that crash, restart or refuse Reset/Lock, as real firmware does.
+#include "openlcb/can_defs.hpp"
 #include "simnode/faults/fault_families.hpp"
 
 namespace olcb::simnode {
@@ -23,6 +24,33 @@ void reset_without_ack(ReplyTurn& turn, FaultValue) {
         std::holds_alternative<memory::ResetReboot>(turn.asked.message)) {
         turn.unacknowledged = true;
     }
+}
+
+// True for a frame of a request to the stack's alias: a datagram or an addressed message other
+// than the answers to the node's own datagrams (what is known to be lost, docs/faults.md).
+bool request_to(const NodeStack& stack, const CanFrame& frame) {
+    if (!can::is_openlcb_frame(frame) || !can::is_message(frame.id)) return false;
+    const can::FrameFormat format = can::frame_format(frame.id);
+    if (can::is_datagram_format(format)) return can::dest_alias(frame.id) == stack.alias();
+    const std::uint16_t cmti = can::can_mti(frame.id);
+    const bool datagram_answer = cmti == (to_u16(Mti::kDatagramReceivedOk) & 0xFFF) ||
+                                 cmti == (to_u16(Mti::kDatagramRejected) & 0xFFF);
+    if (format != can::FrameFormat::kGlobalAddressed || !is_addressed(static_cast<Mti>(cmti)) ||
+        frame.len < 2 || datagram_answer)
+        return false;
+    return can::addressed_dest(frame.data[0], frame.data[1]) == stack.alias();
+}
+
+// Like OpenLcbCLib after a Reset: right after its Initialization Complete the node takes no
+// request addressed to it yet.
+void deaf_after_init(StackHooks& hooks, FaultValue v) {
+    const Duration deaf = std::chrono::milliseconds(v.value);
+    hooks.add_inbound([deaf](NodeStack& stack, const CanFrame& frame, TimePoint now) {
+        FrameRoute route;
+        if (stack.initialized() && now - stack.logged_in_at() < deaf && request_to(stack, frame))
+            route.messages = false;
+        return route;
+    });
 }
 
 // The firmware trips over the value while building its SNIP reply.
@@ -114,6 +142,35 @@ std::vector<FaultDecl> restarts() {
     };
 }
 
+// Slow to listen after a start-up.
+std::vector<FaultDecl> start_ups() {
+    return {
+        {
+            .name = "deaf-after-init",
+            .order = 287,
+            .param = {ParamKind::kNumber, "MS", 250, 1, kMaxDelayMs},
+            .summary = "datagrams and addressed requests ignored for MS ms after each start-up",
+            .doc_parameter = "`MS`, default 250",
+            .rule_broken = "none judged: every datagram is answered and an addressed Verify Node "
+                           "ID gets Verified Node ID (fact sheet 3, 4), but no clause says how "
+                           "soon after Initialization Complete a node listens. OpenLcbCLib after "
+                           "a Reset: a Verify Node ID addressed and a Lock datagram sent within "
+                           "1 ms of its Initialization Complete got no answer, a global Verify "
+                           "0.5 s later did (docs/benchmarks.md)",
+            .client_sees = "for MS ms after each start-up's Initialization Complete (the first "
+                           "and every restart's, not a re-announcement on the same alias) every "
+                           "datagram and addressed request to the node is dropped unanswered; "
+                           "global messages and the answers to its own datagrams are taken. A "
+                           "client that "
+                           "sends its next request the moment the node is back waits out its "
+                           "timeouts (lcc-conform's Lock after `--reboot`: 4 s); a careful one "
+                           "first sees the node answer",
+            .verdict = Verdict::kNone,
+            .hooks = {.stack = deaf_after_init},
+        },
+    };
+}
+
 // Commands refused.
 std::vector<FaultDecl> refusals() {
     return {
@@ -150,6 +207,7 @@ std::vector<FaultDecl> refusals() {
 
 std::vector<FaultDecl> restart_faults() {
     auto all = restarts();
+    for (FaultDecl& d : start_ups()) all.push_back(std::move(d));
     for (FaultDecl& d : refusals()) all.push_back(std::move(d));
     return all;
 }

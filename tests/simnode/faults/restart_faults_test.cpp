@@ -76,6 +76,31 @@ TEST_F(RestartFaultTest, GoodNodeObeysReset) {
     EXPECT_EQ(node_->stack().initializations(), 2u);
 }
 
+TEST_F(RestartFaultTest, DeafAfterInitIgnoresRequestsRightAfterEachStartUp) {
+    start_with({"deaf-after-init=300"});  // start() returns 10 ms after Initialization Complete
+    take();
+    send_addressed(to_u16(Mti::kVerifyNodeIdAddressed));
+    net_.run_for(50ms);
+    EXPECT_EQ(count_prefix(take(), ":X19170"), 0u) << "an addressed Verify is not answered yet";
+    send_global(to_u16(Mti::kVerifyNodeIdGlobal));
+    net_.run_for(50ms);
+    EXPECT_EQ(count_prefix(take(), ":X19170"), 1u) << "a global one is";
+    const Answer lost = exchange(read_cmd(0xFD, 0, 1), 100ms);
+    EXPECT_FALSE(lost.ok || lost.rejected || lost.reply) << "a datagram is dropped unanswered";
+    net_.run_for(300ms);
+    const Answer later = exchange(read_cmd(0xFD, 0, 1));
+    EXPECT_TRUE(later.ok && later.reply) << "the node listens once the time is over";
+    reboot();  // the Reset's own OK comes before the restart
+    take();
+    send_addressed(to_u16(Mti::kVerifyNodeIdAddressed));
+    net_.run_for(50ms);
+    EXPECT_EQ(count_prefix(take(), ":X19170"), 0u) << "deaf again after the restart";
+    net_.run_for(300ms);
+    send_addressed(to_u16(Mti::kVerifyNodeIdAddressed));
+    net_.run_for(50ms);
+    EXPECT_EQ(count_prefix(take(), ":X19170"), 1u);
+}
+
 TEST_F(RestartFaultTest, ResetRejected) {
     start_with({"reset-rejected"});
     EXPECT_TRUE(exchange({0x20, 0x88, 2, 1, 0x0D, 0, 0, 1}).reply);  // take the lock
