@@ -489,7 +489,10 @@ RebootOutcome NodeRun::reboot() {
     }
     watch_.rebase();
     if (locked_) {
-        // A reset clears the lock (MemoryConfigurationS §4.17): take it again.
+        // A reset clears the lock (MemoryConfigurationS §4.17): take it again, once the node
+        // answers: OpenLcbCLib ignores requests sent the moment it is back (deaf-after-init),
+        // and a lost Lock costs the ack and reply timeouts.
+        session_.ping(node_, report_.timing.answer);
         session_.command(node_, memory::encode(memory::Lock{session_.tool_id().value()}));
     }
     return {true, 0, false};

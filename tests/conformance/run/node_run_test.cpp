@@ -26,6 +26,7 @@ namespace olcb::conform {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace std::chrono_literals;
 using Memory = std::map<std::uint8_t, std::vector<std::uint8_t>>;
 
 class SafetyTest : public ::testing::Test {
@@ -183,6 +184,38 @@ TEST_F(SafetyTest, RejectedResetAndLockQuoteTheCodeWithoutAFailure) {
     EXPECT_EQ(lock->status, Status::kSkip);  // optional: "not implemented" is no finding
     EXPECT_NE(lock->message.find("0x1041"), std::string::npos) << lock->message;
     EXPECT_EQ(memory(), before_);
+}
+
+// OpenLcbCLib ignores requests sent the moment it is back from a Reset (deaf-after-init): the
+// Lock the run takes again after --reboot's reset waits until the node answers, instead of being
+// lost and costing the acknowledgement and reply timeouts (6 s more than a listening node in
+// simulated time; 2.5 s with the wait, the rest spent by the protocol checks' own Reset).
+TEST_F(SafetyTest, TheLockAfterTheResetWaitsUntilTheNodeListens) {
+    struct Baseline : SafetyTest {
+        void TestBody() override {}
+        using SafetyTest::net_;
+        using SafetyTest::run;
+        using SafetyTest::start;
+        using SafetyTest::TearDown;
+    };
+    RunOptions o;
+    o.reboot = true;
+    Baseline quick;
+    quick.start("write-past-end-spills");  // a fault no default run meets
+    TimePoint t = quick.net_.now();
+    EXPECT_EQ(quick.run(o).count(Status::kFail), 0u);
+    const Duration base = quick.net_.now() - t;
+    quick.TearDown();
+
+    start("deaf-after-init=250");
+    t = net_.now();
+    const NodeReport r = run(o);
+    const Duration deaf = net_.now() - t;
+    EXPECT_EQ(r.count(Status::kFail), 0u) << failures(r);
+    EXPECT_EQ(find(r, "encoding.persist-after-reboot")->status, Status::kPass);
+    EXPECT_EQ(memory(), before_);
+    EXPECT_LT(deaf - base, 4s)
+        << std::chrono::duration_cast<std::chrono::milliseconds>(deaf - base).count() << " ms more";
 }
 
 TEST_F(SafetyTest, NewAliasOnRebootIsFollowed) {
