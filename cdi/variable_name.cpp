@@ -17,11 +17,12 @@ std::pair<std::uint32_t, std::size_t> decode_utf8(std::string_view text, std::si
                       : (b0 >> 3) == 30 ? 4
                                         : 0;
     if (len == 0 || i + len > text.size()) return {0, 0};
-    std::uint32_t cp = len == 1 ? b0 : b0 & (0x7F >> len);
+    std::uint32_t cp = b0;
+    if (len > 1) cp &= 0x7Fu >> len;
     for (std::size_t k = 1; k < len; ++k) {
-        const auto b = static_cast<unsigned char>(text[i + k]);
-        if ((b & 0xC0) != 0x80) return {0, 0};
-        cp = (cp << 6) | (b & 0x3F);
+        const std::uint32_t b = static_cast<unsigned char>(text[i + k]);
+        if ((b & 0xC0u) != 0x80u) return {0, 0};
+        cp = (cp << 6) | (b & 0x3Fu);
     }
     return {cp, len};
 }
