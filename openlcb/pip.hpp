@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <span>
+#include <string_view>
 
 namespace olcb {
 
@@ -29,6 +30,49 @@ enum class Protocol : std::uint64_t {
     kFirmwareUpgrade = 1ull << 29,
     kFirmwareUpgradeActive = 1ull << 28,
 };
+
+/// The protocol's name as the standard gives it ("Traction Control").
+constexpr std::string_view protocol_name(Protocol p) {
+    switch (p) {
+        case Protocol::kSimpleProtocol:
+            return "Simple Protocol";
+        case Protocol::kDatagram:
+            return "Datagram";
+        case Protocol::kStream:
+            return "Stream";
+        case Protocol::kMemoryConfiguration:
+            return "Memory Configuration";
+        case Protocol::kReservation:
+            return "Reservation";
+        case Protocol::kEventExchange:
+            return "Event Exchange";
+        case Protocol::kIdentification:
+            return "Identification";
+        case Protocol::kTeachingLearning:
+            return "Teaching/Learning Configuration";
+        case Protocol::kRemoteButton:
+            return "Remote Button";
+        case Protocol::kAcdi:
+            return "Abbreviated Default CDI";
+        case Protocol::kDisplay:
+            return "Display";
+        case Protocol::kSnip:
+            return "Simple Node Information";
+        case Protocol::kCdi:
+            return "Configuration Description Information";
+        case Protocol::kTractionControl:
+            return "Traction Control";
+        case Protocol::kFdi:
+            return "Function Description Information";
+        case Protocol::kFunctionConfiguration:
+            return "Function Configuration";
+        case Protocol::kFirmwareUpgrade:
+            return "Firmware Upgrade";
+        case Protocol::kFirmwareUpgradeActive:
+            return "Firmware Upgrade Active";
+    }
+    return "unknown protocol";
+}
 
 /// A set of Protocol flags with the 6-byte wire codec.
 class ProtocolSet {

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "conformance/report/check_result.hpp"
+#include "openlcb/pip.hpp"
 
 namespace olcb::conform {
 
@@ -57,6 +59,10 @@ struct CheckSpec {
     /// Writes across the end of a space, which a node without a bounds check keeps for good
     /// where no tool can read or restore it: runs only with --write-past-end.
     bool past_end_writes = false;
+    /// The protocol the node's Protocol Support Reply must claim for the check to mean anything
+    /// (a train check on an I/O board): SKIPped, saying which, when the reply lacks it or none
+    /// came. std::nullopt: every node.
+    std::optional<Protocol> needs = std::nullopt;
 };
 
 /// Every check, in the order a node's run produces them.

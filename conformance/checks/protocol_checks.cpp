@@ -129,6 +129,15 @@ void not_run(CheckRun& run, const CheckSpec& spec, const std::string& why) {
             {std::string(spec.id), spec.category, Status::kSkip, "not run: " + why, "", "", ""});
 }
 
+// Why a check that needs a protocol the node does not claim is not run ("" when it runs).
+std::string unclaimed(CheckRun& run, const CheckSpec& spec) {
+    if (!spec.needs) return {};
+    const std::string name(protocol_name(*spec.needs));
+    const auto& pip = run.probe<PipProbe>().reply;
+    if (!pip) return "no Protocol Support Reply, so " + name + " is not known";
+    return pip->has(*spec.needs) ? "" : "the node's PIP does not claim " + name;
+}
+
 ProtocolOptions widened(const ProtocolOptions& options, const CheckContext& ctx) {
     // The node's measured latency widens every window; none gets shorter than asked.
     ProtocolOptions o = options;
@@ -154,6 +163,10 @@ std::vector<CheckResult> run_protocol_checks(Session& session, const NodeInfo& n
         if (const std::string why = stop.why(); !why.empty()) {
             // A dead node or link would cost every later check its full timeout, for nothing.
             ++ctx.not_run;
+            not_run(run, spec, why);
+            continue;
+        }
+        if (const std::string why = unclaimed(run, spec); !why.empty()) {
             not_run(run, spec, why);
             continue;
         }

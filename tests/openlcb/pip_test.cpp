@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <iterator>
+#include <set>
+#include <string_view>
 #include <vector>
 
 namespace olcb {
@@ -65,6 +68,36 @@ TEST(Pip, TruncatedInputReadsZeros) {
     ProtocolSet s;
     s.set(Protocol::kCdi).set(Protocol::kCdi, false);
     EXPECT_EQ(s.bits(), 0u);
+}
+
+TEST(Pip, EveryProtocolHasItsOwnName) {
+    const Protocol all[] = {
+        Protocol::kSimpleProtocol,
+        Protocol::kDatagram,
+        Protocol::kStream,
+        Protocol::kMemoryConfiguration,
+        Protocol::kReservation,
+        Protocol::kEventExchange,
+        Protocol::kIdentification,
+        Protocol::kTeachingLearning,
+        Protocol::kRemoteButton,
+        Protocol::kAcdi,
+        Protocol::kDisplay,
+        Protocol::kSnip,
+        Protocol::kCdi,
+        Protocol::kTractionControl,
+        Protocol::kFdi,
+        Protocol::kFunctionConfiguration,
+        Protocol::kFirmwareUpgrade,
+        Protocol::kFirmwareUpgradeActive,
+    };
+    std::set<std::string_view> names;
+    for (Protocol p : all) {
+        EXPECT_NE(protocol_name(p), "unknown protocol");
+        names.insert(protocol_name(p));
+    }
+    EXPECT_EQ(names.size(), std::size(all));
+    EXPECT_EQ(protocol_name(Protocol::kTractionControl), "Traction Control");
 }
 
 }  // namespace
