@@ -50,8 +50,11 @@ public:
     virtual std::string loss_reason() { return {}; }
 };
 
-/// In-process link on a simulated network (tests); the stack starts at network.now().
-std::unique_ptr<Link> make_sim_link(SimNetwork& network, NodeId tool_id);
+/// In-process link on a simulated network (tests); the stack starts at network.now(). On an
+/// unpaced network it reports `assumed_bitrate` as its bus speed (0: none), as a TCP link does
+/// for a bus it cannot see.
+std::unique_ptr<Link> make_sim_link(SimNetwork& network, NodeId tool_id,
+                                    std::uint32_t assumed_bitrate = 0);
 /// GridConnect TCP link to a hub; nullptr with `error` set when the connection fails (2 s).
 std::unique_ptr<Link> connect_tcp(const std::string& host, std::uint16_t port, NodeId tool_id,
                                   std::string& error);

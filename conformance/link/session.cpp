@@ -178,6 +178,13 @@ void Session::queue_on_wire(const CanFrame& f, TimePoint at) {
     backlog_end_ = std::max(backlog_end_, at) + can_frame_time(f.len, bitrate);
 }
 
+void Session::backlog_through() {
+    // The node answered the last frame we queued, so every frame before it has left the bus
+    // (frames from one sender keep their order): no modelled backlog is left to wait out. On a
+    // TCP link, whose bus speed is only assumed, this is what ends a wait after a burst.
+    backlog_end_ = std::min(backlog_end_, link_.now());
+}
+
 Duration Session::backlog() {
     const TimePoint now = link_.now();
     return backlog_end_ > now ? backlog_end_ - now : Duration::zero();
@@ -426,6 +433,7 @@ std::optional<Duration> Session::round_trip(const NodeInfo& node, Duration timeo
     const TimePoint sent = link_.now();
     send(addressed);
     if (!run_until(answered, timeout)) return std::nullopt;
+    backlog_through();
     return link_.now() - sent;
 }
 

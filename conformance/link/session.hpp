@@ -301,6 +301,8 @@ private:
     void stream_hold(StreamWait& w);
     void observe(const CanFrame& frame, TimePoint at);
     void queue_on_wire(const CanFrame& frame, TimePoint at);
+    /// An answer to the last frame we queued came: the frames before it are through.
+    void backlog_through();
     void observe_control(const CanFrame& frame, TimePoint at);
     void set_alias(NodeId id, std::uint16_t alias);
     NodeTrack* track_for(NodeId id);

@@ -11,8 +11,8 @@ namespace {
 
 class SimLink final : public Link {
 public:
-    SimLink(SimNetwork& network, NodeId tool_id)
-        : network_(network), stack_(tool_stack_config(tool_id)) {
+    SimLink(SimNetwork& network, NodeId tool_id, std::uint32_t assumed_bitrate)
+        : network_(network), stack_(tool_stack_config(tool_id)), assumed_(assumed_bitrate) {
         port_ = &network_.add_endpoint([this](const CanFrame& frame, TimePoint at) {
             if (observer_) observer_(frame, at);
             stack_.on_frame(frame, at);
@@ -24,7 +24,9 @@ public:
 
     NodeStack& stack() override { return stack_; }
     TimePoint now() override { return network_.now(); }
-    std::uint32_t bus_bitrate() override { return network_.bitrate(); }
+    std::uint32_t bus_bitrate() override {
+        return network_.bitrate() != 0 ? network_.bitrate() : assumed_;
+    }
 
     bool run_until(const std::function<bool()>& pred, Duration max) override {
         const TimePoint limit = network_.now() + max;
@@ -68,6 +70,7 @@ private:
 
     SimNetwork& network_;
     NodeStack stack_;
+    std::uint32_t assumed_;  // the bus speed reported while the network is unpaced
     Transport* port_ = nullptr;
     FrameObserver observer_;
 };
@@ -90,8 +93,9 @@ NodeStackConfig tool_stack_config(NodeId tool_id) {
     return config;
 }
 
-std::unique_ptr<Link> make_sim_link(SimNetwork& network, NodeId tool_id) {
-    return std::make_unique<SimLink>(network, tool_id);
+std::unique_ptr<Link> make_sim_link(SimNetwork& network, NodeId tool_id,
+                                    std::uint32_t assumed_bitrate) {
+    return std::make_unique<SimLink>(network, tool_id, assumed_bitrate);
 }
 
 }  // namespace olcb::conform

@@ -190,6 +190,36 @@ TEST(NodeTrackTest, PingAnswersForAPresentNodeOnly) {
     EXPECT_EQ(b.link->now() - before, 500ms);
 }
 
+// A TCP link cannot see the bus behind its hub: it assumes 125 kbit/s and waits out the frames it
+// sent at that speed. An answer to a ping sent after them shows they are through, and ends that.
+TEST(SessionBacklogTest, AnAnsweredPingEndsTheAssumedBacklogOfABurst) {
+    SimNetwork net;
+    std::string error;
+    simnode::NodeConfig cfg;
+    cfg.node_id = kDut;
+    cfg.cdi = default_cdi();
+    auto dut = simnode::SimNode::create(cfg, error);
+    ASSERT_TRUE(dut) << error;
+    net.set_logging(false);
+    net.add_stack(dut->stack());
+    dut->stack().start(net.now());
+    auto link = make_sim_link(net, kTool, kLccBitrate);
+    Session session(*link);
+    ASSERT_TRUE(session.start());
+    auto node = session.find_node(kDut);
+    ASSERT_TRUE(node);
+    // 300 global Verify Node IDs for another node from a made-up alias: ~0.38 s at 125 kbit/s.
+    const CanFrame other = can::make_node_id_frame(
+        can::message_header(to_u16(Mti::kVerifyNodeIdGlobal) & 0x0FFF, 0x0AB),
+        NodeId{0x0501010122AAull});
+    for (int i = 0; i < 300; ++i) session.inject(other);
+    EXPECT_GT(session.backlog(), 300ms);
+    const TimePoint before = link->now();
+    ASSERT_TRUE(session.ping(*node, 500ms));
+    EXPECT_LT(link->now() - before, 50ms) << "the unpaced node answers at once";
+    EXPECT_EQ(session.backlog(), Duration::zero());
+}
+
 // A simnode that starts `delay` after the tool's session (a node just powered on).
 struct LateNode {
     SimNetwork net;
