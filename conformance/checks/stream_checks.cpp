@@ -18,7 +18,7 @@ using memory::Space;
 
 // The windowed read: a small buffer, so a CDI spans several, each held before its Proceed.
 constexpr std::uint16_t kProbeBuffer = 64;
-constexpr std::uint32_t kProbeWindows = 3;
+constexpr std::uint32_t kProbeWindows = 2;
 constexpr Duration kHold = std::chrono::milliseconds(200);
 
 // A read of a few small buffers, each held kHold before lcc-conform's Proceed.
