@@ -161,7 +161,10 @@ po::options_description check_options() {
         "csv", "backup: write CSV rows (key,value,type,space,address,size)")(
         "dry-run", "restore: print what would change (key, node value, file value), write nothing")(
         "allow-unknown",
-        "restore: unknown keys and bad values are listed but do not make the exit status 1");
+        "restore: unknown keys and malformed lines are listed but do not make the exit status 1")(
+        "force",
+        "restore: also write the values the node's CDI forbids (outside <min>/<max>, not in its "
+        "<map>, a string too long or not UTF-8), which are otherwise refused; each is listed");
     return o;
 }
 
@@ -171,8 +174,11 @@ void print_help(const po::options_description& opts) {
            "[options]\n"
            "       lcc-conform backup [--node ID] [--csv] FILE\n"
            "                     save every CDI variable (JMRI's key=value format, or CSV)\n"
-           "       lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] FILE\n"
-           "                     put a safety, JMRI or CSV backup back (only what differs)\n"
+           "       lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] [--force] FILE\n"
+           "                     put a safety, JMRI or CSV backup back (only what differs);\n"
+           "                     values the node's CDI forbids are refused (exit 1) unless\n"
+           "                     --force; an empty, binary, cut-short or other node type's\n"
+           "                     file is refused whole, its cause on the first line\n"
            "       lcc-conform diff A B                  compare two backup files\n"
            "       lcc-conform diff [--node ID] FILE     what restoring FILE would change\n"
            "       lcc-conform decode FILE               read back a CAN log, no link needed\n"
@@ -489,6 +495,7 @@ int backup_command(Session& session, const std::string& command,
         o.node_id = node_arg;
         o.dry_run = vm.count("dry-run") > 0;
         o.allow_unknown = vm.count("allow-unknown") > 0;
+        o.force = vm.count("force") > 0;
         return run_restore(session, o, std::cout, std::cerr);
     }
     DiffOptions o;  // diff --node ID FILE

@@ -3,16 +3,25 @@
 #include <charconv>
 #include <optional>
 
+#include "base/hex.hpp"
+#include "base/utf8.hpp"
 #include "conformance/backup/backup_values.hpp"
 
 namespace olcb::conform {
 
 namespace {
 
-// The fields of one CSV record starting at text[pos], advancing pos past its line end; false
-// when a quoted field never ends. Quoted fields may hold line ends; line counts them.
-bool read_record(std::string_view text, std::size_t& pos, std::size_t& line,
-                 std::vector<std::string>& fields) {
+// How a CSV record ended.
+enum class RecordEnd : std::uint8_t {
+    kLineEnd,    ///< at its line end
+    kTextEnd,    ///< at the end of the text, without a line end (cut short?)
+    kOpenQuote,  ///< at the end of the text inside a quoted field
+};
+
+// The fields of one CSV record starting at text[pos], advancing pos past its line end. Quoted
+// fields may hold line ends; line counts them.
+RecordEnd read_record(std::string_view text, std::size_t& pos, std::size_t& line,
+                      std::vector<std::string>& fields) {
     fields.assign(1, {});
     bool quoted = false;
     while (pos < text.size()) {
@@ -33,12 +42,24 @@ bool read_record(std::string_view text, std::size_t& pos, std::size_t& line,
             fields.emplace_back();
         } else if (c == '\n') {
             ++line;
-            break;
+            return RecordEnd::kLineEnd;
         } else if (c != '\r' || (pos < text.size() && text[pos] != '\n')) {
             fields.back() += c;
         }
     }
-    return !quoted;
+    return quoted ? RecordEnd::kOpenQuote : RecordEnd::kTextEnd;
+}
+
+// A field no text file holds outside a value: a control byte or bytes that are not UTF-8.
+std::string not_text(std::string_view field) {
+    for (std::size_t i = 0; i < field.size(); ++i) {
+        const auto b = static_cast<unsigned char>(field[i]);
+        if ((b < 0x20 && b != '\t') || b == 0x7F) return "control byte " + base::hex(b, 2);
+    }
+    if (const auto bad = base::find_invalid_utf8(field)) {
+        return "byte " + std::to_string(*bad + 1) + " is not UTF-8";
+    }
+    return {};
 }
 
 template <class T>
@@ -113,24 +134,67 @@ std::string backup_csv(const std::vector<ConfigEntry>& entries,
     return out;
 }
 
+namespace {
+
+// Every field but the value (which holds a string's bytes raw, controls too) must be text.
+void check_fields(const std::vector<std::string>& fields, std::size_t value_column,
+                  std::size_t line, UnusableBackup& bad) {
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+        if (i == value_column) continue;
+        if (const std::string why = not_text(fields[i]); !why.empty()) {
+            bad.add("line " + std::to_string(line) + ", field " + std::to_string(i + 1) + ": " +
+                    why);
+        }
+    }
+}
+
+// The file's problem when its text ended inside a record: the last row or a quoted field cut
+// short.
+UnusableBackup cut_short(RecordEnd end, std::size_t first, const std::vector<std::string>& f) {
+    UnusableBackup u;
+    if (end == RecordEnd::kOpenQuote) {
+        u.cause =
+            "is cut short: a quoted field begun on line " + std::to_string(first) + " never ends";
+    } else {
+        u.cause = "is cut short: its last row (line " + std::to_string(first) +
+                  ") has no line end, so its value may be incomplete (if the file is whole, end "
+                  "that row with a line end)";
+    }
+    u.add("line " + std::to_string(first) + ": " + std::string(base::truncate_utf8(f[0], 60)));
+    return u;
+}
+
+}  // namespace
+
 BackupFile parse_backup_csv(std::string_view text) {
     BackupFile file;
     file.csv = true;
+    if (text.find('\0') != std::string_view::npos) {
+        file.unusable = UnusableBackup{"is not a text file: it holds NUL bytes", {}, 0};
+        return file;
+    }
     std::size_t pos = 0;
     std::size_t line = 1;
     std::vector<std::string> fields;
-    read_record(text, pos, line, fields);
+    UnusableBackup bad;
+    read_record(text, pos, line, fields);  // the header: its end is the rows' business
     const Columns c = columns_of(fields);
+    check_fields(fields, std::string::npos, 1, bad);
     if (c.key == std::string::npos || c.value == std::string::npos) {
         file.errors.emplace_back("line 1: the CSV header has no key or value column");
         return file;
     }
     while (pos < text.size()) {
         const std::size_t first = line;
-        if (!read_record(text, pos, line, fields)) {
+        const RecordEnd end = read_record(text, pos, line, fields);
+        if (end != RecordEnd::kLineEnd && !(fields.size() == 1 && fields[0].empty())) {
+            file.unusable = cut_short(end, first, fields);
+        }
+        if (end == RecordEnd::kOpenQuote) {
             file.errors.push_back("line " + std::to_string(first) + ": unterminated quote");
             break;
         }
+        check_fields(fields, c.value, first, bad);
         if (fields.size() == 1 && fields[0].empty()) continue;  // a blank line
         if (c.key >= fields.size() || c.value >= fields.size() || fields[c.key].empty()) {
             file.errors.push_back("line " + std::to_string(first) + ": no key and value");
@@ -138,6 +202,12 @@ BackupFile parse_backup_csv(std::string_view text) {
         }
         file.records.push_back(
             {normal_backup_key(fields[c.key]), fields[c.value], first, place_of(c, fields)});
+    }
+    if (bad.count != 0) {  // a file that is not text says so before it says it was cut short
+        bad.cause = "is not text: " + std::to_string(bad.count) +
+                    " field(s) outside the value column hold control bytes or bytes that are "
+                    "not UTF-8";
+        file.unusable = std::move(bad);
     }
     return file;
 }

@@ -3,6 +3,7 @@
 #include <map>
 #include <ostream>
 
+#include "base/utf8.hpp"
 #include "cdi/decimal.hpp"
 
 namespace olcb::conform {
@@ -70,31 +71,45 @@ void print_differences(const std::vector<BackupDifference>& diffs, std::size_t k
                        std::ostream& out) {
     for (const BackupDifference& d : diffs) {
         if (d.a && d.b) {
-            out << "  changed    " << d.key << ": " << shown_value(d.a) << " -> "
-                << shown_value(d.b) << "\n";
+            out << "  changed    " << base::printable(d.key) << ": "
+                << base::printable(shown_value(d.a)) << " -> " << base::printable(shown_value(d.b))
+                << "\n";
         } else if (d.a) {
-            out << "  only in A  " << d.key << " = " << shown_value(d.a) << "\n";
+            out << "  only in A  " << base::printable(d.key) << " = "
+                << base::printable(shown_value(d.a)) << "\n";
         } else {
-            out << "  only in B  " << d.key << " = " << shown_value(d.b) << "\n";
+            out << "  only in B  " << base::printable(d.key) << " = "
+                << base::printable(shown_value(d.b)) << "\n";
         }
     }
     out << "diff: " << diffs.size() << " difference(s) in " << keys << " key(s)\n";
 }
 
-void print_problems(const RestorePlan& plan, std::ostream& out) {
-    for (const std::string& k : plan.unknown_keys) out << "  unknown    " << k << "\n";
-    for (const std::string& v : plan.bad_values) out << "  bad value  " << v << "\n";
-    for (const std::string& e : plan.file_errors) out << "  malformed  " << e << "\n";
+void print_problems(const RestorePlan& plan, std::ostream& out, bool force) {
+    for (const std::string& k : plan.unknown_keys) {
+        out << "  unknown    " << base::printable(k) << "\n";
+    }
+    for (const RefusedValue& r : plan.refused) {
+        const bool forced = force && r.verdict.forcible();
+        out << (forced ? "  forced     " : "  refused    ") << refused_text(r)
+            << (forced ? " [--force: written anyway]" : "") << "\n";
+    }
+    for (const std::string& e : plan.file_errors) {
+        out << "  malformed  " << base::printable(e) << "\n";
+    }
 }
 
-void print_plan(const RestorePlan& plan, bool show_missing, std::ostream& out) {
+void print_plan(const RestorePlan& plan, bool show_missing, std::ostream& out, bool force) {
     for (const ValueChange& c : plan.changes) {
-        out << "  change     " << c.entry->key << ": node " << shown_value(c.node_value)
-            << " -> file " << shown_value(c.file_value) << "\n";
+        out << "  change     " << base::printable(c.entry->key) << ": node "
+            << base::printable(shown_value(c.node_value)) << " -> file "
+            << base::printable(shown_value(c.file_value)) << "\n";
     }
-    print_problems(plan, out);
+    print_problems(plan, out, force);
     if (show_missing) {
-        for (const ConfigEntry* e : plan.missing) out << "  not in file " << e->key << "\n";
+        for (const ConfigEntry* e : plan.missing) {
+            out << "  not in file " << base::printable(e->key) << "\n";
+        }
     }
 }
 

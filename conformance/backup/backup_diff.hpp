@@ -33,11 +33,13 @@ std::vector<BackupDifference> diff_backups(const BackupFile& a, const BackupFile
 void print_differences(const std::vector<BackupDifference>& diffs, std::size_t keys,
                        std::ostream& out);
 
-/// Every unknown key, bad value and malformed line of the plan, one per line.
-void print_problems(const RestorePlan& plan, std::ostream& out);
+/// Every unknown key, refused value (with its rule and CDI line) and malformed line of the plan,
+/// one per line; with force the refused values --force writes say so. Text from the file and
+/// the CDI goes through printable().
+void print_problems(const RestorePlan& plan, std::ostream& out, bool force = false);
 
 /// What the plan would change on the node (key, node value, file value), then its problems;
 /// with show_missing also the node's keys the file lacks.
-void print_plan(const RestorePlan& plan, bool show_missing, std::ostream& out);
+void print_plan(const RestorePlan& plan, bool show_missing, std::ostream& out, bool force = false);
 
 }  // namespace olcb::conform

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "base/hex.hpp"
+#include "base/utf8.hpp"
 #include "conformance/backup/backup_values.hpp"
 
 namespace olcb::conform {
@@ -32,6 +33,29 @@ std::string place_mismatch(const ConfigEntry& e, const std::optional<BackupPlace
 
 bool counts_as_node_key(const ConfigEntry& e, bool floats_count) {
     return floats_count || e.element->kind != cdi::ElementKind::kFloat;
+}
+
+// A file value matched to its variable: unchanged, a change, or refused by the CDI's rules.
+void place_value(RestorePlan& plan, const ConfigEntry& e, const BackupRecord& r,
+                 const std::optional<std::string>& node) {
+    ValueVerdict verdict = judge_backup_value(*e.element, r.value);
+    std::string error;
+    std::optional<std::string> canonical;
+    if (verdict.bytes) canonical = format_backup_value(*e.element, *verdict.bytes, error);
+    if (node && canonical && *node == *canonical) {
+        ++plan.unchanged;  // never written, so the rules do not apply
+        return;
+    }
+    if (!canonical && verdict.allowed()) {  // bytes with no backup form: an int size JMRI lacks
+        verdict.broken = ValueRule::kMalformed;
+        verdict.why = error;
+        verdict.bytes.reset();
+    }
+    if (!verdict.allowed()) {
+        plan.refused.push_back({&e, r.line, r.value, node, std::move(verdict)});
+        return;
+    }
+    plan.changes.push_back({&e, node, r.value, std::move(*verdict.bytes)});
 }
 
 }  // namespace
@@ -66,27 +90,31 @@ RestorePlan plan_restore(const std::vector<ConfigEntry>& entries, const BackupFi
         }
         matched[i] = true;
         plan.matched += counts_as_node_key(e, floats_count);
-        std::string error;
-        auto bytes = parse_backup_value(*e.element, r.value, error);
-        std::optional<std::string> canonical;
-        if (bytes) canonical = format_backup_value(*e.element, *bytes, error);
-        if (!canonical) {
-            plan.bad_values.push_back(at_line(r) + "=" + escape_backup_text(r.value) + ": " +
-                                      error);
-            continue;
-        }
         const std::optional<std::string>& node =
             i < node_values.size() ? node_values[i].text : std::nullopt;
-        if (node && *node == *canonical) {
-            ++plan.unchanged;
-            continue;
-        }
-        plan.changes.push_back({&e, node, r.value, std::move(*bytes)});
+        place_value(plan, e, r, node);
     }
     for (std::size_t i = 0; i < entries.size(); ++i) {
         if (!matched[i]) plan.missing.push_back(&entries[i]);
     }
     return plan;
+}
+
+std::string refused_text(const RefusedValue& r) {
+    const cdi::Element& e = *r.entry->element;
+    std::string where =
+        "<" + std::string(e.tag.empty() ? cdi::kind_name(e.kind) : e.tag.c_str()) + ">";
+    if (e.pos.line != 0) where += " at CDI line " + std::to_string(e.pos.line);
+    const std::string rule(rule_name(*r.verdict.broken));
+    return base::printable("line " + std::to_string(r.line) + ": " + r.entry->key + "=" +
+                           shown_value(r.file_value) + ": " + rule + ": " + r.verdict.why + " (" +
+                           where + "; " + r.verdict.clause + ")");
+}
+
+std::size_t RestorePlan::forcible() const {
+    std::size_t n = 0;
+    for (const RefusedValue& r : refused) n += r.verdict.forcible();
+    return n;
 }
 
 std::string ConfigRestoreOutcome::summary() const {
@@ -99,28 +127,41 @@ std::string ConfigRestoreOutcome::summary() const {
     return s.str();
 }
 
-ConfigRestoreOutcome apply_restore(const RestorePlan& plan, MemoryAccess& memory) {
+ConfigRestoreOutcome apply_restore(const RestorePlan& plan, MemoryAccess& memory, bool force) {
+    // What is written: every change, and with force the refused values that have bytes.
+    struct Write {
+        const ConfigEntry* entry;
+        const std::vector<std::uint8_t>* bytes;
+        bool forced;
+    };
+    std::vector<Write> todo;
+    todo.reserve(plan.changes.size() + plan.refused.size());
+    for (const ValueChange& c : plan.changes) todo.push_back({c.entry, &c.bytes, false});
+    for (const RefusedValue& r : plan.refused) {
+        if (force && r.verdict.forcible()) todo.push_back({r.entry, &*r.verdict.bytes, true});
+    }
     ConfigRestoreOutcome out;
     std::vector<ConfigEntry> written;
-    std::vector<const ValueChange*> kept;
-    for (const ValueChange& c : plan.changes) {
-        const ConfigEntry& e = *c.entry;
-        AccessResult w = memory.write(static_cast<std::uint8_t>(e.space),
-                                      static_cast<std::uint32_t>(e.address), c.bytes);
-        if (!w.ok) {
-            out.errors.push_back(e.key + ": write failed (error " + base::hex(w.error) + ")");
+    std::vector<const Write*> kept;
+    for (const Write& w : todo) {
+        const ConfigEntry& e = *w.entry;
+        AccessResult result = memory.write(static_cast<std::uint8_t>(e.space),
+                                           static_cast<std::uint32_t>(e.address), *w.bytes);
+        if (!result.ok) {
+            out.errors.push_back(e.key + ": write failed (error " + base::hex(result.error) + ")");
             continue;
         }
         written.push_back(e);
-        kept.push_back(&c);
+        kept.push_back(&w);
     }
     // Read back: a node may refuse a value silently, or clamp it.
     const std::vector<ConfigValue> now = read_config_values(written, memory);
     for (std::size_t i = 0; i < written.size(); ++i) {
         std::string error;
-        const auto want = format_backup_value(*written[i].element, kept[i]->bytes, error);
+        const auto want = format_backup_value(*written[i].element, *kept[i]->bytes, error);
         if (now[i].text && now[i].text == want) {
             ++out.written;
+            out.forced += kept[i]->forced;
         } else {
             out.errors.push_back(written[i].key + ": wrote " + shown_value(want) +
                                  ", the node holds " + shown_value(now[i].text));
@@ -130,14 +171,17 @@ ConfigRestoreOutcome apply_restore(const RestorePlan& plan, MemoryAccess& memory
 }
 
 ConfigRestoreOutcome restore_config(const cdi::Layout& layout, MemoryAccess& memory,
-                                    std::string_view text) {
+                                    std::string_view text, bool force) {
     const std::vector<ConfigEntry> entries = config_entries(layout);
     const RestorePlan plan =
         plan_restore(entries, parse_backup_file(text), read_config_values(entries, memory));
-    ConfigRestoreOutcome out = apply_restore(plan, memory);
+    ConfigRestoreOutcome out = apply_restore(plan, memory, force);
     out.unknown_keys = plan.unknown_keys;
-    out.errors.insert(out.errors.begin(), plan.bad_values.begin(), plan.bad_values.end());
-    out.errors.insert(out.errors.begin(), plan.file_errors.begin(), plan.file_errors.end());
+    std::vector<std::string> problems = plan.file_errors;
+    for (const RefusedValue& r : plan.refused) {
+        if (!force || !r.verdict.forcible()) problems.push_back(refused_text(r));
+    }
+    out.errors.insert(out.errors.begin(), problems.begin(), problems.end());
     return out;
 }
 

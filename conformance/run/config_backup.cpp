@@ -6,6 +6,7 @@
 
 #include "base/file.hpp"
 #include "base/hex.hpp"
+#include "base/utf8.hpp"
 #include "cdi/parser.hpp"
 #include "conformance/backup/backup_csv.hpp"
 #include "conformance/link/session.hpp"
@@ -23,7 +24,7 @@ std::optional<NodeInfo> find(Session& session, const std::string& id_text, std::
     std::string error;
     auto id = NodeId::parse(id_text, &error);
     if (!id) {
-        err << "lcc-conform: node ID '" << id_text << "': " << error << "\n";
+        err << base::printable("lcc-conform: node ID '" + id_text + "': " + error) << "\n";
         return std::nullopt;
     }
     auto node = session.find_node(*id);
@@ -67,13 +68,23 @@ bool plan_on_node(Session& session, const std::string& node_id, const BackupFile
 
 bool read_text_file(const std::string& path, std::string& text, std::ostream& err) {
     std::string error;
-    auto bytes = base::read_file(path, error);
+    auto bytes = read_backup_text(path, error);
     if (!bytes) {
-        err << "lcc-conform: " << error << "\n";
+        err << "lcc-conform: " << base::printable(error) << "\n";
         return false;
     }
     text = std::move(*bytes);
     return true;
+}
+
+// A file whose keys are mostly not the node's: the cause, then the first unknown keys.
+UnusableBackup another_node_type(const RestorePlan& plan, const NodeInfo& node) {
+    UnusableBackup u;
+    u.cause = "is for another node type: it matches " + std::to_string(plan.matched) + " of the " +
+              std::to_string(plan.node_keys) + " keys of node " + node.id.to_string() + ", and " +
+              std::to_string(plan.unknown_keys.size()) + " of its keys are not the node's";
+    for (const std::string& k : plan.unknown_keys) u.add(k);
+    return u;
 }
 
 int restore_safety_backup(Session& session, const RestoreOptions& o, std::ostream& out,
@@ -95,34 +106,64 @@ int restore_safety_backup(Session& session, const RestoreOptions& o, std::ostrea
 
 // The problems of a plan that --allow-unknown accepts, as one sentence (empty when none).
 std::string problems(const RestorePlan& plan) {
-    if (plan.clean()) return {};
+    if (plan.unknown_keys.empty() && plan.file_errors.empty()) return {};
     std::ostringstream s;
-    s << plan.unknown_keys.size() << " unknown key(s), " << plan.bad_values.size()
-      << " bad value(s) and " << plan.file_errors.size() << " malformed line(s) skipped";
+    s << plan.unknown_keys.size() << " unknown key(s) and " << plan.file_errors.size()
+      << " malformed line(s) skipped";
     return s.str();
+}
+
+// The refused values' count lines: what was kept back, and what --force wrote anyway; the
+// number of refused values not written (each makes the exit status 1).
+std::size_t report_refused(const RestorePlan& plan, bool dry_run, bool force, std::ostream& out) {
+    const std::size_t forced = force ? plan.forcible() : 0;
+    const std::size_t kept_back = plan.refused.size() - forced;
+    if (kept_back != 0) {
+        out << "restore: " << kept_back
+            << " value(s) refused (the node's CDI forbids them, or they are no value of their "
+               "variable), so nothing "
+            << (dry_run ? "would be" : "was") << " written for them";
+        const std::size_t could = plan.forcible() - forced;
+        if (could != 0) out << "; --force writes the " << could << " that have bytes anyway";
+        out << "\n";
+    }
+    if (forced != 0) {
+        out << "restore: " << forced << " value(s) the node's CDI forbids "
+            << (dry_run ? "would be written" : "written") << " anyway (--force)\n";
+    }
+    return kept_back;
 }
 
 int report_restore(const RestorePlan& plan, const ConfigRestoreOutcome* done,
                    const RestoreOptions& o, const NodeInfo& node, std::ostream& out) {
     const std::string id = node.id.to_string();
+    const std::size_t forced = o.force ? plan.forcible() : 0;
+    std::string refused;
+    if (forced != 0) refused += ", " + std::to_string(forced) + " forced";
+    if (plan.refused.size() > forced) {
+        refused += ", " + std::to_string(plan.refused.size() - forced) + " refused";
+    }
     if (done == nullptr) {
         out << "restore --dry-run: " << plan.changes.size() << " change(s) to node " << id << ", "
-            << plan.unchanged << " value(s) already equal; nothing written\n";
+            << plan.unchanged << " value(s) already equal" << refused << "; nothing written\n";
     } else {
         out << "restore: " << done->written << " variable(s) written to node " << id << ", "
-            << plan.unchanged << " already equal\n";
+            << plan.unchanged << " already equal" << refused << "\n";
     }
-    print_plan(plan, false, out);
+    print_plan(plan, false, out, o.force);
     if (done != nullptr) {
-        for (const std::string& e : done->errors) out << "  error      " << e << "\n";
+        for (const std::string& e : done->errors) {
+            out << "  error      " << base::printable(e) << "\n";
+        }
     }
+    const std::size_t kept_back = report_refused(plan, done == nullptr, o.force, out);
     const std::string skipped = problems(plan);
     if (!skipped.empty()) {
         out << "restore: " << skipped
             << (o.allow_unknown ? " (--allow-unknown)\n" : "; --allow-unknown accepts them\n");
     }
     const bool failed = done != nullptr && !done->ok();
-    return failed || (!skipped.empty() && !o.allow_unknown) ? 1 : 0;
+    return failed || kept_back != 0 || (!skipped.empty() && !o.allow_unknown) ? 1 : 0;
 }
 
 }  // namespace
@@ -214,24 +255,21 @@ int run_restore(Session& session, const RestoreOptions& o, std::ostream& out, st
     if (!read_text_file(o.path, text, err)) return 2;
     if (SafetyBackup::is_safety_backup(text)) return restore_safety_backup(session, o, out, err);
     const BackupFile file = parse_backup_file(text);
-    if (file.records.empty()) {
-        err << "lcc-conform: " << o.path << " holds no key=value line\n";
+    if (file.unusable) {
+        print_unusable(o.path, *file.unusable, "; nothing written", err);
         return 2;
     }
     NodePlan p;
     if (!plan_on_node(session, o.node_id, file, p, out, err)) return 2;
     const NodeInfo& node = p.node;
     const RestorePlan& plan = p.plan;
-    SessionMemory memory(session, node);
     if (plan.for_another_node()) {
-        print_problems(plan, out);
-        err << "lcc-conform: " << o.path << " is for another node type: it matches " << plan.matched
-            << " of the " << plan.node_keys << " keys of node " << node.id.to_string()
-            << "; nothing written\n";
+        print_unusable(o.path, another_node_type(plan, node), "; nothing written", err);
         return 1;
     }
     if (o.dry_run) return report_restore(plan, nullptr, o, node, out);
-    const ConfigRestoreOutcome done = apply_restore(plan, memory);
+    SessionMemory memory(session, node);
+    const ConfigRestoreOutcome done = apply_restore(plan, memory, o.force);
     return report_restore(plan, &done, o, node, out);
 }
 
@@ -241,17 +279,23 @@ int run_diff_files(const std::string& a, const std::string& b, std::ostream& out
     BackupFile fb;
     std::string error;
     if (!load_backup_file(a, fa, error) || !load_backup_file(b, fb, error)) {
-        err << "lcc-conform: " << error << "\n";
+        err << "lcc-conform: " << base::printable(error) << "\n";
+        return 2;
+    }
+    for (const auto* f : {&fa, &fb}) {
+        if (!f->unusable) continue;
+        print_unusable(f == &fa ? a : b, *f->unusable, "", err);
         return 2;
     }
     for (const auto* f : {&fa, &fb}) {
         for (const std::string& e : f->errors)
-            err << "diff: " << (f == &fa ? a : b) << ": " << e << "\n";
+            err << "diff: " << base::printable(f == &fa ? a : b) << ": " << base::printable(e)
+                << "\n";
     }
     const std::vector<BackupDifference> diffs = diff_backups(fa, fb);
     std::size_t only_b = 0;
     for (const BackupDifference& d : diffs) only_b += !d.a;
-    out << "diff: A = " << a << ", B = " << b << "\n";
+    out << "diff: A = " << base::printable(a) << ", B = " << base::printable(b) << "\n";
     print_differences(diffs, fa.records.size() + only_b, out);
     return diffs.empty() ? 0 : 1;
 }
@@ -260,22 +304,27 @@ int run_diff_node(Session& session, const DiffOptions& o, std::ostream& out, std
     BackupFile file;
     std::string error;
     if (!load_backup_file(o.path, file, error)) {
-        err << "lcc-conform: " << error << "\n";
+        err << "lcc-conform: " << base::printable(error) << "\n";
+        return 2;
+    }
+    if (file.unusable) {
+        print_unusable(o.path, *file.unusable, "", err);
         return 2;
     }
     NodePlan p;
     if (!plan_on_node(session, o.node_id, file, p, out, err)) return 2;
     const NodeInfo& node = p.node;
     const RestorePlan& plan = p.plan;
-    out << "diff: node " << node.id.to_string() << " -> " << o.path << ": " << plan.changes.size()
-        << " change(s) a restore would write, " << plan.unchanged << " equal, "
-        << plan.missing.size() << " key(s) of the node not in the file\n";
-    print_plan(plan, true, out);
     if (plan.for_another_node()) {
-        out << "diff: the file is for another node type: it matches " << plan.matched << " of the "
-            << plan.node_keys << " keys; a restore writes nothing\n";
+        print_unusable(o.path, another_node_type(plan, node), "; a restore writes nothing", err);
+        return 1;
     }
-    return plan.changes.empty() && plan.clean() && !plan.for_another_node() ? 0 : 1;
+    out << "diff: node " << node.id.to_string() << " -> " << base::printable(o.path) << ": "
+        << plan.changes.size() << " change(s) a restore would write, " << plan.refused.size()
+        << " refused by the node's CDI, " << plan.unchanged << " equal, " << plan.missing.size()
+        << " key(s) of the node not in the file\n";
+    print_plan(plan, true, out);
+    return plan.changes.empty() && plan.clean() ? 0 : 1;
 }
 
 }  // namespace olcb::conform

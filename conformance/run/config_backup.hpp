@@ -61,19 +61,21 @@ struct BackupOptions {
 int run_config_backup(Session& session, const BackupOptions& options, std::ostream& out,
                       std::ostream& err);
 
-/// Options of `lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] FILE`.
+/// Options of `lcc-conform restore [--node ID] [--dry-run] [--allow-unknown] [--force] FILE`.
 struct RestoreOptions {
     std::string path;            ///< FILE: a safety backup, a key=value or a CSV backup
     std::string node_id;         ///< --node; empty: the file's "# node" line, else the only node
     bool dry_run = false;        ///< --dry-run: print what would change, write nothing
-    bool allow_unknown = false;  ///< --allow-unknown: unknown keys and bad values exit 0
+    bool allow_unknown = false;  ///< --allow-unknown: unknown keys and malformed lines exit 0
+    bool force = false;          ///< --force: also write values the node's CDI forbids
 };
 
 /// `lcc-conform restore`: a safety backup goes back byte for byte; a configuration backup
-/// writes the values that differ from the node's (nothing when the file matches less than half
-/// of the node's keys). 0 on success; 1 when a write failed, a value was not kept, the file is
-/// for another node type, or (without allow_unknown) a key is unknown or a value bad; 2 when
-/// the file or node is unusable.
+/// writes the values that differ from the node's and that its CDI allows (nothing when the file
+/// is unusable or matches less than half of the node's keys; with force also the forbidden
+/// values that have bytes). 0 on success; 1 when a write failed, a value was not kept, the file
+/// is for another node type, a value was refused, or (without allow_unknown) a key is unknown
+/// or a line malformed; 2 when the file or node is unusable (the cause first, one line).
 int run_restore(Session& session, const RestoreOptions& options, std::ostream& out,
                 std::ostream& err);
 
@@ -88,9 +90,9 @@ struct DiffOptions {
     std::string path;     ///< FILE
 };
 
-/// `lcc-conform diff --node ID FILE`: what a restore of FILE would change on the node (and what
-/// it cannot restore). 0 when nothing would change and every line is known, 1 otherwise, 2
-/// when the file or node is unusable.
+/// `lcc-conform diff --node ID FILE`: what a restore of FILE would change on the node, the
+/// values its CDI refuses, and what it cannot restore. 0 when nothing would change and every
+/// line is known and allowed, 1 otherwise, 2 when the file or node is unusable.
 int run_diff_node(Session& session, const DiffOptions& options, std::ostream& out,
                   std::ostream& err);
 

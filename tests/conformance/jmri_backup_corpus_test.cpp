@@ -1,14 +1,17 @@
 // lcc-conform's configuration backup against OpenLCB_Java's own (corpus/jmri-backups: its
 // BackupConfig output for simnode serving each corpus CDI from a fresh image), in-process: the
 // same keys in the same order with the same values (float lines aside, OpenLCB_Java writes
-// none), and a restore of the reference file knows every key and leaves the node equal to it.
+// none), and a restore of the reference file knows every key, refuses exactly the values the
+// CDI forbids (a fresh image's 0 below a <min> of 1), and with --force leaves the node equal to it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 
+#include "cdi/value_codec.hpp"
 #include "conformance/conform_test_util.hpp"
 #include "conformance/link/link.hpp"
 #include "conformance/link/session.hpp"
@@ -60,6 +63,39 @@ std::vector<std::string> value_lines(const std::string& text,
         out.push_back(line);
     }
     return out;
+}
+
+// How many of the text's values check_value refuses for their variable (the n-th line of a key
+// is its n-th variable), judged on the value the bytes hold as the node will.
+std::size_t forbidden_values(const std::string& text, const std::vector<ConfigEntry>& entries) {
+    std::map<std::string, std::vector<const ConfigEntry*>> by_key;
+    for (const ConfigEntry& e : entries) by_key[e.key].push_back(&e);
+    std::map<std::string, std::size_t> seen;
+    std::size_t n = 0;
+    for (const BackupRecord& r : parse_backup_file(text).records) {
+        const auto it = by_key.find(r.key);
+        const std::size_t nth = seen[r.key]++;
+        if (it == by_key.end() || nth >= it->second.size()) continue;
+        const cdi::Element& e = *it->second[nth]->element;
+        std::string error;
+        const auto bytes = parse_backup_value(e, r.value, error);
+        if (!bytes) {
+            ++n;
+            continue;
+        }
+        const auto value = e.kind == cdi::ElementKind::kString
+                               ? cdi::CodecResult<cdi::Value>(cdi::Value::text(r.value))
+                               : cdi::decode(e, *bytes);
+        n += !value || !cdi::check_value(e, *value);
+    }
+    return n;
+}
+
+std::size_t lines_starting(const std::string& text, std::string_view start) {
+    std::size_t n = 0;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) n += line.starts_with(start);
+    return n;
 }
 
 class JmriBackupCorpus : public ::testing::TestWithParam<Reference> {
@@ -130,9 +166,21 @@ TEST_P(JmriBackupCorpus, SameKeysOrderAndValuesAndARestoreKnowsEveryKey) {
     scramble();
     std::ostringstream out;
     std::ostringstream err;
-    const int code = run_restore(*session_, RestoreOptions{file.string(), ref.node_id}, out, err);
-    EXPECT_EQ(code, 0) << out.str() << err.str();
+    const std::size_t forbidden = forbidden_values(reference, entries_);
+    RestoreOptions options{file.string(), ref.node_id};
+    int code = run_restore(*session_, options, out, err);
+    EXPECT_EQ(code, forbidden == 0 ? 0 : 1) << out.str() << err.str();
     EXPECT_EQ(out.str().find("unknown"), std::string::npos) << out.str();
+    EXPECT_EQ(lines_starting(out.str(), "  refused    line "), forbidden) << out.str();
+    // --force writes them too: the node then holds every value of the file. Scrambled again, as
+    // a variable sharing a refused one's bytes (openlcb_java__sample's "Reset Directly") wrote
+    // them.
+    scramble();
+    options.force = true;
+    out.str("");
+    code = run_restore(*session_, options, out, err);
+    EXPECT_EQ(code, 0) << out.str() << err.str();
+    EXPECT_EQ(lines_starting(out.str(), "  forced     line "), forbidden) << out.str();
     EXPECT_EQ(value_lines(backup(), entries_), want) << ref.cdi << "\n" << out.str();
 }
 

@@ -40,6 +40,7 @@ TEST_F(ConfigBackupTest, UnknownKeysAreListedWithTheirLine) {
 TEST_F(ConfigBackupTest, RestoreRoundTripPutsEveryValueBackAndWritesOnlyWhatDiffers) {
     auto& m = memory_.spaces[253];
     for (std::size_t i = 0; i < m.size(); ++i) m[i] = static_cast<std::uint8_t>(i * 7 + 1);
+    m[1] = 0xFF, m[2] = 0xFB;                                   // Trim -5, within min/max
     m[3] = 'h', m[4] = 'i', m[5] = '=', m[6] = '\\', m[7] = 0;  // Label "hi=\"
     m[19] = 0x3F, m[20] = 0xC0, m[21] = 0, m[22] = 0;           // Gain 1.5
     memory_.spaces[251][0] = 42;
@@ -78,6 +79,77 @@ TEST_F(ConfigBackupTest, RestoreReportsFailedWritesAndValuesTheNodeDidNotKeep) {
     EXPECT_EQ(out.written, 0u);
     EXPECT_NE(out.summary().find("wrote \"9\", the node holds \"0\""), std::string::npos)
         << out.summary();
+}
+
+TEST_F(ConfigBackupTest, ValuesTheCdiForbidsAreRefusedWithTheirRuleAndNotWritten) {
+    // Trim: min -100, max 100 (the <int> on line 6 of kBackupCdi); Label: 8 bytes.
+    const std::string text = "Main.Trim=2000\nMain.Label=12345678\nMain.Enabled=4\n";
+    const auto before = memory_.spaces[253];
+    auto out = restore_config(*cdi_.layout, memory_, text);
+    EXPECT_FALSE(out.ok());
+    EXPECT_EQ(out.written, 1u);  // Enabled only
+    EXPECT_EQ(memory_.spaces[253][0], 4);
+    EXPECT_EQ(memory_.spaces[253][1], before[1]);  // Trim untouched
+    EXPECT_EQ(memory_.spaces[253][2], before[2]);
+    EXPECT_EQ(memory_.spaces[253][3], before[3]);  // Label untouched
+    ASSERT_EQ(out.errors.size(), 2u) << out.summary();
+    EXPECT_EQ(out.errors[0],
+              "line 1: Main.Trim=\"2000\": out-of-range: value 2000 above max 100 of 'Trim' "
+              "(<int> at CDI line 6; CDI §5.1.4.2: invalid values shall not be written)");
+    EXPECT_NE(out.errors[1].find("line 2: Main.Label=\"12345678\": too-long: "), std::string::npos)
+        << out.errors[1];
+    EXPECT_NE(out.errors[1].find("CDI §5.1.4.3"), std::string::npos) << out.errors[1];
+
+    // --force writes them (a value with no bytes at all still cannot be).
+    out = restore_config(*cdi_.layout, memory_, text + "Main.Event=1.2\n", true);
+    EXPECT_EQ(out.written, 2u) << out.summary();
+    EXPECT_EQ(out.forced, 2u);
+    EXPECT_EQ(memory_.spaces[253][1], 0x07);
+    EXPECT_EQ(memory_.spaces[253][2], 0xD0);
+    EXPECT_EQ(std::string(memory_.spaces[253].begin() + 3, memory_.spaces[253].begin() + 11),
+              "12345678");
+    ASSERT_EQ(out.errors.size(), 1u) << out.summary();
+    EXPECT_NE(out.errors[0].find("line 4: Main.Event=\"1.2\": malformed"), std::string::npos)
+        << out.errors[0];
+}
+
+TEST_F(ConfigBackupTest, AValueTheNodeAlreadyHoldsIsNeverRefused) {
+    memory_.spaces[253][1] = 0x07;  // the node holds Trim 2000 already: nothing is written
+    memory_.spaces[253][2] = 0xD0;
+    const auto out = restore_config(*cdi_.layout, memory_, "Main.Trim=2000\n");
+    EXPECT_TRUE(out.ok()) << out.summary();
+    EXPECT_EQ(memory_.writes, 0u);
+}
+
+TEST(ConfigBackupPlan, RefusedValuesAreInThePlanWithTheirBytes) {
+    Cdi cdi(testing::kBackupCdi);
+    const std::vector<ConfigEntry> entries = config_entries(*cdi.layout);
+    const std::vector<ConfigValue> values(entries.size());
+    const RestorePlan plan = plan_restore(
+        entries, parse_backup_file("Main.Trim=-101\nMain.Event=1.2\nMain.Trim=5\n"), values);
+    ASSERT_EQ(plan.refused.size(), 2u);
+    EXPECT_EQ(plan.refused[0].entry->key, "Main.Trim");
+    EXPECT_EQ(plan.refused[0].line, 1u);
+    EXPECT_EQ(plan.refused[0].verdict.broken, ValueRule::kOutOfRange);
+    EXPECT_EQ(plan.refused[1].verdict.broken, ValueRule::kMalformed);
+    EXPECT_EQ(plan.forcible(), 1u);
+    EXPECT_FALSE(plan.clean());
+    EXPECT_EQ(plan.unknown_keys.size(), 1u);  // the second Main.Trim: there is one
+}
+
+TEST(ConfigBackupPlan, ARefusedLineIsPrintableWhateverTheFileHolds) {
+    Cdi cdi(R"(<?xml version="1.0"?>
+<cdi><segment space="253"><name>S</name><string size="4"><name>Bell</name></string>
+</segment></cdi>)");
+    const std::vector<ConfigEntry> entries = config_entries(*cdi.layout);
+    const std::vector<ConfigValue> values(entries.size());
+    BackupFile file;  // as a CSV row holds it: raw, a terminal's escape sequence included
+    file.records.push_back({"S.Bell", "\x1B[2J\xC2\x9B", 2, std::nullopt});
+    const RestorePlan plan = plan_restore(entries, file, values);
+    ASSERT_EQ(plan.refused.size(), 1u);
+    const std::string line = refused_text(plan.refused[0]);
+    for (char c : line) EXPECT_GE(static_cast<unsigned char>(c), 0x20) << line;
+    EXPECT_EQ(line.find("\xC2\x9B"), std::string::npos) << line;  // no C1 CSI either
 }
 
 TEST(ConfigBackupDuplicates, RepeatedKeysMapToVariablesInOrder) {
