@@ -55,6 +55,7 @@ SimNode* NodeRegistry::add(const NodeConfig& config, std::string& error) {
     if (!node) return nullptr;
     node_fds_ += node_fds(config);
     nodes_.push_back(std::move(node));
+    if (added_) added_(*nodes_.back());
     run(*nodes_.back());
     return nodes_.back().get();
 }

@@ -3,6 +3,7 @@
 // connection stays up.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -39,6 +40,11 @@ public:
     void start_all();
     /// True once start_all() ran.
     bool started() const { return started_; }
+    /// Called with every node add() creates, before its first frame (the client audit learns it
+    /// there: without it the node's exchanges would be judged as no node's).
+    void set_added_handler(std::function<void(const SimNode&)> handler) {
+        added_ = std::move(handler);
+    }
 
     /// Creates the node (its image directory too), attaches it and starts it when the others
     /// run; null with error set (a running node ID, a bad CDI, an unusable image directory, or
@@ -61,6 +67,7 @@ private:
     FdBudget budget_;
     std::size_t node_fds_ = 0;  // what nodes_ hold (node_fds of their configs)
     bool started_ = false;
+    std::function<void(const SimNode&)> added_;
 };
 
 }  // namespace olcb::simnode

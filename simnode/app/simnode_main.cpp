@@ -163,6 +163,7 @@ public:
         // Live control (docs/control.md): changes the nodes from the same io_context.
         registry_.emplace(nodes_, *driver_);
         registry_->set_fd_budget(fd_budget_);
+        if (audit_) registry_->set_added_handler([this](const SimNode& n) { audit_->add_node(n); });
         commands_.emplace(*registry_, scenario_);
         commands_->set_log_handler(say);
         control_.emplace(io_, *commands_);

@@ -11,6 +11,15 @@ std::string alias_text(std::uint16_t alias) {
     return base::hex(alias, 3);
 }
 
+void AuditContext::add_node(NodeProfile profile) {
+    // The index stays: the aliases mapped to it now lead to the new profile.
+    if (const auto index = node_index(profile.node_id())) {
+        nodes_[*index] = std::move(profile);
+        return;
+    }
+    nodes_.push_back(std::move(profile));
+}
+
 std::optional<std::size_t> AuditContext::node_index(NodeId id) const {
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
         if (nodes_[i].node_id() == id) return i;

@@ -37,8 +37,9 @@ public:
     /// The findings.
     const FindingLog& log() const { return log_; }
 
-    /// Adds one of simnode's nodes.
-    void add_node(NodeProfile profile) { nodes_.push_back(std::move(profile)); }
+    /// Adds one of simnode's nodes; a node with the same ID (removed and added again, perhaps
+    /// with another CDI) is replaced.
+    void add_node(NodeProfile profile);
     /// The index of the node with this ID, or nullopt when it is none of simnode's.
     std::optional<std::size_t> node_index(NodeId id) const;
     /// Records that node `index` now holds alias.

@@ -37,7 +37,8 @@ public:
     AuditTap(const AuditTap&) = delete;
     AuditTap& operator=(const AuditTap&) = delete;
 
-    /// Adds one of simnode's nodes.
+    /// Adds one of simnode's nodes, before its first frame (NodeRegistry's added handler calls
+    /// it for the nodes live control adds).
     void add_node(const SimNode& node);
     /// Starts auditing the segment the nodes use through node_port. With a hub (node_port one
     /// of its local endpoints) the hub's frames are observed and node_port is returned; without

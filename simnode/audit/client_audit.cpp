@@ -66,8 +66,11 @@ void ClientAudit::on_node_frame(const CanFrame& frame, TimePoint now) {
         datagrams_.node_restarted(alias);
         memory_.node_restarted(alias, now);
     }
+    // Only a node the audit knows has its client's answers routed back to its exchanges: one it
+    // did not know would leave every reply unacknowledged.
     const auto client = destination(frame);
-    if (client && ctx_.node_at(*client) == nullptr) datagrams_.on_node_frame(frame, *client, now);
+    if (client && ctx_.node_at(alias) != nullptr && ctx_.node_at(*client) == nullptr)
+        datagrams_.on_node_frame(frame, *client, now);
 }
 
 void ClientAudit::judge_mti(const CanFrame& frame, std::optional<std::uint16_t> node,

@@ -34,7 +34,8 @@ public:
     ClientAudit(const ClientAudit&) = delete;
     ClientAudit& operator=(const ClientAudit&) = delete;
 
-    /// Adds one of simnode's nodes (before its first frame).
+    /// Adds one of simnode's nodes before its first frame: at start, or when live control adds
+    /// it (`simnode ctl add`); one with the ID of an earlier node replaces that one.
     void add_node(NodeProfile profile) { ctx_.add_node(std::move(profile)); }
     /// Names a client connection; one never named is a bridge (see ConnectionKind).
     void name_connection(std::uint64_t connection, std::string remote, ConnectionKind kind) {

@@ -80,6 +80,25 @@ TEST_F(NodeRegistryTest, NodesAddedBeforeAndAfterTheStartRun) {
     EXPECT_EQ(nodes_.size(), 2u) << "the registry adds to the caller's vector";
 }
 
+// The client audit learns each added node here, before the node says anything.
+TEST_F(NodeRegistryTest, TheAddedHandlerHearsOfEachAddedNodeBeforeItStarts) {
+    std::vector<NodeId> heard;
+    std::size_t frames_then = 0;
+    registry_.set_added_handler([&](const SimNode& node) {
+        heard.push_back(node.node_id());
+        EXPECT_FALSE(node.stack().initialized());
+        frames_then = frames_.size();
+    });
+    std::string error;
+    registry_.start_all();
+    const std::size_t frames_before = frames_.size();
+    ASSERT_TRUE(registry_.add(config(test::kNodeId), error)) << error;
+    EXPECT_EQ(frames_then, frames_before);
+    EXPECT_EQ(registry_.add(config(test::kNodeId), error), nullptr);  // refused: not heard
+    ASSERT_TRUE(run_until([&] { return initialized(test::kNodeId); }));
+    EXPECT_EQ(heard, std::vector<NodeId>{test::kNodeId});
+}
+
 TEST_F(NodeRegistryTest, ARunningNodeIdOrABadCdiIsRefused) {
     std::string error;
     ASSERT_TRUE(registry_.add(config(test::kNodeId), error)) << error;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "audit_script.hpp"
 #include "simnode/audit/audit_limits.hpp"
 
@@ -89,6 +91,79 @@ TEST_F(ClientAuditTest, FinishJudgesALeavingClientWithoutWaitingForTheGrace) {
     EXPECT_THAT(rules_found(), IsEmpty());
     finish();
     EXPECT_EQ(found(RuleId::kDatagramReplyUnacknowledged).size(), 1u);
+}
+
+// `simnode ctl add`: a node the audit learns while it runs is audited as one of the start's.
+class AddedNodeTest : public AuditScript {
+protected:
+    static constexpr NodeId kAddedId{0x05'01'01'01'22'20ull};
+    static constexpr std::uint16_t kAddedAlias = 0x7A1;
+
+    // The default node's CDI and spaces under another ID, as `ctl add` with its CDI makes it.
+    static NodeProfile added_profile() {
+        const NodeProfile& d = default_profile();
+        std::map<std::uint8_t, SpaceShape> spaces;
+        for (const std::uint8_t sp : {std::uint8_t{0xFD}, std::uint8_t{0xFF}})
+            spaces[sp] = *d.space(sp);
+        std::string error;
+        return NodeProfile(kAddedId, load_cdi_model(simnode::test::default_cdi(), error),
+                           std::move(spaces));
+    }
+    // The added node logs in (AMD, Initialization Complete) and the client reads from it.
+    void start_added_and_read() {
+        node(":X107017A1N050101012220;");
+        node(":X191007A1N050101012220;");
+        login();
+        client(":X1A7A112CN20410000000008;");  // read 8 bytes of 0xFD
+        node(":X19A287A1N012C80;");
+        node(":X1A12C7A1N2051000000000000;");  // its reply
+        advance(20ms);
+        client(":X19A2812CN07A1;");  // acknowledged 20 ms later
+    }
+};
+
+TEST_F(AddedNodeTest, ItsRepliesAreAcknowledgedAndItsWritesJudged) {
+    audit_.add_node(added_profile());
+    start_added_and_read();
+    client_datagram(write_cmd(0xFD, 1, {0x07, 0xD0}));  // to 0x343, the scenario's node
+    node_ok(0);
+    client(":X1A7A112CN200100000001FC18;");  // Trim -1000 to the added node: in range
+    node(":X19A287A1N012C;");
+    client(":X1A7A112CN20010000000107D0;");  // Trim 2000 to the added node
+    node(":X19A287A1N012C;");
+    advance(5s);
+    const auto f = found(RuleId::kCdiIntOutOfRange);
+    ASSERT_EQ(f.size(), 2u) << ::testing::PrintToString(rules_found());
+    ASSERT_TRUE(f[1].node);
+    EXPECT_EQ(f[1].node->node_id, kAddedId);
+    EXPECT_EQ(f[1].node->alias, kAddedAlias);
+    EXPECT_THAT(found(RuleId::kDatagramReplyUnacknowledged), IsEmpty());
+}
+
+// Before the fix a node the audit did not know had its replies held against the client, whose
+// acknowledgements went nowhere: none is judged now.
+TEST_F(AddedNodeTest, ANodeTheAuditDoesNotKnowIsNotJudgedAtAll) {
+    start_added_and_read();
+    client(":X1A7A112CN20010000000107D0;");
+    advance(5s);
+    finish();
+    EXPECT_THAT(rules_found(), IsEmpty());
+}
+
+TEST_F(AddedNodeTest, ANodeAddedAgainWithTheSameIdReplacesTheFirst) {
+    audit_.add_node(added_profile());
+    // Removed and added again: no CDI now, and 8 bytes of 0xFD.
+    audit_.add_node(NodeProfile(kAddedId, nullptr, {{0xFD, SpaceShape{8, false}}}));
+    start_added_and_read();
+    client(":X1A7A112CN20010000000107D0;");  // Trim 2000: no CDI says what byte 1 is now
+    node(":X19A287A1N012C;");
+    client(":X1A7A112CN2001000000070102;");  // 2 bytes at 7: past the end of the 8
+    node(":X19A487A1N012C1082;");
+    EXPECT_THAT(found(RuleId::kCdiIntOutOfRange), IsEmpty());
+    const auto f = found(RuleId::kMemoryWritePastEnd);
+    ASSERT_EQ(f.size(), 1u);
+    ASSERT_TRUE(f[0].node);
+    EXPECT_EQ(f[0].node->node_id, kAddedId);
 }
 
 }  // namespace
