@@ -35,6 +35,29 @@ std::string what_frame(const CanFrame& frame) {
                                                                 : "a stream frame";
 }
 
+// The frame that starts a message (a datagram's first or only frame, an addressed message's
+// first or only frame): a message before Initialization Complete is counted once, not per frame.
+bool starts_message(const CanFrame& frame) {
+    switch (can::frame_format(frame.id)) {
+        case can::FrameFormat::kDatagramOnly:
+        case can::FrameFormat::kDatagramFirst:
+        case can::FrameFormat::kStreamData:
+            return true;
+        case can::FrameFormat::kGlobalAddressed:
+            break;
+        default:
+            return false;
+    }
+    if (frame.len < 2 || !is_addressed(static_cast<Mti>(can::can_mti(frame.id)))) return true;
+    const auto framing = can::addressed_framing(frame.data[0]);
+    return framing == can::AddressedFraming::kOnly || framing == can::AddressedFraming::kFirst;
+}
+
+bool is_initialization_complete(const CanFrame& frame) {
+    const auto mti = message_mti(frame);
+    return mti == Mti::kInitializationComplete || mti == Mti::kInitializationCompleteSimple;
+}
+
 bool carries_node_id(const CanFrame& frame) {
     if (frame.len < NodeId::kSize) return false;
     if (can::is_control(frame.id)) {
@@ -58,7 +81,15 @@ void AliasWatch::on_client_frame(const CanFrame& frame, std::uint64_t connection
         on_control(s, frame, dest_node, now);
     } else {
         require_permitted(s, frame, dest_node, now);
+        judge_initialized(s, frame, dest_node, now);
     }
+}
+
+void AliasWatch::forget(std::uint16_t alias) {
+    const auto it = states_.find(alias);
+    if (it == states_.end()) return;
+    if (it->second.mapped) initialized_.erase(it->second.mapped->value());
+    states_.erase(it);
 }
 
 bool AliasWatch::on_node_frame(const CanFrame& frame) {
@@ -125,6 +156,9 @@ void AliasWatch::on_control(State& s, const CanFrame& frame, std::optional<std::
         case ControlFrame::kAmd:
             if (s.phase == Phase::kReserved) {
                 s.phase = Phase::kPermitted;
+                if (frame.len >= NodeId::kSize)
+                    s.mapped = NodeId::from_bytes(
+                        std::span<const std::uint8_t>(frame.data.data(), NodeId::kSize));
                 return;
             }
             require_permitted(s, frame, dest, now);
@@ -172,6 +206,25 @@ void AliasWatch::require_permitted(const State& s, const CanFrame& frame,
     }
     ctx_.report(RuleId::kAliasUnreserved, alias, dest,
                 what_frame(frame) + " from alias " + alias_text(alias) + ", " + why,
+                std::span(&frame, 1), "", now);
+}
+
+// Only aliases the audit saw reserved and mapped are judged: an alias that was never reserved
+// is alias.unreserved's, and a bridged bus's nodes may have started before simnode joined it.
+void AliasWatch::judge_initialized(const State& s, const CanFrame& frame,
+                                   std::optional<std::uint16_t> dest, TimePoint now) {
+    if (s.phase != Phase::kPermitted || !s.mapped) return;
+    if (is_initialization_complete(frame)) {
+        initialized_.insert(s.mapped->value());
+        return;
+    }
+    if (initialized_.contains(s.mapped->value()) || !starts_message(frame)) return;
+    const std::uint16_t alias = can::source_alias(frame.id);
+    const std::string what =
+        can::is_datagram_format(can::frame_format(frame.id)) ? "a datagram" : what_frame(frame);
+    ctx_.report(RuleId::kMessageBeforeInitComplete, alias, dest,
+                what + " from alias " + alias_text(alias) + " (node " +
+                    s.mapped->to_string() + ") before its Initialization Complete",
                 std::span(&frame, 1), "", now);
 }
 

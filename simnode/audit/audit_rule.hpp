@@ -9,8 +9,8 @@
 
 namespace olcb::simnode::audit {
 
-/// How bad a finding is: errors break a standard's "shall", warnings its intent or a timing
-/// bound, notes what a standard recommends ("should").
+/// How bad a finding is, by the standard's words: an error breaks a "shall" (or "must"), a
+/// warning a "should"; a note is advice where no clause forbids what the client did.
 enum class Level : std::uint8_t { kError, kWarning, kNote };
 
 /// "error", "warning" or "note".
@@ -20,11 +20,13 @@ std::string_view level_name(Level level);
 enum class RuleId : std::uint8_t {
     kAliasUnreserved,
     kAliasRidTooEarly,
+    kMessageBeforeInitComplete,
     kMessageUnknownMti,
     kDatagramFrameSequence,
     kDatagramOverlap,
     kDatagramResendWithoutReject,
     kDatagramResendAfterOk,
+    kDatagramResendBeforeTimeout,
     kDatagramResendAfterPermanent,
     kDatagramRetryStorm,
     kDatagramReplyUnacknowledged,

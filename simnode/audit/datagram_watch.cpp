@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/error_codes.hpp"
+#include "base/hex.hpp"
 #include "openlcb/can_defs.hpp"
 #include "openlcb/datagram_defs.hpp"
 #include "openlcb/mti.hpp"
@@ -127,39 +128,74 @@ void DatagramWatch::on_client_datagram_frame(Pair& p, const CanFrame& frame, std
 void DatagramWatch::judge_datagram(Pair& p, std::uint16_t client, std::uint16_t node,
                                    TimePoint now) {
     const Assembly& a = p.from_client;
-    if (p.last && !p.last->broken) {
-        const Sent& last = *p.last;
-        const bool same = last.payload == a.bytes;
-        const auto frames = joined(last.frames, a.frames);
-        const std::string since = ms(now - last.at);
-        if (last.answer == Answer::kNone && now - last.at < kRequesterTimeout) {
-            ctx_.report(same ? RuleId::kDatagramResendWithoutReject : RuleId::kDatagramOverlap,
-                        client, node,
-                        same ? "sent the same datagram again " + since +
-                                   " later, before the node answered it"
-                             : "sent another datagram " + since +
-                                   " after the previous one, before the node answered it",
-                        frames, "", now);
-        } else if (last.answer == Answer::kOk && p.reply_due && now < *p.reply_due &&
-                   !p.reply_seen) {
-            ctx_.report(same ? RuleId::kDatagramResendAfterOk : RuleId::kMemoryRequestBeforeReply,
-                        client, node,
-                        (same ? "sent the same datagram again " : "sent another datagram ") +
-                            since + " after the previous one, which the node accepted with " +
-                            "Reply Pending; its reply had not come yet",
-                        frames, "", now);
-        } else if (last.answer == Answer::kPermanent && same) {
-            ctx_.report(RuleId::kDatagramResendAfterPermanent, client, node,
-                        "sent the same datagram again " + since +
-                            " after the node rejected it with a permanent error",
-                        frames, "", now);
-        }
-    }
+    if (p.last && !p.last->broken) judge_against_last(p, client, node, now);
     judge_resend(p, a.bytes, client, node, a.frames, now);
     p.last = Sent{a.bytes, a.frames, now, Answer::kNone, a.broken};
-    p.reply_due.reset();
+    p.pending.reset();
     p.reply_seen = false;
     sink_(client, node, a.bytes, a.frames, now);
+}
+
+// The datagram just completed, judged against the client's previous one to the node.
+void DatagramWatch::judge_against_last(Pair& p, std::uint16_t client, std::uint16_t node,
+                                       TimePoint now) {
+    const Sent& last = *p.last;
+    const bool same = last.payload == p.from_client.bytes;
+    const auto frames = joined(last.frames, p.from_client.frames);
+    const std::string since = ms(now - last.at);
+    if (last.answer == Answer::kNone && now - last.at < kRequesterTimeout) {
+        ctx_.report(same ? RuleId::kDatagramResendWithoutReject : RuleId::kDatagramOverlap, client,
+                    node,
+                    same ? "sent the same datagram again " + since +
+                               " later, before the node answered it"
+                         : "sent another datagram " + since +
+                               " after the previous one, before the node answered it",
+                    frames, "", now);
+    } else if (last.answer == Answer::kOk && p.pending && !p.reply_seen) {
+        judge_while_pending(p, same, frames, client, node, now);
+    } else if (last.answer == Answer::kPermanent && same) {
+        ctx_.report(RuleId::kDatagramResendAfterPermanent, client, node,
+                    "sent the same datagram again " + since +
+                        " after the node rejected it with a permanent error",
+                    frames, "", now);
+    }
+}
+
+// A datagram while the reply the node announced is still to come. The same one again is a
+// timeout: no shorter than 3 s (MessageNetworkS §3.7), or the 2^N s the OK promised when that
+// is shorter (MemoryConfigurationS §4.4, §4.8 allow a repeat once it elapsed). Another one is
+// allowed, but worth a note.
+void DatagramWatch::judge_while_pending(const Pair& p, bool same, std::span<const CanFrame> frames,
+                                        std::uint16_t client, std::uint16_t node, TimePoint now) {
+    const Pending& w = *p.pending;
+    const std::string waited = ms(now - w.ok_at);
+    if (!same) {
+        if (now >= w.due) return;
+        ctx_.report(RuleId::kMemoryRequestBeforeReply, client, node,
+                    "sent another datagram " + waited +
+                        " after the node accepted the previous one with Reply Pending; its "
+                        "reply had not come yet",
+                    frames, "", now);
+        return;
+    }
+    if (w.exponent == 0) {
+        if (now - w.ok_at >= kRequesterTimeout) return;
+        ctx_.report(RuleId::kDatagramResendAfterOk, client, node,
+                    "sent the same datagram again " + waited +
+                        " after the node accepted it with Reply Pending (no time stated, so "
+                        "a requester waits at least 3 s); its reply had not come yet",
+                    frames, "", now);
+        return;
+    }
+    const Duration promised = std::chrono::seconds(1u << w.exponent);
+    if (now - w.ok_at >= std::min(promised, kRequesterTimeout)) return;
+    const std::string flags = base::hex(datagram::ok_flags(true, w.exponent), 2);
+    ctx_.report(RuleId::kDatagramResendBeforeTimeout, client, node,
+                "sent the same datagram again " + waited +
+                    " after the node's Datagram Received OK (flags " + flags +
+                    ") promised the reply within 2^" + std::to_string(w.exponent) + " s = " +
+                    std::to_string(1u << w.exponent) + " s; its reply had not come yet",
+                frames, "", now);
 }
 
 void DatagramWatch::judge_resend(Pair& p, const std::vector<std::uint8_t>& payload,
@@ -210,7 +246,8 @@ void DatagramWatch::on_node_answer(Pair& p, const CanFrame& frame, TimePoint now
         p.last->answer = Answer::kOk;
         if (datagram::is_reply_pending(flags) && !p.reply_seen) {
             const auto announced = datagram::reply_timeout(flags);
-            p.reply_due = now + (announced ? Duration(*announced) : kRequesterTimeout);
+            p.pending = Pending{now, datagram::timeout_exponent(flags),
+                                now + (announced ? Duration(*announced) : kRequesterTimeout)};
         }
         return;
     }
@@ -226,7 +263,7 @@ void DatagramWatch::on_node_datagram_frame(Pair& p, const CanFrame& frame, TimeP
     if (assemble(p.from_node, frame, why) != Step::kComplete) return;
     p.unacknowledged = Reply{p.from_node.frames, now};
     p.reply_seen = true;
-    p.reply_due.reset();
+    p.pending.reset();
 }
 
 void DatagramWatch::node_restarted(std::uint16_t node) {
@@ -260,7 +297,7 @@ void DatagramWatch::poll(TimePoint now) {
     for (auto& [key, p] : pairs_) {
         if (p.unacknowledged && now - p.unacknowledged->at >= kRequesterTimeout)
             report_unacknowledged(p, pair_client(key), pair_node(key), "within 3 s", now);
-        if (p.reply_due && now >= *p.reply_due) p.reply_due.reset();
+        if (p.pending && now >= p.pending->due) p.pending.reset();
         if (p.snip_due && now >= *p.snip_due) p.snip_due.reset();
     }
 }
@@ -272,7 +309,7 @@ std::optional<TimePoint> DatagramWatch::next_deadline() const {
     };
     for (const auto& [key, p] : pairs_) {
         if (p.unacknowledged) consider(p.unacknowledged->at + kRequesterTimeout);
-        if (p.reply_due) consider(*p.reply_due);
+        if (p.pending) consider(p.pending->due);
         if (p.snip_due) consider(*p.snip_due);
     }
     return next;

@@ -60,11 +60,17 @@ private:
         std::vector<CanFrame> frames;
         TimePoint at{};
     };
+    // A Datagram Received OK with Reply Pending: what it promised and when.
+    struct Pending {
+        TimePoint ok_at{};
+        std::uint8_t exponent = 0;  // N of "the reply within 2^N s"; 0: no time stated
+        TimePoint due{};            // the reply may come until then (2^N s, else 3 s)
+    };
     struct Pair {
         Assembly from_client;
         Assembly from_node;
         std::optional<Sent> last;             // the client's last complete datagram
-        std::optional<TimePoint> reply_due;   // Reply Pending: the reply may come until then
+        std::optional<Pending> pending;       // Reply Pending, its reply not come yet
         bool reply_seen = false;              // a node datagram came after the client's last
         std::deque<TimePoint> resends;        // resends after temporary rejects (storms)
         std::optional<Reply> unacknowledged;  // a node datagram the client has not answered
@@ -76,6 +82,9 @@ private:
     void on_client_datagram_frame(Pair& p, const CanFrame& frame, std::uint16_t client,
                                   std::uint16_t node, TimePoint now);
     void judge_datagram(Pair& p, std::uint16_t client, std::uint16_t node, TimePoint now);
+    void judge_against_last(Pair& p, std::uint16_t client, std::uint16_t node, TimePoint now);
+    void judge_while_pending(const Pair& p, bool same, std::span<const CanFrame> frames,
+                             std::uint16_t client, std::uint16_t node, TimePoint now);
     void judge_resend(Pair& p, const std::vector<std::uint8_t>& payload, std::uint16_t client,
                       std::uint16_t node, std::span<const CanFrame> frames, TimePoint now);
     void on_client_ack(Pair& p, const CanFrame& frame, std::uint16_t client, std::uint16_t node,

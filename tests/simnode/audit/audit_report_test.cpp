@@ -15,7 +15,8 @@ using nlohmann::json;
 
 class AuditReport : public AuditScript {
 protected:
-    // One error (a write out of range), one warning (a read past the end), one note.
+    // One error (a write out of range), one note (a read past the end), one warning (no Update
+    // Complete).
     void violate() {
         login();
         client_datagram(write_cmd(0xFD, 1, {0x07, 0xD0}));

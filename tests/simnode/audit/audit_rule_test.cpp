@@ -55,6 +55,31 @@ TEST(AuditRules, IdsAreUniqueAndFoundByName) {
     EXPECT_EQ(find_rule("no.such-rule"), nullptr);
 }
 
+TEST(AuditRules, EveryRuleCitesAClause) {
+    for (const Rule& r : rules()) {
+        EXPECT_NE(r.standard.find("§"), std::string_view::npos) << r.name;
+        EXPECT_FALSE(r.summary.empty()) << r.name;
+    }
+}
+
+// The levels follow the standards' words (docs/audit.md, "Rules"): a few that are easy to get
+// wrong, pinned.
+TEST(AuditRules, LevelsFollowTheWordsOfTheClausesCited) {
+    // No "shall" forbids another request once the OK came (DatagramTransportS §6.1).
+    EXPECT_EQ(rule(RuleId::kMemoryRequestBeforeReply).level, Level::kNote);
+    // "Configuration tools should send it" (MemoryConfigurationS §4.23).
+    EXPECT_EQ(rule(RuleId::kMemoryNoUpdateComplete).level, Level::kWarning);
+    // "shall not transmit any other message type" (MessageNetworkS §3.2).
+    EXPECT_EQ(rule(RuleId::kMessageBeforeInitComplete).level, Level::kError);
+    // "Such a timeout shall not be shorter than 3 seconds" (MessageNetworkS §3.7).
+    EXPECT_EQ(rule(RuleId::kDatagramResendBeforeTimeout).level, Level::kError);
+    EXPECT_EQ(rule(RuleId::kDatagramResendAfterOk).level, Level::kError);
+    // "a node shall: ... Wait at least 200 milliseconds" (CanFrameTransferS §6.2.1).
+    EXPECT_EQ(rule(RuleId::kAliasRidTooEarly).level, Level::kError);
+    // "shall send messages required ... within 750 milliseconds" (MessageNetworkS §3.7).
+    EXPECT_EQ(rule(RuleId::kDatagramReplyAckLate).level, Level::kError);
+}
+
 TEST(AuditRules, LevelsAreNamedAsReportsWriteThem) {
     EXPECT_EQ(level_name(Level::kError), "error");
     EXPECT_EQ(level_name(Level::kWarning), "warning");

@@ -73,15 +73,26 @@ protected:
         now_ += d;
         audit_.poll(now_);
     }
-    /// The client reserves alias and maps it to id as CanFrameTransferS §6.2 says.
-    void login(std::uint16_t alias = kClientAlias, NodeId id = kClientId,
-               std::uint64_t connection = kConnection) {
+    /// The client reserves alias and maps it to id as CanFrameTransferS §6.2 says (Permitted,
+    /// still Uninitialized).
+    void reserve(std::uint16_t alias = kClientAlias, NodeId id = kClientId,
+                 std::uint64_t connection = kConnection) {
         for (int n = 7; n >= 4; --n) frame_from_client(can::make_cid(n, id, alias), connection);
         advance(200ms);
         frame_from_client(can::make_rid(alias), connection);
         frame_from_client(can::make_amd(alias, id), connection);
+    }
+    /// The client's Initialization Complete (MessageNetworkS §3.4.1).
+    void initialized(std::uint16_t alias = kClientAlias, NodeId id = kClientId,
+                     std::uint64_t connection = kConnection) {
         frame_from_client(can::make_node_id_frame(can::message_header(0x100, alias), id),
                           connection);
+    }
+    /// reserve(), then Initialization Complete: a client as the standards start it.
+    void login(std::uint16_t alias = kClientAlias, NodeId id = kClientId,
+               std::uint64_t connection = kConnection) {
+        reserve(alias, id, connection);
+        initialized(alias, id, connection);
     }
     /// A datagram from the client to the node, framed as a real sender frames it.
     void client_datagram(const std::vector<std::uint8_t>& payload,

@@ -154,13 +154,65 @@ TEST_F(DatagramRules, TheSameRequestAfterReplyPendingBeforeTheReplyIsAResendAfte
     EXPECT_THAT(rules_found(), ElementsAre("datagram.resend-after-ok"));
 }
 
-TEST_F(DatagramRules, AnotherRequestAfterReplyPendingBeforeTheReplyIsAFinding) {
+TEST_F(DatagramRules, TheSameRequestWithinThreeSecondsIsAResendAfterOkThereafterAllowed) {
+    read_cdi();
+    node_ok();
+    advance(2999ms);
+    read_cdi();
+    node_ok();
+    advance(3s);
+    read_cdi();
+    EXPECT_THAT(rules_found(), ElementsAre("datagram.resend-after-ok"));
+}
+
+// OpenLCB_Java reads N = 1 as `1 << 1000` ms and resends after ~270 ms (real-world.md §7).
+TEST_F(DatagramRules, TheSameRequestBeforeThePromisedTimeIsAResendBeforeTimeout) {
+    read_cdi();
+    advance(2ms);
+    node_ok(0x81);  // the reply within 2^1 s
+    advance(270ms);
+    read_cdi();
+    EXPECT_THAT(rules_found(), ElementsAre("datagram.resend-before-timeout"));
+    const auto f = found(RuleId::kDatagramResendBeforeTimeout);
+    ASSERT_EQ(f.size(), 1u);
+    EXPECT_NE(f[0].message.find("270 ms"), std::string::npos) << f[0].message;  // from the OK
+    EXPECT_NE(f[0].message.find("flags 0x81"), std::string::npos) << f[0].message;
+    EXPECT_NE(f[0].message.find("2^1 s = 2 s"), std::string::npos) << f[0].message;
+    EXPECT_EQ(f[0].frames.size(), 2u);  // the read and its resend
+    EXPECT_EQ(rule(f[0].rule).level, Level::kError);
+}
+
+// A promise longer than 3 s does not stretch the 3 s any requester may time out after.
+TEST_F(DatagramRules, APromiseOfMoreThanThreeSecondsIsJudgedAtThreeSeconds) {
+    read_cdi();
+    node_ok(0x83);  // the reply within 2^3 s
+    advance(2900ms);
+    read_cdi();
+    EXPECT_THAT(rules_found(), ElementsAre("datagram.resend-before-timeout"));
+    node_ok(0x83);
+    advance(3100ms);
+    read_cdi();
+    EXPECT_EQ(found(RuleId::kDatagramResendBeforeTimeout)[0].count, 1u);
+}
+
+TEST_F(DatagramRules, AResendAfterTheReplyCameIsNoResendBeforeTimeout) {
+    read_cdi();
+    node_ok(0x81);
+    cdi_reply();
+    client_ok();
+    read_cdi();  // asked again on purpose, e.g. to compare
+    EXPECT_THAT(rules_found(), IsEmpty());
+}
+
+TEST_F(DatagramRules, AnotherRequestAfterReplyPendingBeforeTheReplyIsANote) {
     read_cdi();
     node_ok();
     client_datagram(read_cmd(0xFD, 0, 8));
     const auto f = found(RuleId::kMemoryRequestBeforeReply);
     ASSERT_EQ(f.size(), 1u);
     EXPECT_EQ(f[0].frames.size(), 2u);
+    // No clause forbids it once the OK came (DatagramTransportS §6.1).
+    EXPECT_EQ(rule(f[0].rule).level, Level::kNote);
 }
 
 TEST_F(DatagramRules, OnceTheAnnouncedTimeHasPassedTheClientMayAskAgain) {

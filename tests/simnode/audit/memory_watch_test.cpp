@@ -62,7 +62,7 @@ TEST_F(MemoryRules, AWriteRunningPastTheEndIsAFinding) {
     EXPECT_EQ(f[0].count, 2u);
 }
 
-TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreANoteAtTheEnd) {
+TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreAWarningAtTheEnd) {
     write(0xFD, 0, {1});
     advance(5s);
     EXPECT_THAT(rules_found(), IsEmpty());
@@ -70,10 +70,10 @@ TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreANoteAtTheEnd) {
     const auto f = found(RuleId::kMemoryNoUpdateComplete);
     ASSERT_EQ(f.size(), 1u);
     EXPECT_NE(f[0].message.find("end of the run"), std::string::npos) << f[0].message;
-    EXPECT_EQ(rule(f[0].rule).level, Level::kNote);
+    EXPECT_EQ(rule(f[0].rule).level, Level::kWarning);
 }
 
-TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreANoteAfter10QuietSeconds) {
+TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreAWarningAfter10QuietSeconds) {
     write(0xFD, 0, {1});
     advance(9s);
     client_datagram(read_cmd(0xFD, 0, 1));  // any datagram keeps the sequence open
@@ -86,7 +86,7 @@ TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreANoteAfter10QuietSeconds) {
     EXPECT_THAT(rules_found(), ElementsAre("memory.no-update-complete"));
 }
 
-TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreANoteWhenTheClientLeaves) {
+TEST_F(MemoryRules, WritesWithoutUpdateCompleteAreAWarningWhenTheClientLeaves) {
     write(0xFD, 0, {1});
     audit_.on_disconnect(kConnection, now_);
     advance(2100ms);
