@@ -1,9 +1,11 @@
 #include "simnode/faults.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <utility>
 
 #include "simnode/faults/fault_catalog.hpp"
+#include "simnode/faults/fault_families.hpp"
 
 namespace olcb::simnode {
 namespace {
@@ -40,6 +42,37 @@ std::optional<FaultValue> parse_ms_jitter(const FaultDecl& d, std::optional<std:
     return FaultValue{*ms, *jitter};
 }
 
+// N[:MS]: a timeout exponent and a delay within the 2^N s it promises (kExponentMs).
+std::optional<FaultValue> parse_exponent_ms(const FaultDecl& d,
+                                            std::optional<std::string_view> value,
+                                            std::string& error) {
+    std::optional<std::uint32_t> n = d.param.fallback;
+    std::optional<std::string_view> ms_text;
+    if (value) {
+        const auto colon = value->find(':');
+        n = parse_uint(value->substr(0, colon), d.param.max);
+        if (colon != std::string_view::npos) ms_text = value->substr(colon + 1);
+    }
+    const std::string what = "fault '" + std::string(d.name) + "': value '" +
+                             std::string(value.value_or("")) + "' is not N or N:MS";
+    if (!n || *n < d.param.min) {
+        error = what + " (N a whole number in " + std::to_string(d.param.min) + ".." +
+                std::to_string(d.param.max) + ")";
+        return std::nullopt;
+    }
+    // The delay stays below the promise: a reply later than 2^N s would break it.
+    const std::uint32_t promised_ms = (1u << *n) * 1000u;
+    const std::uint32_t max_ms = std::min(promised_ms - 1, kMaxDelayMs);
+    if (!ms_text) return FaultValue{*n, std::min(promised_ms / 2, kMaxDelayMs)};
+    const auto ms = parse_uint(*ms_text, max_ms);
+    if (!ms) {
+        error = what + " (MS whole milliseconds 0.." + std::to_string(max_ms) + ", below the 2^" +
+                std::to_string(*n) + " s promised)";
+        return std::nullopt;
+    }
+    return FaultValue{*n, *ms};
+}
+
 std::optional<FaultValue> parse_choice(const FaultDecl& d, std::optional<std::string_view> value,
                                        std::string& error) {
     if (!value) return FaultValue{d.param.fallback};
@@ -65,6 +98,8 @@ std::optional<FaultValue> parse_value(const FaultDecl& d, std::optional<std::str
             return parse_choice(d, value, error);
         case ParamKind::kMsJitter:
             return parse_ms_jitter(d, value, error);
+        case ParamKind::kExponentMs:
+            return parse_exponent_ms(d, value, error);
         case ParamKind::kNumber:
             break;
     }
@@ -115,6 +150,8 @@ std::optional<std::string> name_if_set(const FaultSet& f, const FaultDecl& d) {
             return text + "=" + std::string(d.param.choices.at(v.value - 1));
         case ParamKind::kNumber:
             return text + "=" + std::to_string(v.value);
+        case ParamKind::kExponentMs:
+            return text + "=" + std::to_string(v.value) + ":" + std::to_string(v.jitter);
         case ParamKind::kMsJitter:
             break;
     }

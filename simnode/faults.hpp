@@ -17,7 +17,7 @@ namespace olcb::simnode {
 /// A fault's parameter as parse_faults() reads it; {0, 0} means the fault is off.
 struct FaultValue {
     std::uint32_t value = 0;   ///< flag: 1; number: the number; choice: index + 1; latency: MS
-    std::uint32_t jitter = 0;  ///< latency's JITTER, else 0
+    std::uint32_t jitter = 0;  ///< a second number: latency's JITTER, reply-pending's MS; else 0
     friend bool operator==(const FaultValue&, const FaultValue&) = default;
 };
 

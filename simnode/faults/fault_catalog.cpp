@@ -80,6 +80,7 @@ std::string help_parameter(const FaultDecl& d) {
         }
         case ParamKind::kNumber:
         case ParamKind::kMsJitter:
+        case ParamKind::kExponentMs:
             break;
     }
     return std::string(p.value_name) + " (default " + std::to_string(p.fallback) + ")";

@@ -19,11 +19,15 @@ enum class ParamKind : std::uint8_t {
     kNumber,    ///< "name[=N]", a whole number in min..max
     kChoice,    ///< "name[=WORD]", one of choices
     kMsJitter,  ///< "name[=MS[:JITTER]]", both 0..max, not both 0
+    /// "name[=N[:MS]]": a timeout exponent N in min..max (the time promised, 2^N s) and a delay MS
+    /// within it (0..2^N s - 1 ms, at most kMaxDelayMs; default half of 2^N s, at most
+    /// kMaxDelayMs), kept as FaultValue{N, MS}
+    kExponentMs,
 };
 
 struct FaultParam {
     ParamKind kind = ParamKind::kNone;
-    std::string_view value_name;  ///< "MS", "N", "MS[:JITTER]" (kChoice: unused)
+    std::string_view value_name;  ///< "MS", "N", "MS[:JITTER]", "N[:MS]" (kChoice: unused)
     std::uint32_t fallback = 0;   ///< when no "=": the number, or the choice's index + 1
     std::uint32_t min = 0;
     std::uint32_t max = 0;

@@ -61,6 +61,38 @@ TEST(ParseFaults, RestartAndMemoryFaults) {
     EXPECT_FALSE(parse_faults({"field-reads-only=1"}, error));
 }
 
+// reply-pending=N[:MS]: the delay stays below the 2^N s the OK promises.
+TEST(ParseFaults, ReplyPendingTakesAnExponentAndADelayWithinIt) {
+    std::string error;
+    auto f = parse_faults({"reply-pending"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->value("reply-pending"), (FaultValue{1, 1000}));  // half of 2^1 s
+    EXPECT_EQ(to_names(*f), std::vector<std::string>{"reply-pending=1:1000"});
+    f = parse_faults({"reply-pending=3"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->value("reply-pending"), (FaultValue{3, 4000}));
+    f = parse_faults({"reply-pending=15"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->value("reply-pending"), (FaultValue{15, 600000}));  // at most 10 minutes
+    f = parse_faults({"reply-pending=1:1999", "reply-pending-timeout=2"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->value("reply-pending"), (FaultValue{1, 1999}));
+    EXPECT_EQ(to_names(*f),
+              (std::vector<std::string>{"reply-pending-timeout=2", "reply-pending=1:1999"}));
+    f = parse_faults({"reply-pending=2:0"}, error);
+    ASSERT_TRUE(f) << error;
+    EXPECT_EQ(f->value("reply-pending"), (FaultValue{2, 0}));
+    EXPECT_EQ(parse_faults(to_names(*f), error), f);
+    EXPECT_FALSE(parse_faults({"reply-pending=1:2000"}, error));  // the promise would break
+    EXPECT_NE(error.find("0..1999"), std::string::npos) << error;
+    EXPECT_FALSE(parse_faults({"reply-pending=0"}, error));
+    EXPECT_NE(error.find("1..15"), std::string::npos) << error;
+    EXPECT_FALSE(parse_faults({"reply-pending=16"}, error));
+    EXPECT_FALSE(parse_faults({"reply-pending=1:"}, error));
+    EXPECT_FALSE(parse_faults({"reply-pending=1:x"}, error));
+    EXPECT_FALSE(parse_faults({"reply-pending=:5"}, error));
+}
+
 TEST(ParseFaults, EmptyIsAGoodNode) {
     std::string error;
     auto f = parse_faults({"", " , "}, error);
