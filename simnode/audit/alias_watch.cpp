@@ -223,8 +223,8 @@ void AliasWatch::judge_initialized(const State& s, const CanFrame& frame,
     const std::string what =
         can::is_datagram_format(can::frame_format(frame.id)) ? "a datagram" : what_frame(frame);
     ctx_.report(RuleId::kMessageBeforeInitComplete, alias, dest,
-                what + " from alias " + alias_text(alias) + " (node " +
-                    s.mapped->to_string() + ") before its Initialization Complete",
+                what + " from alias " + alias_text(alias) + " (node " + s.mapped->to_string() +
+                    ") before its Initialization Complete",
                 std::span(&frame, 1), "", now);
 }
 

@@ -37,8 +37,8 @@ private:
     struct State {
         Phase phase = Phase::kNone;
         TimePoint last_cid{};
-        std::uint64_t cid_bits = 0;  // node-ID bits the CID frames carried
-        std::uint8_t cids_seen = 0;  // bit n-4 set once CIDn came
+        std::uint64_t cid_bits = 0;      // node-ID bits the CID frames carried
+        std::uint8_t cids_seen = 0;      // bit n-4 set once CIDn came
         std::optional<NodeId> mapped{};  // the node ID of its AMD, once the audit saw it map
     };
 

@@ -144,13 +144,12 @@ void DatagramWatch::judge_against_last(Pair& p, std::uint16_t client, std::uint1
     const auto frames = joined(last.frames, p.from_client.frames);
     const std::string since = ms(now - last.at);
     if (last.answer == Answer::kNone && now - last.at < kRequesterTimeout) {
-        ctx_.report(same ? RuleId::kDatagramResendWithoutReject : RuleId::kDatagramOverlap, client,
-                    node,
-                    same ? "sent the same datagram again " + since +
-                               " later, before the node answered it"
-                         : "sent another datagram " + since +
-                               " after the previous one, before the node answered it",
-                    frames, "", now);
+        ctx_.report(
+            same ? RuleId::kDatagramResendWithoutReject : RuleId::kDatagramOverlap, client, node,
+            same ? "sent the same datagram again " + since + " later, before the node answered it"
+                 : "sent another datagram " + since +
+                       " after the previous one, before the node answered it",
+            frames, "", now);
     } else if (last.answer == Answer::kOk && p.pending && !p.reply_seen) {
         judge_while_pending(p, same, frames, client, node, now);
     } else if (last.answer == Answer::kPermanent && same) {
@@ -193,8 +192,8 @@ void DatagramWatch::judge_while_pending(const Pair& p, bool same, std::span<cons
     ctx_.report(RuleId::kDatagramResendBeforeTimeout, client, node,
                 "sent the same datagram again " + waited +
                     " after the node's Datagram Received OK (flags " + flags +
-                    ") promised the reply within 2^" + std::to_string(w.exponent) + " s = " +
-                    std::to_string(1u << w.exponent) + " s; its reply had not come yet",
+                    ") promised the reply within 2^" + std::to_string(w.exponent) +
+                    " s = " + std::to_string(1u << w.exponent) + " s; its reply had not come yet",
                 frames, "", now);
 }
 

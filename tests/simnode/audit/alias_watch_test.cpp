@@ -149,7 +149,7 @@ TEST_F(AliasRules, DatagramsFromAClientThatNeverInitializedAreAFinding) {
     client_datagram(read_cmd(0xFF, 0, 64));
     node_ok();
     node_datagram({0x20, 0x53, 0, 0, 0, 0, '<', '?', 'x', 'm', 'l'});
-    client_ok();                                                   // a message too
+    client_ok();                                                 // a message too
     client_datagram({0x5A, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});  // two frames, one message
     node_ok(0);
     EXPECT_THAT(rules_found(), ElementsAre("message.before-init-complete"));
