@@ -141,7 +141,7 @@ void AliasWatch::on_control(State& s, const CanFrame& frame, std::optional<std::
             // RID is also how a holder defends its alias; only after all four CIDs does it
             // complete a reservation.
             if (s.phase == Phase::kChecking && s.cids_seen == kAllCids) {
-                if (now - s.last_cid < kReservationWait) {
+                if (now - s.last_cid < kReservationWait - kArrivalJitter) {
                     const auto waited =
                         std::chrono::duration_cast<std::chrono::milliseconds>(now - s.last_cid);
                     ctx_.report(RuleId::kAliasRidTooEarly, can::source_alias(frame.id), dest,

@@ -119,6 +119,18 @@ TEST_F(AliasRules, RidSoonerThan200msAfterTheLastCidIsAFinding) {
     EXPECT_THAT(found(RuleId::kAliasUnreserved), IsEmpty());
 }
 
+// A CID the hub read late makes a correct client's wait look short: within kArrivalJitter of
+// 200 ms the audit gives the client the benefit of the doubt.
+TEST_F(AliasRules, ARidThatLooksUpTo100msEarlyIsNoFinding) {
+    for (int n = 7; n >= 4; --n)
+        audit_.on_frame(can::make_cid(n, kClientId, kClientAlias), Direction::kFromClient,
+                        kConnection, now_);
+    advance(110ms);
+    client(":X1070012CN;");
+    client(":X1070112CN02010D000001;");
+    EXPECT_THAT(found(RuleId::kAliasRidTooEarly), IsEmpty());
+}
+
 TEST_F(AliasRules, RidAfter200msIsClean) {
     login();
     EXPECT_THAT(rules_found(), IsEmpty());
