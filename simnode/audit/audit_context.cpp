@@ -58,6 +58,12 @@ std::vector<std::uint16_t> AuditContext::clients_of(std::uint64_t connection) co
     return out;
 }
 
+std::optional<std::uint64_t> AuditContext::connection_of(std::uint16_t alias) const {
+    const auto it = clients_.find(alias);
+    if (it == clients_.end()) return std::nullopt;
+    return it->second.connection;
+}
+
 void AuditContext::report(RuleId rule, std::uint16_t client_alias,
                           std::optional<std::uint16_t> node_alias, std::string message,
                           std::span<const CanFrame> frames, std::string_view key, TimePoint now) {

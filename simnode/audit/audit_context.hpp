@@ -59,6 +59,8 @@ public:
     void set_client_node_id(std::uint16_t alias, NodeId id);
     /// The client aliases last seen on connection.
     std::vector<std::uint16_t> clients_of(std::uint64_t connection) const;
+    /// The connection client alias was last seen on, if the audit knows the alias.
+    std::optional<std::uint64_t> connection_of(std::uint16_t alias) const;
     /// Forgets a client alias (its connection ended).
     void forget_client(std::uint16_t alias) { clients_.erase(alias); }
 

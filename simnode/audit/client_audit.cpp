@@ -53,6 +53,7 @@ void ClientAudit::on_frame(const CanFrame& frame, Direction direction, std::uint
 }
 
 void ClientAudit::on_client_frame(const CanFrame& frame, std::uint64_t connection, TimePoint now) {
+    end_reused_alias(can::source_alias(frame.id), connection, now);
     std::optional<std::uint16_t> node = destination(frame);
     if (node && ctx_.node_at(*node) == nullptr) node.reset();
     aliases_.on_client_frame(frame, connection, node, now);
@@ -96,12 +97,25 @@ void ClientAudit::on_disconnect(std::uint64_t connection, TimePoint now) {
 }
 
 void ClientAudit::close_connection(std::uint64_t connection, TimePoint now) {
-    for (const std::uint16_t alias : ctx_.clients_of(connection)) {
-        datagrams_.client_gone(alias, now);
-        memory_.client_gone(alias, now);
-        aliases_.forget(alias);
-        ctx_.forget_client(alias);
-    }
+    for (const std::uint16_t alias : ctx_.clients_of(connection)) close_client(alias, now);
+}
+
+void ClientAudit::close_client(std::uint16_t alias, TimePoint now) {
+    datagrams_.client_gone(alias, now);
+    memory_.client_gone(alias, now);
+    aliases_.forget(alias);
+    ctx_.forget_client(alias);
+}
+
+void ClientAudit::end_reused_alias(std::uint16_t alias, std::uint64_t connection, TimePoint now) {
+    // Tools that always derive the same alias (OpenLCB_Java's 0xC22) take it up again on a new
+    // connection within the grace: that is another client, so what the ended one left open is
+    // judged now and under its own connection, and the new one starts Uninitialized.
+    const auto previous = ctx_.connection_of(alias);
+    if (!previous || *previous == connection) return;
+    const bool ended = std::any_of(closing_.begin(), closing_.end(),
+                                   [&](const auto& c) { return c.first == *previous; });
+    if (ended) close_client(alias, now);
 }
 
 void ClientAudit::poll(TimePoint now) {

@@ -64,6 +64,8 @@ private:
     void on_node_frame(const CanFrame& frame, TimePoint now);
     void judge_mti(const CanFrame& frame, std::optional<std::uint16_t> node, TimePoint now);
     void close_connection(std::uint64_t connection, TimePoint now);
+    void close_client(std::uint16_t alias, TimePoint now);
+    void end_reused_alias(std::uint16_t alias, std::uint64_t connection, TimePoint now);
 
     AuditContext ctx_;
     AliasWatch aliases_;

@@ -96,9 +96,10 @@ protected:
     }
     /// A datagram from the client to the node, framed as a real sender frames it.
     void client_datagram(const std::vector<std::uint8_t>& payload,
-                         std::uint16_t alias = kClientAlias) {
+                         std::uint16_t alias = kClientAlias,
+                         std::uint64_t connection = kConnection) {
         for (const CanFrame& f : datagram_frames(alias, kNodeAlias, payload))
-            frame_from_client(f, kConnection);
+            frame_from_client(f, connection);
     }
     /// A datagram from the node to the client.
     void node_datagram(const std::vector<std::uint8_t>& payload) {

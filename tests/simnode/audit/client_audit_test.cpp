@@ -93,6 +93,53 @@ TEST_F(ClientAuditTest, FinishJudgesALeavingClientWithoutWaitingForTheGrace) {
     EXPECT_EQ(found(RuleId::kDatagramReplyUnacknowledged).size(), 1u);
 }
 
+// OpenLCB_Java's RestoreConfig then BackupConfig, each on its own connection with alias 0xC22:
+// the second takes up the alias within the first's grace.
+TEST_F(ClientAuditTest, AnAliasTakenUpByANewConnectionIsAnotherClient) {
+    constexpr std::uint64_t kSecond = 2;
+    audit_.name_connection(kSecond, "127.0.0.1:50001", ConnectionKind::kHubClient);
+    login();
+    client_datagram(write_cmd(0xFD, 0, {1}));  // a write, and no Update Complete
+    node_ok(0);
+    audit_.on_disconnect(kConnection, now_);
+    advance(500ms);
+    EXPECT_THAT(rules_found(), IsEmpty());
+
+    reserve(kClientAlias, kClientId, kSecond);
+    // The restore's open write is judged now, under its own connection.
+    const auto open = found(RuleId::kMemoryNoUpdateComplete);
+    ASSERT_EQ(open.size(), 1u);
+    EXPECT_EQ(open[0].client.connection, kConnection);
+    // The new client starts Uninitialized: a message before its Initialization Complete counts.
+    client(":X1949012CN;", kSecond);  // Verify Node ID Global
+    const auto early = found(RuleId::kMessageBeforeInitComplete);
+    ASSERT_EQ(early.size(), 1u);
+    EXPECT_EQ(early[0].client.connection, kSecond);
+
+    initialized(kClientAlias, kClientId, kSecond);
+    client_datagram(read_cmd(0xFD, 0, 8), kClientAlias, kSecond);  // the backup only reads
+    node_ok();
+    node_datagram({0x20, 0x51, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0});
+    client_ok();
+    advance(kDisconnectGrace);
+    audit_.on_disconnect(kSecond, now_);
+    finish();
+    EXPECT_EQ(found(RuleId::kMemoryNoUpdateComplete).size(), 1u);
+    EXPECT_THAT(rules_found(),
+                ElementsAre("memory.no-update-complete", "message.before-init-complete"));
+}
+
+TEST_F(ClientAuditTest, AnAliasAnotherLiveConnectionAlsoUsesKeepsItsState) {
+    constexpr std::uint64_t kSecond = 2;
+    audit_.name_connection(kSecond, "127.0.0.1:50001", ConnectionKind::kHubClient);
+    login();
+    client_datagram(write_cmd(0xFD, 0, {1}));
+    node_ok(0);
+    client(":X1949012CN;", kSecond);  // the same alias on a connection still open: no hand-over
+    EXPECT_THAT(found(RuleId::kMemoryNoUpdateComplete), IsEmpty());
+    EXPECT_THAT(found(RuleId::kMessageBeforeInitComplete), IsEmpty());
+}
+
 // `simnode ctl add`: a node the audit learns while it runs is audited as one of the start's.
 class AddedNodeTest : public AuditScript {
 protected:
