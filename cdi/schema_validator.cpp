@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -27,6 +28,7 @@ using XmlErrorArg = xmlErrorPtr;
 #endif
 
 constexpr std::size_t kSchemaCount = 5;
+constexpr std::size_t kFdiSchemaCount = 2;
 // A CDI with thousands of bad elements would otherwise yield thousands of near-identical lines.
 constexpr std::size_t kMaxDiagnostics = 1000;
 constexpr const char* kXsiNamespace = "http://www.w3.org/2001/XMLSchema-instance";
@@ -100,14 +102,64 @@ struct CompiledSchema {
     Diagnostics errors;             // why it failed to compile (never expected)
 };
 
-const CompiledSchema& compiled_schema(SchemaVersion version) {
+/// One family of schemas (CDI or FDI): its name in messages, where a schema URL names the
+/// version, the versions' names, the embedded texts and their compiled forms (by index).
+struct SchemaFamily {
+    std::string_view name;           ///< "CDI"
+    std::string_view with_article;   ///< "a CDI"
+    std::string_view location_stem;  ///< "/schema/cdi/1/"
+    std::string_view location_tail;  ///< "/cdi.xsd"
+    std::span<const std::string_view> version_names;
+    std::size_t newest = 0;
+    std::string_view (*embedded)(std::size_t index) = nullptr;
+    std::span<CompiledSchema> cache;  ///< one entry per version, compiled on first use
+
+    std::string version_name(std::size_t index) const {
+        return index < version_names.size() ? std::string(version_names[index]) : "?";
+    }
+    std::string prefix(std::size_t index) const {
+        return std::string(name) + " " + version_name(index) + " schema: ";
+    }
+};
+
+constexpr std::array<std::string_view, kSchemaCount> kCdiVersionNames = {"1.0", "1.1", "1.2", "1.3",
+                                                                         "1.4"};
+constexpr std::array<std::string_view, kFdiSchemaCount> kFdiVersionNames = {"1.0", "1.1"};
+
+const SchemaFamily& cdi_family() {
     static std::array<CompiledSchema, kSchemaCount> cache;
-    CompiledSchema& entry = cache[static_cast<std::size_t>(version)];
-    std::call_once(entry.once, [&entry, version] {
+    static const SchemaFamily family{
+        "CDI",
+        "a CDI",
+        "/schema/cdi/1/",
+        "/cdi.xsd",
+        kCdiVersionNames,
+        static_cast<std::size_t>(kNewestSchema),
+        [](std::size_t index) { return embedded_schema(static_cast<SchemaVersion>(index)); },
+        cache};
+    return family;
+}
+
+const SchemaFamily& fdi_family() {
+    static std::array<CompiledSchema, kFdiSchemaCount> cache;
+    static const SchemaFamily family{
+        "FDI",
+        "an FDI",
+        "/schema/fdi/1/",
+        "/fdi.xsd",
+        kFdiVersionNames,
+        static_cast<std::size_t>(kNewestFdiSchema),
+        [](std::size_t index) { return embedded_fdi_schema(static_cast<FdiSchemaVersion>(index)); },
+        cache};
+    return family;
+}
+
+const CompiledSchema& compiled_schema(const SchemaFamily& family, std::size_t version) {
+    CompiledSchema& entry = family.cache[version];
+    std::call_once(entry.once, [&entry, &family, version] {
         xmlInitParser();
-        const std::string_view xsd = embedded_schema(version);
-        Collector collector{&entry.errors,
-                            "CDI " + std::string(schema_version_name(version)) + " schema: "};
+        const std::string_view xsd = family.embedded(version);
+        Collector collector{&entry.errors, family.prefix(version)};
         ErrorRouting routing(&collector);
         xmlSchemaParserCtxtPtr parser =
             xmlSchemaNewMemParserCtxt(xsd.data(), static_cast<int>(xsd.size()));
@@ -125,23 +177,48 @@ const CompiledSchema& compiled_schema(SchemaVersion version) {
 constexpr int kParseOptions = XML_PARSE_NONET | XML_PARSE_BIG_LINES | XML_PARSE_HUGE;
 
 /// The compiled schema of `version`, or null with the reason in `out`.
-xmlSchemaPtr schema_for(SchemaVersion version, Diagnostics& out) {
-    if (static_cast<std::size_t>(version) >= kSchemaCount) {
-        out.push_back({Severity::kError, 0, "unknown CDI schema version requested"});
+xmlSchemaPtr schema_for(const SchemaFamily& family, std::size_t version, Diagnostics& out) {
+    if (version >= family.cache.size()) {
+        out.push_back({Severity::kError, 0,
+                       "unknown " + std::string(family.name) + " schema version requested"});
         return nullptr;
     }
-    const CompiledSchema& compiled = compiled_schema(version);
+    const CompiledSchema& compiled = compiled_schema(family, version);
     if (compiled.schema == nullptr) {
         out.push_back({Severity::kError, 0,
-                       "internal error: the embedded CDI " +
-                           std::string(schema_version_name(version)) + " schema did not compile"});
+                       "internal error: the embedded " + std::string(family.name) + " " +
+                           family.version_name(version) + " schema did not compile"});
         out.insert(out.end(), compiled.errors.begin(), compiled.errors.end());
     }
     return compiled.schema;
 }
 
-std::string schema_prefix(SchemaVersion version) {
-    return "CDI " + std::string(schema_version_name(version)) + " schema: ";
+/// Which schema of a family a pass used and why (SchemaChoice/FdiSchemaChoice by index).
+struct Choice {
+    std::size_t version = 0;
+    bool declared = false;
+    bool well_formed = false;
+};
+
+/// The version of `family` named by a schema location; nullopt when it names none it knows.
+std::optional<std::size_t> version_from_location(const SchemaFamily& family,
+                                                 std::string_view location) {
+    while (!location.empty() && (location.back() == ' ' || location.back() == '\t' ||
+                                 location.back() == '\n' || location.back() == '\r')) {
+        location.remove_suffix(1);
+    }
+    const std::size_t marker = location.rfind(family.location_stem);
+    if (marker == std::string_view::npos || !location.ends_with(family.location_tail))
+        return std::nullopt;
+    const std::size_t first = marker + family.location_stem.size();
+    const std::size_t last = location.size() - family.location_tail.size();
+    if (last <= first) return std::nullopt;
+    unsigned minor = 0;
+    const char* begin = location.data() + first;
+    const char* end = location.data() + last;
+    const auto [ptr, ec] = std::from_chars(begin, end, minor);
+    if (ec != std::errc{} || ptr != end || minor >= family.cache.size()) return std::nullopt;
+    return minor;
 }
 
 struct ValidatorFree {
@@ -156,8 +233,9 @@ struct PassResult {
     PassResult(const PassResult&) = delete;  // schema_collector points into it
     PassResult& operator=(const PassResult&) = delete;
 
-    std::optional<SchemaVersion> fixed;  ///< validate_schema_as: the version, whatever is declared
-    SchemaChoice choice;
+    const SchemaFamily* family = nullptr;
+    std::optional<std::size_t> fixed;  ///< validate_schema_as: the version, whatever is declared
+    Choice choice;
     std::optional<Diagnostic> choice_warning;  ///< no or an unknown version declared
     Diagnostics setup_errors;                  ///< the schema could not be used
     bool doctype_seen = false;
@@ -205,22 +283,24 @@ std::string root_location(int attribute_count, const xmlChar** attributes) {
 // The version to validate against: the one asked for, else the one the root declares, else the
 // newest with a warning at the root's line.
 void choose(PassResult& state, const std::string& location, std::uint32_t root_line) {
+    const SchemaFamily& family = *state.family;
     if (state.fixed) {
         state.choice.version = *state.fixed;
         return;
     }
-    if (const auto version = schema_version_from_location(location)) {
+    if (const auto version = version_from_location(family, location)) {
         state.choice.version = *version;
         state.choice.declared = true;
         return;
     }
-    const std::string newest(schema_version_name(kNewestSchema));
-    const bool versioned = location.find("/schema/cdi/1/") != std::string::npos;
+    state.choice.version = family.newest;
+    const bool versioned = location.find(family.location_stem) != std::string::npos;
     state.choice_warning =
         Diagnostic{Severity::kWarning, root_line,
                    (versioned ? "unknown schema version declared (" + location + ")"
                               : std::string("no schema version declared")) +
-                       "; validated against CDI " + newest};
+                       "; validated against " + std::string(family.name) + " " +
+                       family.version_name(family.newest)};
 }
 
 // Without a tree, the validator asks where the parser is for the line of what it reports: the
@@ -235,9 +315,9 @@ int parser_position(void* context, const char** file, unsigned long* line) {
 // Puts the validator of the chosen schema in front of the parser's handlers; false when the
 // schema cannot be used (the reason is in setup_errors).
 bool plug_validator(PassResult& state, xmlParserCtxtPtr parser) {
-    const xmlSchemaPtr schema = schema_for(state.choice.version, state.setup_errors);
+    const xmlSchemaPtr schema = schema_for(*state.family, state.choice.version, state.setup_errors);
     if (schema == nullptr) return false;
-    state.schema_collector.prefix = schema_prefix(state.choice.version);
+    state.schema_collector.prefix = state.family->prefix(state.choice.version);
     state.validator.reset(xmlSchemaNewValidCtxt(schema));
     if (state.validator == nullptr) {
         state.setup_errors.push_back({Severity::kError, 0, "schema validation: out of memory"});
@@ -315,9 +395,10 @@ void validate_stream(std::string_view bytes, PassResult& result) {
 /// is the conforming parser, so its verdict on well-formedness is the one reported. Appends to
 /// `out` what a reader needs (the choice's warning, if any, only for well-formed text). Returns
 /// whether the text is XML; `choice` receives the schema used.
-bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, Diagnostics& out,
-                   SchemaChoice& choice) {
+bool check_against(const SchemaFamily& family, std::string_view bytes,
+                   std::optional<std::size_t> fixed, Diagnostics& out, Choice& choice) {
     PassResult pass;
+    pass.family = &family;
     pass.fixed = fixed;
     validate_stream(bytes, pass);
     choice = pass.choice;
@@ -327,8 +408,9 @@ bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, D
     append(out, std::move(pass.parse_errors));
     if (pass.doctype_seen) {
         out.push_back({Severity::kError, static_cast<std::uint32_t>(pass.doctype_line),
-                       "XML parse error: a DOCTYPE is not allowed in a CDI (refused; no entity "
-                       "was expanded)"});
+                       "XML parse error: a DOCTYPE is not allowed in " +
+                           std::string(family.with_article) +
+                           " (refused; no entity was expanded)"});
         return false;
     }
     if (!pass.well_formed) {
@@ -339,66 +421,80 @@ bool check_against(std::string_view bytes, std::optional<SchemaVersion> fixed, D
     if (unusable) return false;
     if (pass.choice_warning) out.push_back(std::move(*pass.choice_warning));
     if (!pass.valid && pass.schema_errors.empty()) {
-        out.push_back({Severity::kError, 0, schema_prefix(choice.version) + "validation failed"});
+        out.push_back({Severity::kError, 0, family.prefix(choice.version) + "validation failed"});
     }
     append(out, std::move(pass.schema_errors));
     return true;
 }
 
-bool too_large(std::string_view bytes, Diagnostics& out) {
+bool too_large(const SchemaFamily& family, std::string_view bytes, Diagnostics& out) {
     if (bytes.size() <= kMaxCdiBytes) return false;
     out.push_back({Severity::kError, 0,
-                   "CDI is " + std::to_string(bytes.size()) + " bytes; refusing more than " +
-                       std::to_string(kMaxCdiBytes)});
+                   std::string(family.name) + " is " + std::to_string(bytes.size()) +
+                       " bytes; refusing more than " + std::to_string(kMaxCdiBytes)});
     return true;
+}
+
+/// One validation of `bytes` against `fixed` or the declared schema of `family`.
+Diagnostics validate_in(const SchemaFamily& family, std::string_view bytes,
+                        std::optional<std::size_t> fixed, Choice& choice) {
+    Diagnostics out;
+    bytes = without_trailing_nuls(bytes);
+    if (!too_large(family, bytes, out)) {
+        choice.well_formed = check_against(family, bytes, fixed, out, choice);
+    }
+    return out;
 }
 
 }  // namespace
 
 std::string_view schema_version_name(SchemaVersion version) {
-    static constexpr std::array<std::string_view, kSchemaCount> kNames = {"1.0", "1.1", "1.2",
-                                                                          "1.3", "1.4"};
     const auto index = static_cast<std::size_t>(version);
-    return index < kNames.size() ? kNames[index] : std::string_view{"?"};
+    return index < kCdiVersionNames.size() ? kCdiVersionNames[index] : std::string_view{"?"};
 }
 
 std::optional<SchemaVersion> schema_version_from_location(std::string_view location) {
-    constexpr std::string_view kMarker = "/schema/cdi/1/";
-    constexpr std::string_view kTail = "/cdi.xsd";
-    while (!location.empty() && (location.back() == ' ' || location.back() == '\t' ||
-                                 location.back() == '\n' || location.back() == '\r')) {
-        location.remove_suffix(1);
-    }
-    const std::size_t marker = location.rfind(kMarker);
-    if (marker == std::string_view::npos || !location.ends_with(kTail)) return std::nullopt;
-    const std::size_t first = marker + kMarker.size();
-    const std::size_t last = location.size() - kTail.size();
-    if (last <= first) return std::nullopt;
-    unsigned minor = 0;
-    const char* begin = location.data() + first;
-    const char* end = location.data() + last;
-    const auto [ptr, ec] = std::from_chars(begin, end, minor);
-    if (ec != std::errc{} || ptr != end || minor >= kSchemaCount) return std::nullopt;
-    return static_cast<SchemaVersion>(minor);
+    const auto index = version_from_location(cdi_family(), location);
+    return index ? std::optional(static_cast<SchemaVersion>(*index)) : std::nullopt;
 }
 
 Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen) {
-    Diagnostics out;
-    SchemaChoice choice;
-    bytes = without_trailing_nuls(bytes);
-    if (!too_large(bytes, out)) {
-        choice.well_formed = check_against(bytes, std::nullopt, out, choice);
+    Choice choice{static_cast<std::size_t>(kNewestSchema)};
+    Diagnostics out = validate_in(cdi_family(), bytes, std::nullopt, choice);
+    if (chosen != nullptr) {
+        *chosen = {static_cast<SchemaVersion>(choice.version), choice.declared, choice.well_formed};
     }
-    if (chosen != nullptr) *chosen = choice;
     return out;
 }
 
 Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version) {
-    Diagnostics out;
-    SchemaChoice choice;
-    bytes = without_trailing_nuls(bytes);
-    if (!too_large(bytes, out)) check_against(bytes, version, out, choice);
+    Choice choice;
+    return validate_in(cdi_family(), bytes, static_cast<std::size_t>(version), choice);
+}
+
+std::string_view fdi_schema_version_name(FdiSchemaVersion version) {
+    const auto index = static_cast<std::size_t>(version);
+    return index < kFdiVersionNames.size() ? kFdiVersionNames[index] : std::string_view{"?"};
+}
+
+std::optional<FdiSchemaVersion> fdi_schema_version_from_location(std::string_view location) {
+    const auto index = version_from_location(fdi_family(), location);
+    return index ? std::optional(static_cast<FdiSchemaVersion>(*index)) : std::nullopt;
+}
+
+Diagnostics validate_fdi_schema(std::string_view bytes, FdiSchemaChoice* chosen) {
+    Choice choice{static_cast<std::size_t>(kNewestFdiSchema)};
+    Diagnostics out = validate_in(fdi_family(), bytes, std::nullopt, choice);
+    if (chosen != nullptr) {
+        *chosen = {static_cast<FdiSchemaVersion>(choice.version), choice.declared,
+                   choice.well_formed};
+    }
     return out;
+}
+
+Diagnostics validate_fdi_schema_as(std::string_view bytes, FdiSchemaVersion version) {
+    Choice choice;
+    return validate_in(fdi_family(), bytes, static_cast<std::size_t>(version), choice);
 }
 
 }  // namespace olcb::cdi

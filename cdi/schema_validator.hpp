@@ -1,5 +1,7 @@
-// Validation of CDI text against the official CDI XML Schemas (1.0 to 1.4), compiled into the
-// library and run by libxml2. The schema is chosen by the version the CDI itself declares.
+// Validation of CDI text against the official CDI XML Schemas (1.0 to 1.4), and of FDI text
+// (Function Description Information, a train node's space 0xFA) against the FDI schemas (1.0,
+// 1.1), compiled into the library and run by libxml2. The schema is chosen by the version the
+// text itself declares.
 #pragma once
 
 #include <cstddef>
@@ -44,5 +46,37 @@ Diagnostics validate_schema(std::string_view bytes, SchemaChoice* chosen = nullp
 
 /// Validates CDI text against one given schema version, whatever the CDI declares.
 Diagnostics validate_schema_as(std::string_view bytes, SchemaVersion version);
+
+/// The FDI schema versions compiled into the library (openlcb/documents schema/fdi/1/N). The
+/// published 1.0 and 1.1 files are the same; the embedded 1.1 adds the <icon> element the
+/// standard defines (FunctionDescriptionInformationS §5.1.4, Appendix A; docs/validation.md).
+enum class FdiSchemaVersion : std::uint8_t { kV1_0, kV1_1 };
+
+/// The FDI schema used when an FDI declares no version, or one this library does not know.
+inline constexpr FdiSchemaVersion kNewestFdiSchema = FdiSchemaVersion::kV1_1;
+
+/// "1.0" or "1.1".
+std::string_view fdi_schema_version_name(FdiSchemaVersion version);
+
+/// The FDI XSD text of a version, as compiled in (empty for an out-of-range value).
+std::string_view embedded_fdi_schema(FdiSchemaVersion version);
+
+/// The version named by an xsi:noNamespaceSchemaLocation ".../schema/fdi/1/N/fdi.xsd" with N in
+/// 0..1; nullopt for anything else.
+std::optional<FdiSchemaVersion> fdi_schema_version_from_location(std::string_view location);
+
+/// Which FDI schema validate_fdi_schema used and why.
+struct FdiSchemaChoice {
+    FdiSchemaVersion version = kNewestFdiSchema;
+    bool declared = false;     ///< the FDI named this version itself
+    bool well_formed = false;  ///< libxml2 parsed the text (no schema check happens otherwise)
+};
+
+/// validate_schema() for an FDI: the schema the FDI declares, else the newest with a warning.
+/// The same limits apply (kMaxCdiBytes, no DOCTYPE, trailing NULs ignored).
+Diagnostics validate_fdi_schema(std::string_view bytes, FdiSchemaChoice* chosen = nullptr);
+
+/// Validates FDI text against one given FDI schema version, whatever the FDI declares.
+Diagnostics validate_fdi_schema_as(std::string_view bytes, FdiSchemaVersion version);
 
 }  // namespace olcb::cdi

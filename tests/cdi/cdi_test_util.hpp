@@ -135,6 +135,25 @@ inline std::string hostile_cdi(std::size_t depth) {
     return out + "</segment></cdi>\n";
 }
 
+/// A small FDI: the declaration (line 1), the root naming FDI 1.`minor` (line 2; minor < 0: no
+/// location), `<segment>` (line 3), `body` from line 4, then the closing tags.
+inline std::string fdi_text(const std::string& body, int minor = 1) {
+    std::string text =
+        "<?xml version=\"1.0\"?>\n<fdi xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\"";
+    if (minor >= 0) {
+        text += " xsi:noNamespaceSchemaLocation=\"https://openlcb.org/schema/fdi/1/" +
+                std::to_string(minor) + "/fdi.xsd\"";
+    }
+    return text + ">\n<segment>\n" + body + "</segment>\n</fdi>\n";
+}
+
+/// One <function> of an FDI on one line.
+inline std::string fdi_function(int number, const std::string& name = "F",
+                                const std::string& kind = "binary") {
+    return "<function kind=\"" + kind + "\"><name>" + name + "</name><number>" +
+           std::to_string(number) + "</number></function>\n";
+}
+
 /// The depths of nesting a valid CDI is tested at (deeper than any real one, within the limit).
 inline constexpr std::size_t kValidNestingDepths[] = {200, 1000};
 /// The depths of hostile nesting: far beyond kMaxGroupDepth.
