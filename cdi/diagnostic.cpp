@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <iterator>
+#include <utility>
+
+#include "base/run_sort.hpp"
 
 namespace olcb::cdi {
 
@@ -14,6 +17,21 @@ void append(Diagnostics& out, Diagnostics&& more) {
 bool has_errors(const Diagnostics& diagnostics) {
     return std::any_of(diagnostics.begin(), diagnostics.end(),
                        [](const Diagnostic& d) { return d.severity == Severity::kError; });
+}
+
+void sort_and_dedupe(Diagnostics& diagnostics) {
+    base::run_sort(diagnostics.begin(), diagnostics.end(),
+                   [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
+    Diagnostics unique;
+    unique.reserve(diagnostics.size());
+    for (Diagnostic& d : diagnostics) {
+        bool repeat = false;
+        for (auto u = unique.rbegin(); u != unique.rend() && u->line == d.line && !repeat; ++u) {
+            repeat = u->severity == d.severity && u->message == d.message;
+        }
+        if (!repeat) unique.push_back(std::move(d));
+    }
+    diagnostics = std::move(unique);
 }
 
 std::string format_diagnostic(const std::string& file, const Diagnostic& diagnostic) {

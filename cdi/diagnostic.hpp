@@ -27,6 +27,11 @@ void append(Diagnostics& out, Diagnostics&& more);
 /// True when any finding is an error.
 bool has_errors(const Diagnostics& diagnostics);
 
+/// Sorts by line (stable, so each pass keeps its own order within a line; each pass reports in
+/// document order, so this merges a few runs) and drops exact repeats, which arise when two
+/// passes word the same finding identically: how a validator merges its passes.
+void sort_and_dedupe(Diagnostics& diagnostics);
+
 /// "FILE:LINE: error: message" (or "FILE: error: message" when the line is 0).
 std::string format_diagnostic(const std::string& file, const Diagnostic& diagnostic);
 

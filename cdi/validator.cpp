@@ -4,33 +4,11 @@
 #include <tuple>
 #include <utility>
 
-#include "base/run_sort.hpp"
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
 #include "cdi/semantic_rules.hpp"
 
 namespace olcb::cdi {
-namespace {
-
-/// Sorts by line (stable, so each pass keeps its own order within a line; each pass reports in
-/// document order, so this merges a few runs) and drops exact repeats, which arise when two
-/// passes word the same finding identically.
-void sort_and_dedupe(Diagnostics& diagnostics) {
-    base::run_sort(diagnostics.begin(), diagnostics.end(),
-                   [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
-    Diagnostics unique;
-    unique.reserve(diagnostics.size());
-    for (Diagnostic& d : diagnostics) {
-        bool repeat = false;
-        for (auto u = unique.rbegin(); u != unique.rend() && u->line == d.line && !repeat; ++u) {
-            repeat = u->severity == d.severity && u->message == d.message;
-        }
-        if (!repeat) unique.push_back(std::move(d));
-    }
-    diagnostics = std::move(unique);
-}
-
-}  // namespace
 
 ValidationReport validate(std::string_view bytes) {
     return validate_model(bytes).report;
