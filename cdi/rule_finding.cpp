@@ -8,6 +8,8 @@
 
 #include "base/hex.hpp"
 #include "base/utf8.hpp"
+#include "cdi/decimal.hpp"
+#include "cdi/fdi_validator.hpp"
 #include "cdi/string_codec.hpp"
 #include "cdi/validator.hpp"
 #include "cdi/variable_name.hpp"
@@ -16,6 +18,20 @@ namespace olcb::cdi {
 namespace {
 
 constexpr std::string_view kBom = "\xEF\xBB\xBF";
+
+/// Which text the rules judge: their IDs' prefix and how messages name it.
+struct TextKind {
+    std::string_view prefix;        ///< "cdi": the checks are cdi.*
+    std::string_view with_article;  ///< "a CDI"
+    std::string_view clause;        ///< §5's standard, for a finding's clause ("" for a CDI)
+    std::string id(std::string_view rule) const {
+        return std::string(prefix) + "." + std::string(rule);
+    }
+};
+
+// A cdi.* finding's clause is its lcc-conform registry entry's; an fdi.* finding carries its own.
+constexpr TextKind kCdi{"cdi", "a CDI", ""};
+constexpr TextKind kFdi{"fdi", "an FDI", "FunctionDescriptionInformationS §5"};
 constexpr std::string_view kDeclaration = "<?xml version=\"1.0\"?>";
 /// Longest quote of the text in a finding: a first line can be a whole one-line CDI.
 constexpr std::size_t kMaxQuote = 80;
@@ -51,21 +67,21 @@ std::string hex_bytes(std::string_view bytes) {
     return base::hex_bytes({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()});
 }
 
-// CDI standard §5: "There is no byte-order mark (BOM) at the start of the string."
-RuleFinding no_bom(std::string_view text) {
+// CDI and FDI standards §5: "There is no byte-order mark (BOM) at the start of the string."
+RuleFinding no_bom(std::string_view text, const TextKind& kind) {
     if (!text.starts_with(kBom))
-        return finding("cdi.no-bom", RuleStatus::kPass, "no byte-order mark");
-    return finding("cdi.no-bom", RuleStatus::kFail, "byte-order mark at the start", "no BOM",
+        return finding(kind.id("no-bom"), RuleStatus::kPass, "no byte-order mark");
+    return finding(kind.id("no-bom"), RuleStatus::kFail, "byte-order mark at the start", "no BOM",
                    "EF BB BF at offset 0", 1);
 }
 
-// CDI standard §5: "The bytes encode UTF-8 characters."
-RuleFinding utf8(std::string_view text) {
+// CDI and FDI standards §5: "The bytes encode UTF-8 characters."
+RuleFinding utf8(std::string_view text, const TextKind& kind) {
     const std::optional<std::size_t> bad = base::find_invalid_utf8(text);
-    if (!bad) return finding("cdi.utf8", RuleStatus::kPass, "valid UTF-8");
+    if (!bad) return finding(kind.id("utf8"), RuleStatus::kPass, "valid UTF-8");
     const std::uint32_t line = line_at(text, *bad);
     return finding(
-        "cdi.utf8", RuleStatus::kFail,
+        kind.id("utf8"), RuleStatus::kFail,
         "invalid UTF-8 at offset " + std::to_string(*bad) + " (line " + std::to_string(line) + ")",
         "UTF-8", hex_bytes(text.substr(*bad, kShownBytes)) + " at offset " + std::to_string(*bad),
         line);
@@ -101,14 +117,14 @@ bool iequals(std::string_view a, std::string_view b) {
     });
 }
 
-// CDI standard §5: "The first line of the CDI is: <?xml version="1.0"?> to define the XML version
-// of the content." Another version breaks "XML 1.0 format ... No extensions to XML 1.0 are
-// permitted", another encoding "The bytes encode UTF-8 characters": FAIL. A declaration that
-// still says XML 1.0 in UTF-8 (single quotes, encoding="utf-8", standalone) defines what the
+// CDI and FDI standards §5: "The first line of the CDI [FDI] is: <?xml version="1.0"?> to define
+// the XML version of the content." Another version breaks "XML 1.0 format ... No extensions to
+// XML 1.0 are permitted", another encoding "The bytes encode UTF-8 characters": FAIL. A declaration
+// that still says XML 1.0 in UTF-8 (single quotes, encoding="utf-8", standalone) defines what the
 // standard's line defines, only not in its words: WARN. A BOM is cdi.no-bom's finding, so the
 // line is judged after it rather than failed a second time for it.
-RuleFinding xml_declaration(std::string_view text) {
-    static constexpr std::string_view kId = "cdi.xml-declaration";
+RuleFinding xml_declaration(std::string_view text, const TextKind& kind) {
+    const std::string kId = kind.id("xml-declaration");
     if (text.starts_with(kBom)) text.remove_prefix(kBom.size());
     std::string_view first = text.substr(0, text.find('\n'));
     if (first.starts_with(kDeclaration))
@@ -130,16 +146,16 @@ RuleFinding xml_declaration(std::string_view text) {
         if (name == "encoding") encoding = value;
     }
     if (version != "1.0")
-        return finding(
-            kId, RuleStatus::kFail,
-            version ? "the XML declaration names XML " + clip(*version) + "; a CDI is XML 1.0"
-                    : "the XML declaration names no XML version; a CDI is XML 1.0",
-            std::string(kDeclaration), quoted(decl), 1);
+        return finding(kId, RuleStatus::kFail,
+                       (version ? "the XML declaration names XML " + clip(*version)
+                                : std::string("the XML declaration names no XML version")) +
+                           "; " + std::string(kind.with_article) + " is XML 1.0",
+                       std::string(kDeclaration), quoted(decl), 1);
     if (encoding && !iequals(*encoding, "UTF-8"))
-        return finding(
-            kId, RuleStatus::kFail,
-            "the XML declaration names encoding " + clip(*encoding) + "; a CDI's bytes are UTF-8",
-            std::string(kDeclaration), quoted(decl), 1);
+        return finding(kId, RuleStatus::kFail,
+                       "the XML declaration names encoding " + clip(*encoding) + "; " +
+                           std::string(kind.with_article) + "'s bytes are UTF-8",
+                       std::string(kDeclaration), quoted(decl), 1);
     return finding(
         kId, RuleStatus::kWarn,
         "first line is an XML declaration other than <?xml version=\"1.0\"?>: " + clip(decl),
@@ -158,12 +174,12 @@ Diagnostics errors_then_warnings(const Diagnostics& all) {
 
 // Text that is not XML has no validity to judge: its parse errors are this finding's, and
 // cdi.valid says it depends on it instead of failing a second time for the same cause.
-RuleFinding well_formed(const ValidationReport& report) {
-    static constexpr std::string_view kId = "cdi.well-formed";
-    if (report.schema.well_formed) return finding(kId, RuleStatus::kPass, "well-formed XML");
+RuleFinding well_formed(bool xml, const Diagnostics& diagnostics, const TextKind& kind) {
+    const std::string kId = kind.id("well-formed");
+    if (xml) return finding(kId, RuleStatus::kPass, "well-formed XML");
     RuleFinding f =
         finding(kId, RuleStatus::kFail, "not well-formed XML", "well-formed", "not well-formed");
-    f.diagnostics = errors_then_warnings(report.diagnostics);
+    f.diagnostics = errors_then_warnings(diagnostics);
     if (!f.diagnostics.empty() && f.diagnostics.front().severity == Severity::kError) {
         f.seen = clip(located(f.diagnostics.front()));
         f.line = f.diagnostics.front().line;
@@ -171,13 +187,15 @@ RuleFinding well_formed(const ValidationReport& report) {
     return f;
 }
 
-// CDI standard §5: "The CDI content shall pass validation against its referenced schema." The
-// semantic rules and the layout add what no schema can express (docs/validation.md).
-RuleFinding valid(const ValidationReport& report) {
-    static constexpr std::string_view kId = "cdi.valid";
-    if (!report.schema.well_formed)
-        return finding(kId, RuleStatus::kSkip, "depends on cdi.well-formed: the text is not XML");
-    Diagnostics all = errors_then_warnings(report.diagnostics);
+// CDI and FDI standards §5: "The CDI [FDI] content shall pass validation against its referenced
+// schema." The semantic rules (and a CDI's layout) add what no schema can express
+// (docs/validation.md).
+RuleFinding valid(bool xml, const Diagnostics& diagnostics, const TextKind& kind) {
+    const std::string kId = kind.id("valid");
+    if (!xml)
+        return finding(kId, RuleStatus::kSkip,
+                       "depends on " + kind.id("well-formed") + ": the text is not XML");
+    Diagnostics all = errors_then_warnings(diagnostics);
     if (all.empty())
         return finding(kId, RuleStatus::kPass,
                        "valid against the declared schema and the semantic rules");
@@ -199,21 +217,27 @@ RuleFinding valid(const ValidationReport& report) {
     return f;
 }
 
-RuleFinding schema_location(const Document* document) {
-    static constexpr std::string_view kId = "cdi.schema-location";
-    if (!document)
-        return finding(kId, RuleStatus::kSkip, "depends on cdi.well-formed: no document");
-    const std::string& loc = document->schema_location;
+// `location`: the root's xsi:noNamespaceSchemaLocation, null when there is no document.
+RuleFinding schema_location(const std::string* location, const TextKind& kind) {
+    const std::string kId = kind.id("schema-location");
+    if (location == nullptr)
+        return finding(kId, RuleStatus::kSkip,
+                       "depends on " + kind.id("well-formed") + ": no document");
+    // xs:anyURI collapses whitespace: " http://..." names the same location as "http://...".
+    const std::string_view loc = trim_xml_space(*location);
     if (loc.empty()) return finding(kId, RuleStatus::kWarn, "no xsi:noNamespaceSchemaLocation");
-    const bool sane = (loc.starts_with("http://openlcb.org/schema/cdi/") ||
-                       loc.starts_with("https://openlcb.org/schema/cdi/")) &&
+    const std::string stem = "openlcb.org/schema/" + std::string(kind.prefix) + "/";
+    const bool sane = (loc.starts_with("http://" + stem) || loc.starts_with("https://" + stem)) &&
                       loc.ends_with(".xsd");
+    std::string upper(kind.prefix);
+    for (char& c : upper) c = static_cast<char>(c - 'a' + 'A');
     if (sane)
-        return finding(kId, RuleStatus::kPass, "schema location names an openlcb.org CDI schema");
+        return finding(kId, RuleStatus::kPass,
+                       "schema location names an openlcb.org " + upper + " schema");
     // The standard shows the URL but sets no rule for other spellings: a note, not a failure.
     return finding(kId, RuleStatus::kWarn,
-                   "schema location " + clip(loc) +
-                       " does not name http(s)://openlcb.org/schema/cdi/.../cdi.xsd");
+                   "schema location " + clip(loc) + " does not name http(s)://" + stem + ".../" +
+                       std::string(kind.prefix) + ".xsd");
 }
 
 // A CDI may describe spaces 252/251 as segments too (§5.1.2 "may"); one whose variables there
@@ -229,6 +253,37 @@ RuleFinding acdi_spaces(const ValidatedCdi& cdi) {
                        "CDI variables in spaces 252/251 (if any) agree with the ACDI layout");
     return finding(kId, RuleStatus::kWarn,
                    "CDI variables contradict the ACDI layout of spaces 252/251: " + conflict);
+}
+
+// The text rules both standards share (§5): BOM, UTF-8, the first line, well-formedness and
+// validity, the schema location; `location` as schema_location() takes it.
+std::vector<RuleFinding> text_rules(std::string_view text, bool xml, const Diagnostics& found,
+                                    const std::string* location, const TextKind& kind) {
+    while (text.ends_with('\0')) text.remove_suffix(1);
+    std::vector<RuleFinding> out;
+    out.reserve(kRuleCheckIds.size());
+    out.push_back(no_bom(text, kind));
+    out.push_back(utf8(text, kind));
+    const bool utf8_failed = out.back().status == RuleStatus::kFail;
+    const std::uint32_t utf8_line = out.back().line;
+    out.push_back(xml_declaration(text, kind));
+    RuleFinding parsed = well_formed(xml, found, kind);
+    if (utf8_failed && parsed.status == RuleStatus::kFail && parsed.line >= utf8_line) {
+        // libxml2 stops where the text leaves its declared encoding: the cause is cdi.utf8's
+        // (a parse error before that line is a cause of its own and stays a FAIL).
+        parsed.status = RuleStatus::kSkip;
+        parsed.message =
+            "depends on " + kind.id("utf8") + ": libxml2 refused the text (" + parsed.seen + ")";
+        parsed.expected.clear();
+        parsed.seen.clear();
+    }
+    out.push_back(std::move(parsed));
+    out.push_back(valid(xml, found, kind));
+    out.push_back(schema_location(location, kind));
+    if (!kind.clause.empty()) {
+        for (RuleFinding& f : out) f.clause = std::string(kind.clause);
+    }
+    return out;
 }
 
 }  // namespace
@@ -252,28 +307,20 @@ std::vector<RuleFinding> check_rules(std::string_view text) {
 }
 
 std::vector<RuleFinding> check_rules(std::string_view text, const ValidatedCdi& cdi) {
-    while (text.ends_with('\0')) text.remove_suffix(1);
-    std::vector<RuleFinding> out;
-    out.reserve(kRuleCheckIds.size());
-    out.push_back(no_bom(text));
-    out.push_back(utf8(text));
-    const bool utf8_failed = out.back().status == RuleStatus::kFail;
-    const std::uint32_t utf8_line = out.back().line;
-    out.push_back(xml_declaration(text));
-    RuleFinding xml = well_formed(cdi.report);
-    if (utf8_failed && xml.status == RuleStatus::kFail && xml.line >= utf8_line) {
-        // libxml2 stops where the text leaves its declared encoding: the cause is cdi.utf8's
-        // (a parse error before that line is a cause of its own and stays a FAIL).
-        xml.status = RuleStatus::kSkip;
-        xml.message = "depends on cdi.utf8: libxml2 refused the text (" + xml.seen + ")";
-        xml.expected.clear();
-        xml.seen.clear();
-    }
-    out.push_back(std::move(xml));
-    out.push_back(valid(cdi.report));
-    out.push_back(schema_location(cdi.document.get()));
+    std::vector<RuleFinding> out =
+        text_rules(text, cdi.report.schema.well_formed, cdi.report.diagnostics,
+                   cdi.document ? &cdi.document->schema_location : nullptr, kCdi);
     out.push_back(acdi_spaces(cdi));
     return out;
+}
+
+std::vector<RuleFinding> check_fdi_rules(std::string_view text) {
+    return check_fdi_rules(text, validate_fdi(text));
+}
+
+std::vector<RuleFinding> check_fdi_rules(std::string_view text, const ValidatedFdi& fdi) {
+    return text_rules(text, fdi.schema.well_formed, fdi.diagnostics,
+                      fdi.document ? &fdi.document->schema_location : nullptr, kFdi);
 }
 
 namespace {
