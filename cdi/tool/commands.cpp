@@ -11,6 +11,8 @@
 
 #include "base/utf8.hpp"
 #include "cdi/cdi_file.hpp"
+#include "cdi/fdi_parser.hpp"
+#include "cdi/fdi_render.hpp"
 #include "cdi/html_page.hpp"
 #include "cdi/layout.hpp"
 #include "cdi/parser.hpp"
@@ -31,7 +33,7 @@ namespace {
 bool parse_args(const std::vector<std::string>& args, po::options_description& options,
                 const char* synopsis, po::variables_map& vm) {
     options.add_options()("help,h", "show this help")("file", po::value<std::vector<std::string>>(),
-                                                      "CDI file");
+                                                      "CDI or FDI file");
     po::positional_options_description positional;
     positional.add("file", -1);
     po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
@@ -54,14 +56,15 @@ std::string display(std::string_view text) {
     return base::printable(text);
 }
 
-// Reads, parses and lays out one CDI; prints every finding to stderr and returns nullopt on
-// errors. The document is on the heap because the layout points into it.
+// A CDI parsed and laid out. The document is on the heap because the layout points into it.
 struct Loaded {
     std::unique_ptr<Document> document;
     Layout layout;
 };
 
-std::optional<Loaded> load(const std::string& path) {
+// A file's bytes for layout and render (nullopt after printing why on stderr), with a warning
+// when they are not UTF-8.
+std::optional<std::string> read_input(const std::string& path) {
     std::string error;
     auto bytes = read_cdi_file(path, error);
     if (!bytes) {
@@ -74,6 +77,13 @@ std::optional<Loaded> load(const std::string& path) {
         std::cerr << display(path) << ":" << line << ": warning: invalid UTF-8 at offset " << *bad
                   << " (see lcc-cdi validate)\n";
     }
+    return bytes;
+}
+
+// Reads, parses and lays out one CDI; prints every finding to stderr and returns nullopt on
+// errors.
+std::optional<Loaded> load(const std::string& path, std::optional<std::string> bytes) {
+    if (!bytes) return std::nullopt;
     ParseResult parsed = parse(*bytes);
     // The model owns copies of all it needs: the text (up to 16 MiB) need not live on through
     // the layout and the output, where the peak of a large CDI is.
@@ -159,6 +169,8 @@ void print_finding(const std::string& path, const RuleFinding& f) {
               << display(f.message) << "\n";
     if (!f.expected.empty()) std::cout << "      expected: " << display(f.expected) << "\n";
     if (!f.seen.empty()) std::cout << "      seen:     " << display(f.seen) << "\n";
+    if (!f.clause.empty() && (f.status == RuleStatus::kFail || f.status == RuleStatus::kWarn))
+        std::cout << "      clause:   " << display(f.clause) << "\n";
     for (const auto& d : f.diagnostics) std::cout << display(format_diagnostic(path, d)) << "\n";
 }
 
@@ -166,7 +178,11 @@ int run_validate(const std::vector<std::string>& args) {
     po::options_description options("lcc-cdi validate options");
     options.add_options()("quiet,q", "print only FAIL and WARN findings, no 'ok' lines");
     po::variables_map vm;
-    if (parse_args(args, options, "lcc-cdi validate [--quiet] FILE...", vm)) return kExitOk;
+    if (parse_args(args, options,
+                   "lcc-cdi validate [--quiet] FILE...\n\nEach FILE is a CDI, or an FDI when its "
+                   "root element is <fdi>.",
+                   vm))
+        return kExitOk;
     const auto files = files_of(vm);
     if (files.empty()) throw po::error("no FILE given");
     int status = kExitOk;
@@ -179,7 +195,9 @@ int run_validate(const std::vector<std::string>& args) {
             continue;
         }
         bool failed = false;
-        for (const RuleFinding& f : check_rules(*bytes)) {
+        // The root element tells an FDI (a train node's space 0xFA) from a CDI.
+        const auto findings = is_fdi_text(*bytes) ? check_fdi_rules(*bytes) : check_rules(*bytes);
+        for (const RuleFinding& f : findings) {
             if (f.status != RuleStatus::kFail && f.status != RuleStatus::kWarn) continue;
             print_finding(path, f);
             failed = failed || f.status == RuleStatus::kFail;
@@ -230,6 +248,67 @@ void print_layout_text(std::ostream& out, const Layout& layout, const Cursor& c)
     out << "\n";
 }
 
+// An FDI's model; prints the parser's findings to stderr and returns nullopt on errors (a
+// function left out would make the list wrong).
+std::optional<FdiDocument> load_fdi(const std::string& path, const std::string& bytes) {
+    FdiParseResult parsed = parse_fdi(bytes);
+    for (const auto& d : parsed.diagnostics)
+        std::cerr << display(format_diagnostic(path, d)) << "\n";
+    if (!parsed.document || has_errors(parsed.diagnostics)) return std::nullopt;
+    return std::move(parsed.document);
+}
+
+// The name `layout` gives a function: its own, or F<number> when it has none.
+std::string fdi_variable_name(const FdiFunction& f) {
+    return f.name.empty() ? "F" + std::to_string(f.number) : f.name;
+}
+
+// One function of an FDI's `layout --json`.
+nlohmann::json fdi_variable_json(const FdiFunction& f) {
+    nlohmann::json v = {{"name", fdi_variable_name(f)},
+                        {"type", function_kind_name(f.kind)},
+                        {"space", 249},
+                        {"address", f.number},
+                        {"size", 1}};
+    if (f.kind == FunctionKind::kAnalog) {
+        v["min"] = f.value_min();
+        v["max"] = f.value_max();
+    }
+    if (f.icon) v["icon"] = *f.icon;
+    return v;
+}
+
+// One function of an FDI's `layout`, a tab-separated line (the same fields as the JSON).
+std::string fdi_variable_line(const FdiFunction& f) {
+    std::string line = display(fdi_variable_name(f)) + "\t" +
+                       std::string(function_kind_name(f.kind)) + "\tspace 249\taddress " +
+                       std::to_string(f.number) + "\tsize 1";
+    std::string details;
+    if (f.kind == FunctionKind::kAnalog) {
+        details = "min=" + std::to_string(f.value_min()) + " max=" + std::to_string(f.value_max());
+    }
+    if (f.icon) details += (details.empty() ? "" : " ") + ("icon=" + std::to_string(*f.icon));
+    return details.empty() ? line : line + "\t" + details;
+}
+
+// An FDI's function space 0xF9 as `layout` lists it: one byte per function at its number
+// (FunctionDescriptionInformationTN §3.1), in document order.
+void print_fdi_layout(std::ostream& out, const FdiDocument& doc, bool json) {
+    if (json) out << "{\"variables\":[";
+    bool first = true;
+    for (const FdiFunction& f : doc.functions) {
+        if (json) {
+            out << (first ? "\n" : ",\n")
+                << fdi_variable_json(f).dump(-1, ' ', false,
+                                             nlohmann::json::error_handler_t::replace);
+        } else {
+            out << fdi_variable_line(f) << "\n";
+        }
+        first = false;
+    }
+    if (json) out << (first ? "" : "\n") << "]}\n";
+}
+
 }  // namespace
 
 int run_layout(const std::vector<std::string>& args) {
@@ -238,12 +317,23 @@ int run_layout(const std::vector<std::string>& args) {
                           "print JSON: {\"variables\":[{\"name\",\"type\",\"space\","
                           "\"address\",\"size\",...}]}");
     po::variables_map vm;
-    if (parse_args(args, options, "lcc-cdi layout [--json] FILE", vm)) return kExitOk;
+    if (parse_args(args, options,
+                   "lcc-cdi layout [--json] FILE\n\nAn FDI lists its functions as the bytes of "
+                   "space 249 (0xF9) they address.",
+                   vm))
+        return kExitOk;
     const auto files = files_of(vm);
     if (files.size() != 1) throw po::error("layout takes exactly one FILE");
-    auto loaded = load(files.front());
-    if (!loaded) return kExitErrors;
+    auto bytes = read_input(files.front());
     const bool json = vm.count("json") != 0;
+    if (bytes && is_fdi_text(*bytes)) {
+        const auto fdi = load_fdi(files.front(), *bytes);
+        if (!fdi) return kExitErrors;
+        print_fdi_layout(std::cout, *fdi, json);
+        return kExitOk;
+    }
+    auto loaded = load(files.front(), std::move(bytes));
+    if (!loaded) return kExitErrors;
     std::ostream& out = std::cout;
     // Streamed one variable at a time: a 10^6-replication CDI never builds a whole JSON tree.
     if (json) out << "{\"variables\":[";
@@ -266,10 +356,22 @@ int run_render(const std::vector<std::string>& args) {
                           "print one self-contained HTML page instead: segments as tabs, groups, "
                           "replications, hints, and each space's memory map");
     po::variables_map vm;
-    if (parse_args(args, options, "lcc-cdi render [--html] FILE", vm)) return kExitOk;
+    if (parse_args(args, options,
+                   "lcc-cdi render [--html] FILE\n\nAn FDI renders as its function list (text "
+                   "only).",
+                   vm))
+        return kExitOk;
     const auto files = files_of(vm);
     if (files.size() != 1) throw po::error("render takes exactly one FILE");
-    auto loaded = load(files.front());
+    auto bytes = read_input(files.front());
+    if (bytes && is_fdi_text(*bytes)) {
+        if (vm.count("html") != 0) throw po::error("--html renders a CDI; an FDI renders as text");
+        const auto fdi = load_fdi(files.front(), *bytes);
+        if (!fdi) return kExitErrors;
+        render_fdi(*fdi, std::cout);
+        return kExitOk;
+    }
+    auto loaded = load(files.front(), std::move(bytes));
     if (!loaded) return kExitErrors;
     if (vm.count("html") != 0) {
         // The page is written from the layout element by element; the model goes before output.

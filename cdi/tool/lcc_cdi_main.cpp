@@ -1,4 +1,4 @@
-// lcc-cdi: validate, lay out and render CDI files.
+// lcc-cdi: validate, lay out and render CDI files (and FDI files, a train node's functions).
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -23,6 +23,9 @@ constexpr const char* kUsage =
     "  render FILE           print the CDI as an indented, human-readable tree\n"
     "  render --html FILE    print it as one HTML page, as a configuration tool shows it\n"
     "\n"
+    "A FILE whose root element is <fdi> is an FDI (Function Description Information, a train\n"
+    "node's space 0xFA): validate judges it by the FDI standard, layout lists its functions,\n"
+    "render prints the function list.\n"
     "A FILE over 16 MiB (the CDI limit) is refused unread; a FIFO or device is read no further.\n"
     "Run 'lcc-cdi COMMAND --help' for the options of a command.\n";
 

@@ -227,6 +227,101 @@ TEST(LccCdi, LayoutJsonReplacesInvalidUtf8AndStaysValid) {
     EXPECT_EQ(validate_findings(validated.out).at("cdi.utf8"), "FAIL") << validated.out;
 }
 
+const std::string kFdiData = std::string(OLCB_SOURCE_DIR) + "/tests/data/fdi";
+
+// The FDI test data's verdicts, as tests/data/fdi/README.md's Files table lists them: file name
+// and whether it is valid.
+std::map<std::string, bool> fdi_verdicts() {
+    std::ifstream in(kFdiData + "/README.md");
+    static const std::regex row(R"(^\| `([^`]+\.xml)` \|[^|]*\|[^|]*\|[^|]*\| (valid|invalid))");
+    std::map<std::string, bool> out;
+    for (std::string line; std::getline(in, line);) {
+        std::smatch m;
+        if (std::regex_search(line, m, row)) out[m[1]] = m[2] == "valid";
+    }
+    return out;
+}
+
+// The issue's acceptance: the FDIs kept from real projects pass `lcc-cdi validate`, the broken
+// fixtures fail it.
+TEST(LccCdiFdi, ValidatePassesTheValidTestDataAndFailsTheRest) {
+    const auto verdicts = fdi_verdicts();
+    ASSERT_GE(verdicts.size(), 17U);
+    for (const auto& [name, valid] : verdicts) {
+        const std::string path = (std::filesystem::path(kFdiData) / name).string();
+        RunResult r = lcc_cdi("validate " + path);
+        EXPECT_EQ(r.status, valid ? 0 : 1) << r.out;
+        EXPECT_EQ(r.out.ends_with(path + ": ok\n"), valid) << r.out;
+    }
+    // Several files in one run: the FDIs and a CDI side by side.
+    RunResult both = lcc_cdi("validate -q " + kFdiData + "/openmrn__train_node.xml " + kDefault);
+    EXPECT_EQ(both.status, 0) << both.out;
+    EXPECT_NE(both.out.find("WARN fdi.schema-location"), std::string::npos) << both.out;
+}
+
+TEST(LccCdiFdi, AnInvalidFdiFailsCitingTheClause) {
+    const std::string bad = temp_file(
+        "fdi_bad_number.xml",
+        "<?xml version=\"1.0\"?>\n<fdi xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+        "xsi:noNamespaceSchemaLocation=\"https://openlcb.org/schema/fdi/1/1/fdi.xsd\">\n"
+        "<segment>\n<function><number>16777216</number></function>\n</segment>\n</fdi>\n");
+    RunResult r = lcc_cdi("validate " + bad);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.out.find(bad + ":4: FAIL fdi.valid: 1 error(s), 0 warning(s); first: line 4: "
+                               "FDI 1.1 schema: "),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("      clause:   FunctionDescriptionInformationS §5\n"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find(bad + ":4: error: FDI 1.1 schema: Element 'number'"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(r.out.find("cdi."), std::string::npos) << r.out;
+}
+
+TEST(LccCdiFdi, RenderPrintsTheFunctionList) {
+    RunResult r = lcc_cdi("render " + kFdiData + "/documents__tn_sample.xml");
+    ASSERT_EQ(r.status, 0);
+    EXPECT_EQ(r.out,
+              "Segment (unnamed), space 249 (functions)\n"
+              "  group \"Lighting Functions\"\n"
+              "    | Headlights and Marker lights and Running lights, oh my.\n"
+              "    F0 binary \"Headlights\"\n"
+              "    F4 binary \"Ditch Lights\"\n"
+              "  group \"Sound Functions\"\n"
+              "    | Toot toot!.\n"
+              "    F8 analog 0..2 \"Horn\"\n");
+    RunResult html = lcc_cdi("render --html " + kFdiData + "/documents__tn_sample.xml", true);
+    EXPECT_EQ(html.status, 2);
+    EXPECT_NE(html.out.find("--html renders a CDI; an FDI renders as text"), std::string::npos)
+        << html.out;
+}
+
+TEST(LccCdiFdi, LayoutListsTheFunctionSpace) {
+    RunResult text = lcc_cdi("layout " + kFdiData + "/openmrn__train_node.xml");
+    ASSERT_EQ(text.status, 0);
+    EXPECT_EQ(text.out,
+              "Light\tbinary\tspace 249\taddress 0\tsize 1\n"
+              "Blue\tmomentary\tspace 249\taddress 1\tsize 1\n");
+    RunResult json = lcc_cdi("layout --json " + kFdiData + "/documents__tn_sample.xml");
+    ASSERT_EQ(json.status, 0);
+    const auto vars = nlohmann::json::parse(json.out).at("variables");
+    ASSERT_EQ(vars.size(), 3U);
+    EXPECT_EQ(vars[2]["name"], "Horn");
+    EXPECT_EQ(vars[2]["type"], "analog");
+    EXPECT_EQ(vars[2]["address"], 8);
+    EXPECT_EQ(vars[2]["min"], 0);
+    EXPECT_EQ(vars[2]["max"], 2);
+    EXPECT_FALSE(vars[0].contains("min"));
+
+    // A function whose number cannot be read would make the list wrong: refused.
+    const std::string bad =
+        temp_file("fdi_no_number.xml", "<fdi><segment><function/></segment></fdi>\n");
+    RunResult refused = lcc_cdi("layout " + bad, true);
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_NE(refused.out.find(bad + ":1: error: <function> has no <number>"), std::string::npos)
+        << refused.out;
+}
+
 #if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
 
 // lcc-conform --only 'cdi.*' against simnode serving `cdi`: its FAIL and WARN checks by ID.
