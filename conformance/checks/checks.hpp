@@ -38,9 +38,18 @@ struct SilenceAnswers {
     std::string verified;  ///< a Verified Node ID from the node
     std::string psr;       ///< a Protocol Support Reply (to us, the inquiry's sender)
     std::string oir;       ///< an OIR echoing the unknown addressed MTI (to us)
+    /// Standard frames sent in the judged window too (0: none, or the node spoke in that window
+    /// and the probes were judged again without them); frame.standard-frames-ignored takes a
+    /// window with them and nothing at all from the node as its own.
+    unsigned standard_frames = 0;
 
     static SilenceAnswers ask(CheckRun& run);
 };
+
+/// Injects the first count of the standard (11-bit) frames frame.standard-frames-ignored sends
+/// (frame_bus.cpp); kStandardFramesQuick without --thorough.
+void inject_standard_frames(Session& s, unsigned count, bool every_id);
+inline constexpr unsigned kStandardFramesQuick = 64;
 
 /// Aliases no frame seen so far used, nor ours or the node's (frame_bus.cpp): sources for
 /// made-up traffic and destinations "another node" has.

@@ -190,7 +190,62 @@ bool has_event_bit(CheckRun& run) {
     return pip && pip->has(Protocol::kEventExchange);
 }
 
+// Nodes on the segment beyond which Identify Events global is left to --thorough: every node
+// answers it with all its events (1,000 nodes: a storm of thousands of frames).
+constexpr std::size_t kCrowd = 8;
+
+// The nodes seen (lcc-conform runs left out) when there are more than kCrowd; 0 otherwise.
+std::size_t crowd(CheckRun& run) {
+    if (run.options().selection.thorough) return 0;
+    std::size_t n = 0;
+    for (const NodeInfo& seen : run.session().nodes_seen())
+        if (!is_tool_id(seen.id)) ++n;
+    return n > kCrowd ? n : 0;
+}
+
+// Identify Events global and addressed sent together, their answers awaited in one quiet period:
+// a node that answers both in full sends every Identified message twice, which splits the window
+// into the two answers. Anything else (one answer, a partial one, a message the node repeats
+// within one answer) cannot be split: each form is then asked in a window of its own.
+struct IdentifyBoth {
+    bool split = false;
+    EventAnswers global, addressed;
+
+    static IdentifyBoth ask(CheckRun& run);
+};
+
+IdentifyBoth IdentifyBoth::ask(CheckRun& run) {
+    Session& s = run.session();
+    const Windows w = windows_of(run.options());
+    const std::uint16_t alias = s.alias_of(run.node());
+    const std::size_t mark = s.message_mark();
+    Message m;
+    m.mti = Mti::kIdentifyEventsGlobal;
+    s.send(m);
+    m.mti = Mti::kIdentifyEventsAddressed;
+    m.destination = NodeHandle{run.node().id, alias};
+    s.send(m);
+    const auto got = await_answers(
+        s, alias, mark, [](const Message& r) { return is_identification(r.mti); },
+        [](const std::vector<Message>& g) { return !g.empty(); },
+        has_event_bit(run) ? w.answer : w.quiet, w);
+    std::map<std::pair<Mti, std::vector<std::uint8_t>>, int> seen;
+    for (const Message& r : got) ++seen[{r.mti, r.payload}];
+    IdentifyBoth both;
+    both.split = std::all_of(seen.begin(), seen.end(), [](const auto& e) { return e.second == 2; });
+    for (const Message& r : got) {
+        if (--seen[{r.mti, r.payload}] != 1) continue;  // the first of each pair only
+        both.global.add(r);
+        both.addressed.add(r);
+    }
+    return both;
+}
+
 EventAnswers EventAnswers::ask(CheckRun& run, IdentifyTo to) {
+    if (crowd(run) == 0) {
+        const IdentifyBoth& both = run.probe<IdentifyBoth>();
+        if (both.split) return to == IdentifyTo::kEveryNode ? both.global : both.addressed;
+    }
     const Windows w = windows_of(run.options());
     // A node without the Event Exchange bit owes no answer: silence is awaited, not an answer.
     const Duration first = has_event_bit(run) ? w.answer : w.quiet;
@@ -306,19 +361,6 @@ std::vector<bool> ask_all(Session& s, std::uint16_t alias, const std::vector<Ask
 }
 
 // ---- events.identify-global, events.identify-addressed ----
-
-// Nodes on the segment beyond which Identify Events global is left to --thorough: every node
-// answers it with all its events (1,000 nodes: a storm of thousands of frames).
-constexpr std::size_t kCrowd = 8;
-
-// The nodes seen (lcc-conform runs left out) when there are more than kCrowd; 0 otherwise.
-std::size_t crowd(CheckRun& run) {
-    if (run.options().selection.thorough) return 0;
-    std::size_t n = 0;
-    for (const NodeInfo& seen : run.session().nodes_seen())
-        if (!is_tool_id(seen.id)) ++n;
-    return n > kCrowd ? n : 0;
-}
 
 // The answers the other event checks judge: global, or addressed on a crowded segment.
 const EventAnswers& reference_answers(CheckRun& run) {
@@ -684,7 +726,9 @@ std::vector<CheckSpec> event_checks() {
          identify_global},
         {"events.identify-addressed", 620, Category::kEvents, kInquiry, Strength::kShall,
          "the addressed Identify Events is answered like the global one", "ev10",
-         "Identify Events addressed: the same produced/consumed events and ranges as global",
+         "Identify Events addressed: the same produced/consumed events and ranges as global "
+         "(both sent together, one quiet window: every answer twice splits it; else each form "
+         "in a window of its own)",
          identify_addressed},
         {"events.cdi-events-identified", 630, Category::kEvents,
          "ConfigurationDescriptionInformationS §5.1.4.4; EventTransportS §6.2", Strength::kNone,

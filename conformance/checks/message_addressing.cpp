@@ -91,6 +91,12 @@ bool judge_window(CheckRun& run, std::size_t mark, std::uint16_t other, SilenceA
     return a.verified.empty() || !run.others_spoke(mark);
 }
 
+bool node_spoke(CheckRun& run, std::size_t mark) {
+    const std::vector<CanFrame> window = run.session().frames_since(mark);
+    return std::any_of(window.begin(), window.end(),
+                       [&](const CanFrame& f) { return run.from_node(f); });
+}
+
 }  // namespace
 
 SilenceAnswers SilenceAnswers::ask(CheckRun& run) {
@@ -100,8 +106,12 @@ SilenceAnswers SilenceAnswers::ask(CheckRun& run) {
     const std::uint16_t me = s.tool_alias();
     const auto id = run.node().id.to_bytes();
     // The four probes go out together and share one window: each answer says which it was for.
+    // Without --thorough, frame.standard-frames-ignored's frames share it too while the node
+    // stays wholly silent; once it speaks, the window is had again without them.
+    unsigned standard = run.options().selection.thorough ? 0 : kStandardFramesQuick;
     for (int attempt = 0; attempt < kQuietAttempts; ++attempt) {
         const std::size_t mark = s.frame_mark();
+        inject_standard_frames(s, standard, false);
         s.inject(can::make_frame(can::message_header(kUnknownGlobalMti, me)));
         if (other) {
             s.inject(addressed(to_u16(Mti::kVerifyNodeIdAddressed), me, *other, id));
@@ -109,8 +119,14 @@ SilenceAnswers SilenceAnswers::ask(CheckRun& run) {
             s.inject(addressed(kUnknownAddressedMti, me, *other));
         }
         s.wait(run.options().window);
+        if (standard != 0 && node_spoke(run, mark)) {
+            standard = 0;
+            --attempt;  // the shared window is not one of the attempts
+            continue;
+        }
         if (judge_window(run, mark, other.value_or(0), a)) {
             a.judged = true;
+            a.standard_frames = standard;
             break;
         }
     }

@@ -10,6 +10,7 @@
 #include "conformance/checks/events.hpp"
 #include "conformance/checks/probes.hpp"
 #include "conformance/sim_bench.hpp"
+#include "openlcb/can_defs.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -95,6 +96,44 @@ TEST(EventChecksTest, EachCheckWorksOnItsOwn) {
         ASSERT_EQ(results.size(), 1u) << spec.id << "\n" << dump(results);
         EXPECT_EQ(results[0].status, Status::kPass) << dump(results);
     }
+}
+
+// The two Identify Events checks: their results and the simulated time they took.
+std::vector<CheckResult> identify_both(SimBench& b, Duration& took) {
+    auto node = b.start();
+    if (!node) return {};
+    CheckRun run(*b.session, *node, ProtocolOptions{});
+    const TimePoint start = b.net.now();
+    for (const CheckSpec& spec : checks::event_checks())
+        if (spec.id == "events.identify-global" || spec.id == "events.identify-addressed")
+            run.run(spec);
+    took = b.net.now() - start;
+    return run.take();
+}
+
+TEST(EventChecksTest, BothIdentifyFormsShareOneQuietWindow) {
+    SimBench b;
+    Duration took{};
+    const auto results = identify_both(b, took);
+    expect_status(results, "events.identify-global", Status::kPass);
+    expect_status(results, "events.identify-addressed", Status::kPass);
+    EXPECT_LT(took, std::chrono::milliseconds(400))  // one 250 ms quiet window, not two
+        << std::chrono::duration_cast<std::chrono::milliseconds>(took).count() << " ms";
+}
+
+TEST(EventChecksTest, AnAddressedIdentifyIgnoredIsToldFromTheGlobalOne) {
+    SimBench b;
+    // The node never sees Identify Events addressed (CAN-MTI 0x968): only global is answered.
+    NodeStack& dut = b.dut->stack();
+    dut.set_inbound_filter([](const CanFrame& f, TimePoint) {
+        const bool addressed_identify = can::is_message(f.id) && can::can_mti(f.id) == 0x968;
+        return FrameRoute{true, !addressed_identify};
+    });
+    Duration took{};
+    const auto results = identify_both(b, took);
+    expect_status(results, "events.identify-global", Status::kPass);
+    EXPECT_NE(find_check(results, "events.identify-addressed")->status, Status::kPass)
+        << dump(results);
 }
 
 TEST(EventChecksTest, NewChecksTakeUnderASecondOnTheDefaultNode) {

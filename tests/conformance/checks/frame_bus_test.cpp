@@ -99,6 +99,40 @@ TEST(FrameBusChecksTest, StandardFramesFailWhenAnswered) {
     EXPECT_NE(r.seen.find("Verified Node ID"), std::string::npos) << r.seen;
 }
 
+// The addressing probes' silence window and fr60's, in one CheckRun: from the shared window
+// when the node stays silent in it; each from a window of its own once the node speaks.
+std::vector<CheckResult> addressing_then_standard(const std::vector<std::string>& faults,
+                                                  Duration& standard_took) {
+    SimBench b(faults);
+    auto node = b.start();
+    if (!node) return {};
+    CheckRun run(*b.session, *node, {});
+    for (const CheckSpec& spec : checks::message_addressing_checks()) run.run(spec);
+    const TimePoint t0 = b.net.now();
+    for (const CheckSpec& spec : checks::frame_bus_checks())
+        if (spec.id == "frame.standard-frames-ignored") run.run(spec);
+    standard_took = b.net.now() - t0;
+    return run.take();
+}
+
+TEST(FrameBusChecksTest, StandardFramesShareTheAddressingProbesWindow) {
+    Duration took{};
+    const auto results = addressing_then_standard({}, took);
+    const CheckResult* r = find_check(results, "frame.standard-frames-ignored");
+    ASSERT_NE(r, nullptr) << dump(results);
+    EXPECT_EQ(r->status, Status::kPass) << r->message;
+    EXPECT_NE(r->message.find("shared"), std::string::npos) << r->message;
+    EXPECT_EQ(took, Duration::zero());
+
+    const auto bad = addressing_then_standard({"answers-standard-frames"}, took);
+    // The answers to the standard frames neither pass fr60 nor count against the probes.
+    EXPECT_EQ(find_check(bad, "frame.standard-frames-ignored")->status, Status::kFail);
+    EXPECT_GT(took, Duration::zero());
+    for (const char* id :
+         {"message.verify-other-silent", "message.pip-other-silent", "message.oir-other-silent"})
+        EXPECT_EQ(find_check(bad, id)->status, Status::kPass) << dump(bad);
+}
+
 TEST(FrameBusChecksTest, StandardFramesThoroughSendsAll2047) {
     ProtocolOptions o;
     o.selection.thorough = true;
