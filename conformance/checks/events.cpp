@@ -204,9 +204,12 @@ std::size_t crowd(CheckRun& run) {
 }
 
 // Identify Events global and addressed sent together, their answers awaited in one quiet period:
-// a node that answers both in full sends every Identified message twice, which splits the window
-// into the two answers. Anything else (one answer, a partial one, a message the node repeats
-// within one answer) cannot be split: each form is then asked in a window of its own.
+// a node that answers both in full sends every Identified message twice as often as one answer
+// holds it (OpenMRN's io_board names some events twice in each answer, and interleaves the two
+// answers), so the window splits into halves. A count that is odd (one answer missing or cut
+// short) cannot be split: each form is then asked in a window of its own. Only a node that
+// ignored one form and named every event an even number of times in the other would pass
+// unseen.
 struct IdentifyBoth {
     bool split = false;
     EventAnswers global, addressed;
@@ -232,9 +235,12 @@ IdentifyBoth IdentifyBoth::ask(CheckRun& run) {
     std::map<std::pair<Mti, std::vector<std::uint8_t>>, int> seen;
     for (const Message& r : got) ++seen[{r.mti, r.payload}];
     IdentifyBoth both;
-    both.split = std::all_of(seen.begin(), seen.end(), [](const auto& e) { return e.second == 2; });
+    both.split =
+        std::all_of(seen.begin(), seen.end(), [](const auto& e) { return e.second % 2 == 0; });
+    std::map<std::pair<Mti, std::vector<std::uint8_t>>, int> taken;
     for (const Message& r : got) {
-        if (--seen[{r.mti, r.payload}] != 1) continue;  // the first of each pair only
+        const std::pair<Mti, std::vector<std::uint8_t>> key{r.mti, r.payload};
+        if (2 * taken[key]++ >= seen[key]) continue;  // the first half of each message's copies
         both.global.add(r);
         both.addressed.add(r);
     }
