@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "cdi/half_float.hpp"
+#include "base/half_float.hpp"
 
 namespace olcb::cdi {
 
@@ -58,10 +58,10 @@ std::string shortest_double(double value) {
 }
 
 std::string shortest_half(double value) {
-    const std::uint16_t target = half_from_double(value);
+    const std::uint16_t target = base::half_from_double(value);
     // Halves from 1024 up are whole numbers of at most 5 digits: print them exactly rather than
     // as a shorter neighbour ("65504", not "65500").
-    const double stored = half_to_double(target);
+    const double stored = base::half_to_double(target);
     if (std::isfinite(stored) && std::fabs(stored) >= 1024) return shortest_double(stored);
     char buf[64];
     for (int precision = 1; precision <= 17; ++precision) {
@@ -70,7 +70,7 @@ std::string shortest_half(double value) {
         double parsed = 0;
         std::from_chars(buf, res.ptr, parsed);
         // Re-printing the parsed double drops the exponent padding of the general format.
-        if (half_from_double(parsed) == target) return shortest_double(parsed);
+        if (base::half_from_double(parsed) == target) return shortest_double(parsed);
     }
     return shortest_double(value);
 }
@@ -84,7 +84,7 @@ bool is_valid_float_size(std::uint64_t size) {
 double float_highest(std::uint64_t size) {
     switch (size) {
         case 2:
-            return kHalfMax;
+            return base::kHalfMax;
         case 4:
             return kFloatMax;
         case 8:
@@ -95,7 +95,7 @@ double float_highest(std::uint64_t size) {
 }
 
 double round_to_float_size(double value, std::uint64_t size) {
-    if (size == 2) return half_to_double(half_from_double(value));
+    if (size == 2) return base::half_to_double(base::half_from_double(value));
     if (size == 4) return double_from_float_bits(float_bits_from_double(value));
     return value;
 }
@@ -105,7 +105,7 @@ CodecResult<std::vector<std::uint8_t>> encode_float(double value, std::uint64_t 
     if (!is_valid_float_size(size)) return CodecError{size_error(size)};
     std::uint64_t bits = 0;
     if (size == 2) {
-        bits = half_from_double(value);
+        bits = base::half_from_double(value);
     } else if (size == 4) {
         bits = float_bits_from_double(value);
     } else {
@@ -129,7 +129,7 @@ CodecResult<double> decode_float(std::span<const std::uint8_t> bytes) {
     if (!is_valid_float_size(bytes.size())) return CodecError{size_error(bytes.size())};
     std::uint64_t bits = 0;
     for (std::uint8_t b : bytes) bits = (bits << 8) | b;
-    if (bytes.size() == 2) return half_to_double(static_cast<std::uint16_t>(bits));
+    if (bytes.size() == 2) return base::half_to_double(static_cast<std::uint16_t>(bits));
     if (bytes.size() == 4) return double_from_float_bits(static_cast<std::uint32_t>(bits));
     return std::bit_cast<double>(bits);
 }

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "cdi/half_float.hpp"
+#include "base/half_float.hpp"
 
 namespace olcb::cdi {
 namespace {
@@ -120,12 +120,12 @@ TEST(FloatCodec, FormatsShortestForTheSize) {
 
 TEST(FloatCodec, EveryHalfFormatsAndParsesBackToTheSamePattern) {
     for (std::uint32_t h = 0; h <= 0xFFFF; ++h) {
-        const double v = half_to_double(static_cast<std::uint16_t>(h));
+        const double v = base::half_to_double(static_cast<std::uint16_t>(h));
         if (std::isnan(v)) continue;
         const std::string text = format_float(v, 2);
         const auto parsed = parse_float_text(text, 2);
         ASSERT_TRUE(parsed.ok()) << text;
-        ASSERT_EQ(half_from_double(parsed.value()), h) << std::hex << h << " " << text;
+        ASSERT_EQ(base::half_from_double(parsed.value()), h) << std::hex << h << " " << text;
     }
 }
 

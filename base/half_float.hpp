@@ -1,9 +1,10 @@
-// IEEE 754 binary16 (half precision) <-> double, by hand: <float size="2"> (CDI standard 5.1.4.5).
+// IEEE 754 binary16 (half precision) <-> double, by hand: the CDI's <float size="2"> (CDI standard
+// 5.1.4.5) and Train Control's speeds (TrainControlS §4.3), so it lives below both libraries.
 #pragma once
 
 #include <cstdint>
 
-namespace olcb::cdi {
+namespace olcb::base {
 
 /// The exact double of a binary16 bit pattern; NaN payload and sign are kept (payload in the top
 /// mantissa bits), so half_from_double(half_to_double(h)) == h for all 65536 patterns.
@@ -17,4 +18,4 @@ std::uint16_t half_from_double(double value);
 /// Largest finite binary16 value, 65504.
 inline constexpr double kHalfMax = 65504.0;
 
-}  // namespace olcb::cdi
+}  // namespace olcb::base

@@ -1,4 +1,4 @@
-#include "cdi/half_float.hpp"
+#include "base/half_float.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-namespace olcb::cdi {
+namespace olcb::base {
 namespace {
 
 TEST(HalfFloat, EveryBitPatternRoundTripsExactly) {
@@ -144,4 +144,4 @@ TEST(HalfFloat, MatchesCompilerConversion) {
 #endif
 
 }  // namespace
-}  // namespace olcb::cdi
+}  // namespace olcb::base

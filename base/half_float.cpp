@@ -1,8 +1,8 @@
-#include "cdi/half_float.hpp"
+#include "base/half_float.hpp"
 
 #include <bit>
 
-namespace olcb::cdi {
+namespace olcb::base {
 
 namespace {
 
@@ -88,4 +88,4 @@ std::uint16_t half_from_double(double value) {
     return static_cast<std::uint16_t>(sign | shift_round_even(significand, shift));
 }
 
-}  // namespace olcb::cdi
+}  // namespace olcb::base
