@@ -62,6 +62,9 @@ public:
     Stats stats() const;
     /// The stacks and what routes frames to them.
     const StackGroup& group() const { return group_; }
+    /// The io_context it runs on (owners post work there that may not run inside its callbacks,
+    /// e.g. attaching a stack).
+    boost::asio::io_context& io() { return io_; }
 
 private:
     void on_transport_frame(const CanFrame& frame);

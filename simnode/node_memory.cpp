@@ -18,6 +18,8 @@ namespace olcb::simnode {
 namespace {
 
 constexpr std::uint8_t kCdiSpace = 0xFF;
+constexpr std::uint8_t kFdiSpace = 0xFA;       // TrainControlS §7.2
+constexpr std::uint8_t kFunctionSpace = 0xF9;  // TrainControlS §7.1
 constexpr std::uint8_t kAcdiFixedSpace = 0xFC;
 constexpr std::uint8_t kAcdiUserSpace = 0xFB;
 constexpr const char* kUniqueIdFile = "unique-id.img";
@@ -209,7 +211,7 @@ void NodeMemory::add_constant(std::uint8_t number, std::vector<std::uint8_t> byt
 }
 
 bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool served,
-                              std::string& error) {
+                              std::string& error, bool ram_only) {
     if (size > kMaxSpaceSize) {
         error = "space " + std::to_string(number) + " needs " + std::to_string(size) +
                 " bytes; at most " + std::to_string(kMaxSpaceSize) + " are supported";
@@ -223,7 +225,7 @@ bool NodeMemory::add_writable(std::uint8_t number, std::uint64_t size, bool serv
         const auto bytes = factory_image(number);
         std::copy_n(bytes.begin(), std::min(bytes.size(), image.size()), image.begin());
     };
-    if (!options_.image_dir.empty() && served) {
+    if (!options_.image_dir.empty() && served && !ram_only) {
         auto opened = memory::ImageFile::open(options_.image_dir / image_file_name(number),
                                               static_cast<std::size_t>(size), init);
         if (!opened.ok()) {
@@ -300,6 +302,17 @@ bool NodeMemory::build(std::string& error) {
     // Without a 251 segment the user block exists for SNIP; served only with <acdi/>.
     if (!have_user && !add_writable(kAcdiUserSpace, memory::acdi::kUserBlockSize, acdi, error)) {
         return false;
+    }
+
+    // A train's function values are its running state, not configuration: RAM only.
+    if (options_.function_space > 0 && slot(kFunctionSpace) == nullptr &&
+        !add_writable(kFunctionSpace, options_.function_space, true, error, true)) {
+        return false;
+    }
+    if (!options_.fdi.empty() && slot(kFdiSpace) == nullptr) {
+        std::vector<std::uint8_t> fdi(options_.fdi.begin(), options_.fdi.end());
+        fdi.push_back(0);
+        add_constant(kFdiSpace, std::move(fdi));
     }
 
     unique_id_counter_ = default_event_count_;

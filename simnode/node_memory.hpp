@@ -60,6 +60,11 @@ struct MemoryOptions {
     std::string user_name;                  ///< space 251 name of a fresh image
     std::string user_description;           ///< space 251 description of a fresh image
     FaultSet faults;                        ///< the node's faults (those with memory hooks act)
+    /// A train node's spaces (TrainControlS §7): this FDI text in 0xFA, read-only with one NUL
+    /// after it ("" = none).
+    std::string fdi;
+    /// A train node's function space 0xF9 of this many bytes, in RAM (0 = none).
+    std::uint32_t function_space = 0;
 };
 
 /// File name of the image of a space ("space-253.img").
@@ -121,7 +126,8 @@ private:
     struct Slot;
     explicit NodeMemory(MemoryOptions options);
     bool build(std::string& error);
-    bool add_writable(std::uint8_t number, std::uint64_t size, bool served, std::string& error);
+    bool add_writable(std::uint8_t number, std::uint64_t size, bool served, std::string& error,
+                      bool ram_only = false);
     void add_constant(std::uint8_t number, std::vector<std::uint8_t> bytes);
     Slot* slot(std::uint8_t number) const;
     bool slot_hidden(const EventSlot& e) const;

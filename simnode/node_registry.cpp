@@ -5,13 +5,17 @@
 #include <system_error>
 #include <utility>
 
+#include "openlcb/asio.hpp"
 #include "openlcb/stack_driver.hpp"
 
 namespace olcb::simnode {
 
 NodeRegistry::NodeRegistry(std::vector<std::unique_ptr<SimNode>>& nodes, StackDriver& driver)
     : nodes_(nodes), driver_(driver) {
-    for (const auto& node : nodes_) node_fds_ += node_fds(node->config());
+    for (const auto& node : nodes_) {
+        node_fds_ += node_fds(node->config());
+        create_trains_for(*node);
+    }
 }
 
 SimNode* NodeRegistry::find(NodeId id) const {
@@ -36,7 +40,23 @@ std::unique_ptr<SimNode> NodeRegistry::create(const NodeConfig& config, std::str
     return SimNode::create(config, error);
 }
 
+void NodeRegistry::create_trains_for(SimNode& node) {
+    if (!node.config().command_station) return;
+    // The station decides inside the driver's callbacks, where no node may be added: the train
+    // joins from the io_context right after.
+    node.set_train_factory([this](const NodeConfig& config) {
+        if (find(config.node_id) != nullptr) return false;
+        boost::asio::post(driver_.io(), [this, config] {
+            std::string error;
+            if (find(config.node_id) == nullptr && add(config, error) == nullptr && log_)
+                log_("train " + config.node_id.to_string() + " not created: " + error);
+        });
+        return true;
+    });
+}
+
 void NodeRegistry::run(SimNode& node) {
+    create_trains_for(node);
     driver_.attach(node.stack());
     // Before start_all() the node waits with the others (a --connect hub not reached yet).
     if (started_) node.stack().start(Clock::now());

@@ -34,6 +34,8 @@ public:
     /// What the run needs besides its nodes, and the descriptor limit add() keeps to (none
     /// until set).
     void set_fd_budget(const FdBudget& budget) { budget_ = budget; }
+    /// Told a line (without "simnode: ") when a command station's train cannot be created.
+    void set_log_handler(std::function<void(const std::string&)> log) { log_ = std::move(log); }
     /// Descriptors the run needs now: the budget's fixed part and what the nodes hold.
     std::size_t fds_needed() const { return budget_.fixed + node_fds_; }
     /// Starts every node (StackDriver::start_all); nodes added later start at once.
@@ -61,6 +63,7 @@ public:
 private:
     std::unique_ptr<SimNode> create(const NodeConfig& config, std::string& error) const;
     void run(SimNode& node);
+    void create_trains_for(SimNode& node);
 
     std::vector<std::unique_ptr<SimNode>>& nodes_;
     StackDriver& driver_;
@@ -68,6 +71,7 @@ private:
     std::size_t node_fds_ = 0;  // what nodes_ hold (node_fds of their configs)
     bool started_ = false;
     std::function<void(const SimNode&)> added_;
+    std::function<void(const std::string&)> log_;
 };
 
 }  // namespace olcb::simnode

@@ -43,6 +43,11 @@ constexpr std::string_view kNodeKeys[] = {
     "watch-variable",
     "streams",
     "memory-config",
+    "train-address",
+    "train-protocol",
+    "fdi",
+    "heartbeat",
+    "command-station",
 };
 // Keys of the whole process (top level only).
 constexpr std::string_view kProcessKeys[] = {"listen",
@@ -175,7 +180,19 @@ po::options_description node_options() {
         "file gives only SNIP strings and events)")(
         "streams", po::value<std::string>()->value_name("BOOL"),
         "serve memory-config stream reads and accept streams (default true; false = "
-        "datagram-only, as a node without stream support)");
+        "datagram-only, as a node without stream support)")(
+        "train-address", po::value<std::string>()->value_name("N"),
+        "make it a train node with this address (the next ones N+1, ... with count): "
+        "Traction Control, Is Train, Train Search answered, functions in 0xF9")(
+        "train-protocol", po::value<std::string>()->value_name("dcc|dcc-long|dcc-short|native|mm"),
+        "the train's track protocol (default dcc: long from address 128 on)")(
+        "fdi", po::value<std::string>()->value_name("FILE"),
+        "a train's (or a command station's trains') FDI XML, served in 0xFA (PIP FDI bit)")(
+        "heartbeat", po::value<std::string>()->value_name("SECONDS"),
+        "a train asks its controller for a sign of life after SECONDS of silence while moving, "
+        "and stops when none comes in SECONDS (0..255; default 0 = never)")(
+        "command-station", po::value<std::string>()->value_name("BOOL"),
+        "a command station: an allocating Train Search creates a train node (default false)");
     return node;
 }
 
@@ -417,7 +434,7 @@ public:
             single(keys, "hardware-version") || single(keys, "software-version")) {
             g.identity = identity_of(*g.cdi, keys);
         }
-        return faults_of(keys, where, g) && add_nodes(keys, where, g);
+        return faults_of(keys, where, g) && train_of(keys, where, g) && add_nodes(keys, where, g);
     }
 
     bool process(const Keys& keys) {
@@ -608,6 +625,8 @@ private:
         fs::path root;  // where the nodes' image directories go
         std::optional<Identity> identity;
         FaultSet faults;
+        std::optional<TrainConfig> train;            // train-address given
+        std::optional<TrainConfig> command_station;  // command-station = true
     };
 
     // node-id and count: the group's first node ID and how many follow it.
@@ -661,6 +680,65 @@ private:
         return true;
     }
 
+    // train-protocol's value: the protocol and whether the address is a long one (nullopt: from
+    // the address).
+    static std::optional<std::pair<train_search::TrackProtocol, std::optional<bool>>> protocol_of(
+        const std::string& v) {
+        using P = train_search::TrackProtocol;
+        if (v == "dcc") return std::pair{P::kDcc, std::optional<bool>{}};
+        if (v == "dcc-long") return std::pair{P::kDcc, std::optional<bool>{true}};
+        if (v == "dcc-short") return std::pair{P::kDcc, std::optional<bool>{false}};
+        if (v == "native") return std::pair{P::kNative, std::optional<bool>{}};
+        if (v == "mm") return std::pair{P::kMarklinMotorola, std::optional<bool>{}};
+        return std::nullopt;
+    }
+
+    // The train keys: train-address, train-protocol, fdi, heartbeat, command-station.
+    bool train_of(const Keys& keys, const std::string& where, Group& g) {
+        TrainConfig train;
+        if (const auto* v = single(keys, "heartbeat")) {
+            const auto n = parse_bytes(*v);
+            if (!n || *n > 255) return fail(where + ": heartbeat '" + *v + "' must be 0..255 s");
+            train.heartbeat = static_cast<std::uint8_t>(*n);
+        }
+        train.fdi_file = path_of(keys, "fdi");
+        if (!train.fdi_file.empty()) {
+            std::string why;
+            auto text = base::read_bounded_file(train.fdi_file, cdi::kMaxCdiBytes,
+                                                base::Streams::kRefuse, why);
+            if (!text) return fail(where + ": FDI file: " + why);
+            train.fdi = std::move(*text);
+        }
+        const std::string* station = single(keys, "command-station");
+        const auto station_on = station ? parse_bool(*station) : std::optional<bool>(false);
+        if (!station_on)
+            return fail(where + ": command-station '" + *station + "' must be true or false");
+        const std::string* address = single(keys, "train-address");
+        if (*station_on && address)
+            return fail(where +
+                        ": a command station is no train: give train-address to its "
+                        "trains, not to it");
+        if (*station_on) g.command_station = train;
+        if (!address) return true;
+        const auto a = parse_bytes(*address);
+        if (!a || *a > 999999)
+            return fail(where + ": train-address '" + *address +
+                        "' must be a whole number 0..999999");
+        train.identity.address = static_cast<std::uint32_t>(*a);
+        std::optional<bool> long_form;
+        if (const auto* p = single(keys, "train-protocol")) {
+            const auto proto = protocol_of(*p);
+            if (!proto)
+                return fail(where + ": train-protocol '" + *p +
+                            "' must be dcc, dcc-long, dcc-short, native or mm");
+            train.identity.protocol = proto->first;
+            long_form = proto->second;
+        }
+        train.identity.long_address = long_form.value_or(*a >= 128);
+        g.train = train;
+        return true;
+    }
+
     bool add_nodes(const Keys& keys, const std::string& where, const Group& g) {
         const std::string* user_name = single(keys, "user-name");
         const std::string* user_description = single(keys, "user-description");
@@ -697,6 +775,11 @@ private:
             if (watch) config.watch_variable = *watch;
             config.streams = *streams_on && *memory_on;
             config.memory_config = *memory_on;
+            if (g.train) {
+                config.train = g.train;
+                config.train->identity.address += static_cast<std::uint32_t>(k);
+            }
+            config.command_station = g.command_station;
             scenario_.nodes.push_back(std::move(config));
         }
         return true;

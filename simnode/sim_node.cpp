@@ -95,6 +95,10 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     options.user_name = config.user_name;
     options.user_description = config.user_description;
     options.faults = config.faults;
+    if (config.train) {
+        options.function_space = kFunctionSpaceSize;
+        if (ActiveFaults(config.faults).train().fdi_space) options.fdi = config.train->fdi;
+    }
     auto memory = NodeMemory::open(std::move(options), error);
     if (!memory) return nullptr;
 
@@ -107,6 +111,12 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
     }
     if (!model->events.empty()) served.set(Protocol::kEventExchange);
     if (config.streams) served.set(Protocol::kStream);
+    if (config.train) {
+        // It produces Is Train and consumes the emergency events (TrainControlS §6.4, §5).
+        served.set(Protocol::kEventExchange);
+        served.set(Protocol::kTractionControl);
+        if (!config.train->fdi.empty()) served.set(Protocol::kFdi);
+    }
 
     const NodeStackConfig sc = stack_config_for(config, served);
     return std::unique_ptr<SimNode>(new SimNode(std::move(config), sc, std::move(memory), served));
@@ -154,8 +164,19 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
     startup_events_ = memory_->events();
     if (faults_.watches()) find_watched();
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
-    stack_.set_global_messages(
-        std::vector<Mti>(std::begin(kAnsweredGlobals), std::end(kAnsweredGlobals)));
+    std::vector<Mti> globals(std::begin(kAnsweredGlobals), std::end(kAnsweredGlobals));
+    if (config_.train) {
+        train_ = std::make_unique<TrainNode>(*config_.train, config_.node_id, *life_, faults_,
+                                             [this](Message m) { return send_message(std::move(m)); });
+        globals.push_back(Mti::kEventReport);  // the global emergency events
+    }
+    if (config_.command_station) {
+        // To see whether a train answered a search before allocating one (TrainSearchS §6.2).
+        globals.insert(globals.end(),
+                       {Mti::kProducerIdentifiedValid, Mti::kProducerIdentifiedInvalid,
+                        Mti::kProducerIdentifiedUnknown});
+    }
+    stack_.set_global_messages(std::move(globals));
     stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
     stack_.set_initialized_handler([this] { on_initialized(); });
     stack_.set_stream_handler([this](const StreamEvent& e) { on_stream_event(e); });
@@ -278,6 +299,7 @@ bool SimNode::answer_builtin(const Message& msg) {
 
 bool SimNode::answer_message(const Message& msg) {
     if (faults_.message(*life_, msg)) return true;
+    if ((train_ || config_.command_station) && answer_train(msg)) return true;
     switch (msg.mti) {
         case Mti::kIdentifyEventsGlobal:
         case Mti::kIdentifyEventsAddressed:
@@ -309,6 +331,153 @@ bool SimNode::answer_message(const Message& msg) {
     }
 }
 
+bool SimNode::send_message(Message msg) {
+    return stack_.send_message(std::move(msg)) != SendStatus::kUnknownDestination;
+}
+
+bool SimNode::answer_train(const Message& msg) {
+    switch (msg.mti) {
+        case Mti::kTractionControlCommand:
+            if (!train_) return false;
+            train_->on_command(msg);
+            return true;
+        case Mti::kEventReport:
+            if (const auto id = EventId::from_bytes(msg.payload); id && train_)
+                train_->on_event(*id);
+            return false;  // also the node's own events, if any
+        case Mti::kIdentifyProducer:
+            return answer_search(msg);
+        case Mti::kProducerIdentifiedValid:
+        case Mti::kProducerIdentifiedInvalid:
+        case Mti::kProducerIdentifiedUnknown:
+            if (const auto id = EventId::from_bytes(msg.payload)) {
+                if (const auto it = allocating_.find(*id); it != allocating_.end())
+                    it->second = true;
+            }
+            return false;
+        default:
+            return false;
+    }
+}
+
+bool SimNode::answer_search(const Message& msg) {
+    const auto id = EventId::from_bytes(msg.payload);
+    if (!id || !train_search::in_range(*id)) return false;
+    const auto query = train_search::Query::from_event(*id);
+    if (!query || query->has_reserved()) return true;  // reserved values match nothing (§6.3)
+    if (train_) {
+        train_search::TrainIdentity me = train_->config().identity;
+        me.name = snip().user_name;
+        if (train_search::matches(*query, me)) {
+            // An exact query that matched is told apart from a partial match (§6.4).
+            const bool exact = (query->flags & train_search::flags::kExact) != 0;
+            Message m;
+            m.mti = exact ? Mti::kProducerIdentifiedValid : Mti::kProducerIdentifiedUnknown;
+            const auto raw = id->to_bytes();
+            m.payload.assign(raw.begin(), raw.end());
+            stack_.send_message(std::move(m));
+        }
+    }
+    if (config_.command_station && (query->flags & train_search::flags::kAllocate) != 0)
+        allocate(*query, *id);
+    return true;
+}
+
+namespace {
+
+// What a command station waits for an existing train to answer before it creates one (at least
+// 200 ms, TrainSearchS §6.2).
+constexpr auto kAllocateWait = std::chrono::milliseconds(250);
+// Node IDs after its own a command station tries for a new train (others may be taken).
+constexpr std::uint64_t kCreateAttempts = 16;
+
+// The train an allocating query describes; nullopt when it names none this station can create
+// (not exactly one number, an address its protocol does not have, MFX: no user address).
+std::optional<train_search::TrainIdentity> allocatable(const train_search::Query& q) {
+    std::string digits;
+    int runs = 0;
+    bool in_run = false;
+    for (std::uint8_t n : q.nibbles) {
+        if (n > 9) {
+            in_run = false;
+            continue;
+        }
+        if (!in_run) ++runs;
+        in_run = true;
+        digits += static_cast<char>('0' + n);
+    }
+    if (runs != 1 || digits.size() > 5) return std::nullopt;
+    const auto value = static_cast<std::uint32_t>(std::stoul(digits));
+    train_search::TrainIdentity t;
+    t.protocol =
+        train_search::requested_protocol(q.flags).value_or(train_search::TrackProtocol::kDcc);
+    t.address = value;
+    switch (t.protocol) {
+        case train_search::TrackProtocol::kDcc:
+            t.long_address = train_search::requests_long_address(q.flags) || value >= 128;
+            if (value == 0 || value > 10239 || (!t.long_address && value > 127))
+                return std::nullopt;
+            return t;
+        case train_search::TrackProtocol::kMarklinMotorola:
+            if (value == 0 || value > 255) return std::nullopt;
+            return t;
+        case train_search::TrackProtocol::kNative:
+            return t;
+        case train_search::TrackProtocol::kMfx:
+            break;
+    }
+    return std::nullopt;
+}
+
+std::string train_name(const train_search::TrainIdentity& t) {
+    switch (t.protocol) {
+        case train_search::TrackProtocol::kDcc:
+            return "DCC " + std::to_string(t.address) + (t.long_address ? "" : " short");
+        case train_search::TrackProtocol::kMarklinMotorola:
+            return "MM " + std::to_string(t.address);
+        default:
+            return "Train " + std::to_string(t.address);
+    }
+}
+
+}  // namespace
+
+void SimNode::allocate(train_search::Query query, EventId asked) {
+    if (!train_factory_ || allocating_.contains(asked)) return;
+    const auto identity = allocatable(query);
+    if (!identity) return;
+    allocating_[asked] = false;
+    const std::uint32_t generation = boot_generation_;
+    stack_.schedule(stack_.now() + kAllocateWait,
+                    [this, generation, asked, identity = *identity](TimePoint) {
+                        const auto it = allocating_.find(asked);
+                        if (it == allocating_.end()) return;
+                        const bool answered = it->second;
+                        allocating_.erase(it);
+                        if (answered || generation != boot_generation_) return;
+                        NodeConfig c;
+                        c.cdi = config_.cdi;
+                        c.cdi_file = config_.cdi_file;
+                        c.identity = config_.identity;
+                        c.user_name = train_name(identity);
+                        c.faults = config_.faults;
+                        c.streams = config_.streams;
+                        c.memory_config = config_.memory_config;
+                        c.train = *config_.command_station;
+                        c.train->identity = identity;
+                        c.train->created_by = asked;
+                        for (std::uint64_t k = 1; k <= kCreateAttempts; ++k) {
+                            c.node_id = NodeId(config_.node_id.value() + created_.size() + k);
+                            if (train_factory_(c)) {
+                                created_.push_back(c.node_id);
+                                return;
+                            }
+                        }
+                        log("node " + config_.node_id.to_string() +
+                            ": could not create a train for " + asked.to_string());
+                    });
+}
+
 void SimNode::identified(EventId id, bool producer) {
     Message m;
     m.mti = producer ? Mti::kProducerIdentifiedUnknown : Mti::kConsumerIdentifiedUnknown;
@@ -327,8 +496,15 @@ void SimNode::advertise_all() {
 }
 
 std::vector<std::pair<EventId, EventRole>> SimNode::advertised_events() const {
-    if (memory_->event_policy().frozen_at_start) return startup_events_;
-    return memory_->events();  // read now, so a written event ID counts at once
+    // Read now, so a written event ID counts at once.
+    auto events = memory_->event_policy().frozen_at_start ? startup_events_ : memory_->events();
+    if (train_) {
+        events.emplace_back(train::kIsTrain, EventRole::kProducer);
+        for (EventId e : {train::kEmergencyStopAll, train::kClearEmergencyStopAll,
+                          train::kEmergencyOffAll, train::kClearEmergencyOffAll})
+            events.emplace_back(e, EventRole::kConsumer);
+    }
+    return events;
 }
 
 void SimNode::advertise(const EventSlot* begin, const EventSlot* end) {
@@ -344,6 +520,14 @@ void SimNode::advertise(const EventSlot* begin, const EventSlot* end) {
 
 void SimNode::on_initialized() {
     advertise_all();
+    if (train_ && config_.train->created_by) {
+        // The search that created it learns its node (TrainSearchS §6.2).
+        Message m;
+        m.mti = Mti::kProducerIdentifiedValid;
+        const auto raw = config_.train->created_by->to_bytes();
+        m.payload.assign(raw.begin(), raw.end());
+        stack_.send_message(std::move(m));
+    }
     if (!std::exchange(started_, true)) faults_.started(*life_);
 }
 
@@ -376,6 +560,7 @@ void SimNode::log(const std::string& line) const {
 
 void SimNode::power_up(TimePoint now) {
     memory_->reboot();
+    if (train_) train_->power_up();
     faults_.powering_up(*life_);
     server_.reset();
     startup_events_ = memory_->events();

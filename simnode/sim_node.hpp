@@ -24,6 +24,7 @@
 #include "simnode/faults.hpp"
 #include "simnode/faults/fault_hooks.hpp"
 #include "simnode/node_memory.hpp"
+#include "simnode/train_node.hpp"
 
 namespace olcb::simnode {
 
@@ -51,6 +52,13 @@ struct NodeConfig {
     /// Memory Configuration and the CDI served (PIP bits, datagrams answered); false = a node
     /// that is no configurable node (a throttle): memory-config datagrams rejected 0x1042.
     bool memory_config = true;
+    /// A train node (TrainControlS): PIP Traction Control (and FDI with an FDI text), the Is
+    /// Train event, Traction Control Commands answered, the functions in 0xF9, the FDI in 0xFA,
+    /// Train Search queries answered (TrainSearchS §6.1).
+    std::optional<TrainConfig> train;
+    /// A command station (TrainSearchS §6.2): an allocating Train Search creates a train node
+    /// (see SimNode::set_train_factory) from this template; its node IDs follow this node's.
+    std::optional<TrainConfig> command_station;
 };
 
 /// Counters of what a node did, for tests and the program's statistics.
@@ -105,6 +113,15 @@ public:
     const NodeCounters& counters() const { return counters_; }
     /// Reset/Reboot commands obeyed.
     std::uint32_t reboot_count() const { return counters_.reboots; }
+    /// The train (nullptr when the node is none).
+    const TrainNode* train() const { return train_.get(); }
+    /// Creates a node on the running segment, as a command station asks: false when it could
+    /// not. Called from the node's timers: an owner that may not add nodes there must defer.
+    using TrainFactory = std::function<bool(NodeConfig)>;
+    /// Sets who creates the trains a command station allocates (unset: it creates none).
+    void set_train_factory(TrainFactory factory) { train_factory_ = std::move(factory); }
+    /// Trains this command station created, in order (their node IDs).
+    const std::vector<NodeId>& created_trains() const { return created_; }
     /// Told a line (without "simnode: ") when storage fails; unset: the line goes to stderr.
     using LogHandler = std::function<void(const std::string&)>;
     /// Sets who is told of storage failures.
@@ -157,6 +174,10 @@ private:
     std::vector<std::pair<EventId, EventRole>> advertised_events() const;
     void start_stream_read(std::uint16_t src, const memory::StreamRead& read);
     void on_stream_event(const StreamEvent& event);
+    bool answer_train(const Message& msg);
+    bool answer_search(const Message& msg);
+    void allocate(train_search::Query query, EventId asked);
+    bool send_message(Message msg);
 
     // A Read Stream waiting for its stream to be accepted, or being sent.
     struct PendingStreamRead {
@@ -187,6 +208,12 @@ private:
     std::vector<std::pair<EventId, EventRole>> startup_events_;
     std::map<std::uint32_t, PendingStreamRead> stream_reads_;  // by stream handle
     LogHandler log_;
+    std::unique_ptr<TrainNode> train_;  // the train of a train node
+    TrainFactory train_factory_;
+    std::vector<NodeId> created_;  // trains a command station created
+    // Searches a command station was asked to allocate for, and whether a train answered them
+    // in the 200 ms it waits (TrainSearchS §6.2).
+    std::map<EventId, bool> allocating_;
 };
 
 }  // namespace olcb::simnode

@@ -164,6 +164,7 @@ public:
         registry_.emplace(nodes_, *driver_);
         registry_->set_fd_budget(fd_budget_);
         if (audit_) registry_->set_added_handler([this](const SimNode& n) { audit_->add_node(n); });
+        registry_->set_log_handler(say);
         commands_.emplace(*registry_, scenario_);
         commands_->set_log_handler(say);
         control_.emplace(io_, *commands_);

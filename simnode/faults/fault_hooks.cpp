@@ -145,4 +145,18 @@ void ActiveFaults::answer(AnswerPlan& plan) const {
     each(on_, &FaultHooks::answer, plan);
 }
 
+TrainBuild ActiveFaults::train() const {
+    TrainBuild build;
+    each(on_, &FaultHooks::train, build);
+    return build;
+}
+
+void ActiveFaults::train_reply(TrainReplyTurn& turn) const {
+    each(on_, &FaultHooks::train_reply, turn);
+}
+
+void ActiveFaults::train_forward(TrainForwardTurn& turn) const {
+    each(on_, &FaultHooks::train_forward, turn);
+}
+
 }  // namespace olcb::simnode

@@ -18,6 +18,7 @@
 #include "memory/memory_space.hpp"
 #include "memory/snip.hpp"
 #include "openlcb/node_stack.hpp"
+#include "openlcb/train_control.hpp"
 #include "simnode/faults.hpp"
 
 namespace olcb::cdi {
@@ -143,6 +144,27 @@ struct AnswerPlan {
     Duration delay{0};         ///< the reply is held back this long after the OK
 };
 
+/// A train node being built (TrainControlS): what its faults change of its behaviour.
+struct TrainBuild {
+    bool fdi_space = true;        ///< serve the FDI in 0xFA (the PIP claims FDI either way)
+    bool heartbeat_stops = true;  ///< a missed heartbeat deadline stops the train (§6.6)
+    /// A second Reserve is refused even from the node holding the reservation.
+    bool reserve_exclusive = false;
+};
+
+/// A Traction Control Reply on its way out, typed: a hook may change it before it is encoded.
+struct TrainReplyTurn {
+    const train::Command& asked;
+    train::Reply& reply;
+};
+
+/// A command the train is about to forward to one listener (§6.5); a hook may drop it.
+struct TrainForwardTurn {
+    const train::Command& command;
+    NodeId listener;
+    bool drop = false;
+};
+
 /// The filters and stream policy faults install on the node's NodeStack. Each fault adds its
 /// own; install() composes them, since the stack takes one of each.
 class StackHooks {
@@ -183,6 +205,9 @@ struct FaultHooks {
     /// Which event IDs it identifies.
     void (*events)(EventPolicy&, FaultValue) = nullptr;
 
+    /// Its train behaviour (a train node only).
+    void (*train)(TrainBuild&, FaultValue) = nullptr;
+
     // The running node.
     /// Its first Initialization Complete.
     void (*started)(NodeLife&, FaultValue) = nullptr;
@@ -202,6 +227,10 @@ struct FaultHooks {
     void (*written)(WriteTurn&, FaultValue) = nullptr;
     /// When a reply datagram goes out.
     void (*answer)(AnswerPlan&, FaultValue) = nullptr;
+    /// A Traction Control Reply before it is sent.
+    void (*train_reply)(TrainReplyTurn&, FaultValue) = nullptr;
+    /// A command before it is forwarded to a listener.
+    void (*train_forward)(TrainForwardTurn&, FaultValue) = nullptr;
 
     /// Same hooks (FaultHooks{}: none, a fault that would change nothing).
     friend bool operator==(const FaultHooks&, const FaultHooks&) = default;
@@ -242,6 +271,9 @@ public:
     bool reply(const memory::DecodeResult& asked, memory::Decision& decision) const;
     void written(WriteTurn& turn) const;
     void answer(AnswerPlan& plan) const;
+    TrainBuild train() const;
+    void train_reply(TrainReplyTurn& turn) const;
+    void train_forward(TrainForwardTurn& turn) const;
 
 private:
     struct Active {
