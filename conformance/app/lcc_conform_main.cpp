@@ -128,6 +128,11 @@ po::options_description check_options() {
         "sample", po::value<std::size_t>()->default_value(3),
         "replicas tested per replicated group (0 = all)")("blob", "also write <blob> variables")(
         "reboot", "reset the node and check written values persist")(
+        "train-address", po::value<std::uint32_t>()->value_name("N"),
+        "the address of the train named with --node: the train search checks search for it")(
+        "command-station",
+        "the node named with --node is a command station: the train search checks have it "
+        "create train nodes (they stay, stopped and released)")(
         "exclude", po::value<std::vector<std::string>>()->composing(),
         "never write variables whose backup key matches GLOB (repeatable), e.g. '*.Internal "
         "data.*'")("only", po::value<std::vector<std::string>>()->composing(),
@@ -376,15 +381,15 @@ std::vector<Target> choose_targets(Session& session, const std::vector<NodeInfo>
             continue;
         }
         Target t{n, {}};
-        if (!chosen) {
-            const auto pip = session.protocol_support(n);
-            if (!pip)
-                t.protocol_only = "no Protocol Support Reply, so not known as a configurable node";
-            else if (!pip->has(Protocol::kMemoryConfiguration) && !pip->has(Protocol::kCdi))
-                t.protocol_only =
-                    "not a configurable node (its PIP has neither Memory "
-                    "Configuration nor CDI)";
-        }
+        // A node named with --node is judged as what its PIP claims too: a train node is not
+        // judged as an I/O board (issue 35: OpenMRN's train got CDI and memory FAILs).
+        const auto pip = session.protocol_support(n);
+        if (!pip && !chosen)
+            t.protocol_only = "no Protocol Support Reply, so not known as a configurable node";
+        else if (pip && !pip->has(Protocol::kMemoryConfiguration) && !pip->has(Protocol::kCdi))
+            t.protocol_only =
+                "not a configurable node (its PIP has neither Memory "
+                "Configuration nor CDI)";
         out.push_back(std::move(t));
     }
     return out;
@@ -425,6 +430,10 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         po_opts.read_only = ro.read_only;
         po_opts.reboot = ro.reboot;
         po_opts.no_stream = vm.count("no-stream") > 0;
+        po_opts.named = vm.count("node") > 0;
+        po_opts.command_station = vm.count("command-station") > 0;
+        if (vm.count("train-address"))
+            po_opts.train_address = vm["train-address"].as<std::uint32_t>();
         po_opts.selection = selection;
         return run_protocol_checks(s, n, po_opts, ctx);
     };
@@ -444,8 +453,9 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         }
         one.protocol_only = t.protocol_only;
         if (!t.protocol_only.empty()) {
-            one.selection.categories = {Category::kFrame, Category::kMessage, Category::kSnip,
-                                        Category::kPip, Category::kEvents};
+            one.selection.categories = {Category::kFrame,  Category::kMessage, Category::kSnip,
+                                        Category::kPip,    Category::kEvents,  Category::kTrain,
+                                        Category::kSearch, Category::kFdi};
         }
         selection = one.selection;
         if (targets.size() > 1) {
@@ -536,6 +546,17 @@ bool options_usable(const po::variables_map& vm) {
             std::cerr << "lcc-conform: " << error << "\n";
             return false;
         }
+    }
+    for (const char* option : {"command-station", "train-address"}) {
+        if (!vm.count(option) || vm.count("node")) continue;
+        std::cerr << "lcc-conform: --" << option
+                  << " says what the node of --node is: give "
+                     "--node too\n";
+        return false;
+    }
+    if (vm.count("train-address") && vm["train-address"].as<std::uint32_t>() > 999999) {
+        std::cerr << "lcc-conform: --train-address takes 0..999999 (six digits, TrainSearchS)\n";
+        return false;
     }
     if (!vm.count("skip")) return true;
     for (const std::string& p : vm["skip"].as<std::vector<std::string>>()) {

@@ -16,12 +16,28 @@ namespace k = checks;
 
 std::vector<CheckSpec> build_registry() {
     std::vector<CheckSpec> all;
-    for (auto family :
-         {k::frame_checks, k::message_checks, k::snip_checks, k::memory_checks, k::cdi_checks,
-          k::datagram_checks, k::acdi_checks, k::pip_checks, k::encoding_checks, k::node_checks,
-          k::frame_bus_checks, k::message_addressing_checks, k::final_checks,
-          k::datagram_protocol_checks, k::memory_bounds_checks, k::event_checks,
-          k::event_robustness_checks, k::stream_checks, k::event_phase_checks}) {
+    for (auto family : {k::frame_checks,
+                        k::message_checks,
+                        k::snip_checks,
+                        k::memory_checks,
+                        k::cdi_checks,
+                        k::datagram_checks,
+                        k::acdi_checks,
+                        k::pip_checks,
+                        k::encoding_checks,
+                        k::node_checks,
+                        k::frame_bus_checks,
+                        k::message_addressing_checks,
+                        k::final_checks,
+                        k::datagram_protocol_checks,
+                        k::memory_bounds_checks,
+                        k::event_checks,
+                        k::event_robustness_checks,
+                        k::stream_checks,
+                        k::event_phase_checks,
+                        k::train_control_checks,
+                        k::train_search_checks,
+                        k::fdi_checks}) {
         std::vector<CheckSpec> part = family();
         all.insert(all.end(), part.begin(), part.end());
     }
@@ -105,9 +121,10 @@ const CheckSpec* find_check(std::string_view result_id) {
 }
 
 bool is_check_pattern(std::string_view pattern) {
-    static constexpr std::array<Category, 13> kAll = {
-        C::kFrame, C::kMessage,  C::kPip,  C::kSnip, C::kDatagram, C::kMemory, C::kCdi,
-        C::kAcdi,  C::kEncoding, C::kLink, C::kNode, C::kEvents,   C::kStream};
+    static constexpr std::array<Category, 16> kAll = {
+        C::kFrame,  C::kMessage, C::kPip,      C::kSnip, C::kDatagram, C::kMemory,
+        C::kCdi,    C::kAcdi,    C::kEncoding, C::kLink, C::kNode,     C::kEvents,
+        C::kStream, C::kTrain,   C::kSearch,   C::kFdi};
     const std::string_view first = pattern.substr(0, pattern.find('.'));
     return std::any_of(kAll.begin(), kAll.end(),
                        [&](Category c) { return category_name(c) == first; });
@@ -191,8 +208,33 @@ const std::vector<OlcbCheckerCheck>& olcbchecker_checks() {
         {"st10-st210", "stream transport (lcc-conform as the source, the node as the sink)",
          "covered only as the node's source side in memory-config stream reads (the node "
          "streams to lcc-conform); the checks with lcc-conform as the source are not covered"},
-        {"bt, dd, fd, tr, ts", "broadcast time, DCC detector, FDI, train control, train search",
-         "not covered: protocols of other node kinds than configurable nodes"},
+        {"tr010", "Is Train event produced", ""},
+        {"tr020", "set and query speed and direction (0.75 and 0, both directions)", ""},
+        {"tr030", "set and query F0", ""},
+        {"tr040", "Emergency Stop", ""},
+        {"tr050", "Emergency Stop All event", ""},
+        {"tr060", "Emergency Off All event", ""},
+        {"tr070", "spaces 0xF9 and 0xFA",
+         "0xFA FAILs only when the PIP claims FDI: FDI is strongly recommended, not required "
+         "(TrainControlS §3), so a node without it gets a WARN"},
+        {"tr080", "listener attach, query, detach", ""},
+        {"tr090", "controller assign, query, release",
+         "the Query Controller flags byte is shown, not judged: the standard marks 0x01 "
+         "reserved, while tr090 fails a reply without bit 0 set"},
+        {"tr100", "reserve, reserve again, release",
+         "a refused second Reserve from the same node is no FAIL: the standard gives Reserve no "
+         "rules beyond its reply (tr100 fails it; the plan's other section expects it)"},
+        {"tr110", "heartbeat", ""},
+        {"ts10", "allocate a train, then find it", ""},
+        {"ts20", "partial (prefix) searches", ""},
+        {"ts30", "a reserved nibble allocates nothing", ""},
+        {"ts40", "reserved protocol values allocate nothing", ""},
+        {"fd10", "space 0xFA present", ""},
+        {"fd20", "FDI read to its NUL, declaration, schema",
+         "the schema itself is validated by cdi's FDI support"},
+        {"fd30", "FDI space refuses writes", ""},
+        {"bt, dd", "broadcast time, DCC detector",
+         "not covered: protocols of other node kinds than configurable nodes and trains"},
     };
     return all;
 }

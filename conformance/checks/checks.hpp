@@ -4,12 +4,16 @@
 // and the probes only they share are declared below the lists; probes.hpp has the others.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/checks/check_run.hpp"
 #include "conformance/checks/probes.hpp"
+#include "openlcb/train_control.hpp"
 
 namespace olcb::conform::checks {
 
@@ -55,6 +59,26 @@ inline constexpr unsigned kStandardFramesQuick = 64;
 /// made-up traffic and destinations "another node" has.
 std::vector<std::uint16_t> unused_aliases(CheckRun& run, std::size_t count);
 
+/// Sends a Traction Control Command to the node (train_control.cpp).
+void train_send(CheckRun& run, const train::Command& command);
+/// The first Traction Control Reply from the node among the messages since mark that wanted()
+/// takes, awaited up to window (zero: the answer window); nullopt with why set when none came
+/// (or only replies that do not decode).
+std::optional<train::Reply> train_await(CheckRun& run, std::size_t mark,
+                                        const std::function<bool(const train::Reply&)>& wanted,
+                                        std::string& why, Duration window = {});
+/// One command to the node and its reply of type R (a Query Speeds Reply, ...).
+template <typename R>
+std::optional<R> train_ask(CheckRun& run, const train::Command& command, std::string& why,
+                           Duration window = {}) {
+    const std::size_t mark = run.session().message_mark();
+    train_send(run, command);
+    auto r = train_await(
+        run, mark, [](const train::Reply& x) { return std::holds_alternative<R>(x); }, why, window);
+    if (!r) return std::nullopt;
+    return std::get<R>(*r);
+}
+
 /// frame.cpp: AME answered, CID defended.
 std::vector<CheckSpec> frame_checks();
 /// message.cpp: Verify Node ID, unknown MTIs, Protocol Support Inquiry, unsolicited traffic.
@@ -92,6 +116,13 @@ std::vector<CheckSpec> event_robustness_checks();
 std::vector<CheckSpec> stream_checks();
 /// events.cpp: checks the encoding phase produces for events (run = nullptr).
 std::vector<CheckSpec> event_phase_checks();
+/// train_control.cpp: a train node's Is Train event, spaces, controller, reservation, and on a
+/// node named with --node its speed, functions, emergency stops, listeners and heartbeat.
+std::vector<CheckSpec> train_control_checks();
+/// train_search.cpp: a train answering searches, a command station creating trains.
+std::vector<CheckSpec> train_search_checks();
+/// fdi.cpp: the FDI of space 0xFA: its space, download, XML and functions.
+std::vector<CheckSpec> fdi_checks();
 /// message_addressing.cpp: disruptive checks that run last of all the protocol checks (e.g.
 /// the duplicate node ID, behind --thorough).
 std::vector<CheckSpec> final_checks();

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "base/timings.hpp"
@@ -32,6 +33,15 @@ struct ProtocolOptions {
     bool no_stream = false;
     /// --reboot: checks that need a Reset/Reboot (the start-up sequence) may send one.
     bool reboot = false;
+    /// The user named the node (--node): the checks that change a train's state (speed,
+    /// functions, controller, listeners) may run; never on a node found by discovery.
+    bool named = false;
+    /// --command-station: the node creates train nodes on request (TrainSearchS §6.2), and the
+    /// checks that make it create some may run (the trains stay, stopped and released).
+    bool command_station = false;
+    /// --train-address: the address of the train named with --node (a train's node ID need not
+    /// tell it): search.address-match searches for it.
+    std::optional<std::uint32_t> train_address;
     /// --only / --skip / --thorough: which registry entries run.
     CheckSelection selection;
     /// Called with the bytes read so far while the CDI downloads (run_protocol_checks() passes

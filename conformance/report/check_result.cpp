@@ -47,6 +47,12 @@ std::string_view category_name(Category category) {
             return "events";
         case Category::kStream:
             return "stream";
+        case Category::kTrain:
+            return "train";
+        case Category::kSearch:
+            return "search";
+        case Category::kFdi:
+            return "fdi";
     }
     return "?";
 }

@@ -31,12 +31,15 @@ enum class Category : std::uint8_t {
     kNode,    ///< the node as a whole: it stopped answering or restarted during the run
     kEvents,  ///< event identification (Identify Events, Identify Producer/Consumer)
     kStream,  ///< memory-config stream reads and the stream transport under them
+    kTrain,   ///< Train Control: a train node's commands, replies, state and memory spaces
+    kSearch,  ///< Train Search: finding trains, a command station creating them
+    kFdi,     ///< Function Description Information in space 0xFA
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
 /// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link",
-/// "node", "events" or "stream".
+/// "node", "events", "stream", "train", "search" or "fdi".
 std::string_view category_name(Category category);
 
 /// One executed check.

@@ -715,7 +715,7 @@ void NodeRun::note_not_tested() {
     const CheckSelection& sel = options_.selection;
     if (!options_.protocol_only.empty()) {
         out.push_back(options_.protocol_only +
-                      ": checked for frame, message, SNIP, PIP and events only");
+                      ": checked for frame, message, SNIP, PIP, events, train, train search and FDI only");
         return;
     }
     if (options_.read_only && sel.wants_writes())
