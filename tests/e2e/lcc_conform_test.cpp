@@ -176,6 +176,18 @@ std::vector<std::string> scenario_conform_args(const fs::path& ini) {
     return out;
 }
 
+/// The node ID of a scenario's (first) "node-id = ID" line: the node lcc-conform names.
+std::string scenario_node(const fs::path& ini) {
+    std::istringstream in(read_text(ini));
+    for (std::string line; std::getline(in, line);) {
+        if (!line.starts_with("node-id")) continue;
+        auto v = line.substr(line.find('=') + 1);
+        v.erase(0, v.find_first_not_of(' '));
+        return v.substr(0, v.find_first_of(" \t"));
+    }
+    return kNode;
+}
+
 /// The fault named by a scenario's "fault = NAME" line.
 std::string scenario_fault(const fs::path& ini) {
     std::istringstream in(read_text(ini));
@@ -215,7 +227,7 @@ TEST_P(LccConformFault, ExitsOneWithAFailureInTheFaultsCategory) {
     const std::string json = (out.path() / "r.json").string();
     const std::string junit = (out.path() / "r.xml").string();
     std::vector<std::string> args = {"--connect", sim.connect(),
-                                     "--node",    kNode,
+                                     "--node",    scenario_node(ini),
                                      "--backup",  (out.path() / "safety.txt").string(),
                                      "--json",    json,
                                      "--junit",   junit};

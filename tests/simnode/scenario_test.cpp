@@ -253,3 +253,59 @@ TEST(ScenarioTest, NodeGroupsAddedLaterFollowTheRunningScenario) {
 
 }  // namespace
 }  // namespace olcb::simnode
+
+namespace olcb::simnode {
+namespace {
+
+TEST(ScenarioTrainTest, TheTrainScenarioHasTwoTrainsWithTheirFdi) {
+    std::string error;
+    const auto s = parse_scenario_text(test_support::read_text(scenarios_dir() / "train.ini"),
+                                       scenarios_dir(), {}, error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_EQ(s->nodes.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+        const NodeConfig& n = s->nodes[k];
+        ASSERT_TRUE(n.train);
+        EXPECT_EQ(n.train->identity.address, 1732 + k);
+        EXPECT_TRUE(n.train->identity.long_address);
+        EXPECT_EQ(n.train->heartbeat, 1);
+        EXPECT_TRUE(n.train->fdi.starts_with("<?xml")) << n.train->fdi.substr(0, 20);
+        EXPECT_FALSE(n.command_station);
+    }
+}
+
+TEST(ScenarioTrainTest, TheCommandStationScenarioHasAStationAndATrain) {
+    std::string error;
+    const auto s =
+        parse_scenario_text(test_support::read_text(scenarios_dir() / "command-station.ini"),
+                            scenarios_dir(), {}, error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_EQ(s->nodes.size(), 2u);
+    EXPECT_TRUE(s->nodes[0].command_station);
+    EXPECT_FALSE(s->nodes[0].train);
+    ASSERT_TRUE(s->nodes[1].train);
+    EXPECT_EQ(s->nodes[1].train->identity.address, 3u);
+    EXPECT_FALSE(s->nodes[1].train->identity.long_address);
+}
+
+TEST(ScenarioTrainTest, BadTrainKeysAreRefusedByName) {
+    std::string error;
+    const std::string node = "node-id = 05.01.01.01.22.00\ncdi = train.xml\n";
+    EXPECT_FALSE(
+        parse_scenario_text(node + "train-address = 1000000\n", scenarios_dir(), {}, error));
+    EXPECT_EQ(error, "node: train-address '1000000' must be a whole number 0..999999");
+    EXPECT_FALSE(parse_scenario_text(node + "train-address = 3\ntrain-protocol = mfx\n",
+                                     scenarios_dir(), {}, error));
+    EXPECT_EQ(error, "node: train-protocol 'mfx' must be dcc, dcc-long, dcc-short, native or mm");
+    EXPECT_FALSE(parse_scenario_text(node + "heartbeat = 300\n", scenarios_dir(), {}, error));
+    EXPECT_EQ(error, "node: heartbeat '300' must be 0..255 s");
+    EXPECT_FALSE(parse_scenario_text(node + "train-address = 3\ncommand-station = true\n",
+                                     scenarios_dir(), {}, error));
+    EXPECT_NE(error.find("a command station is no train"), std::string::npos) << error;
+    EXPECT_FALSE(parse_scenario_text(node + "train-address = 3\nfdi = nowhere.xml\n",
+                                     scenarios_dir(), {}, error));
+    EXPECT_NE(error.find("node: FDI file: "), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace olcb::simnode

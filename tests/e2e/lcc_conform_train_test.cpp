@@ -1,0 +1,100 @@
+// lcc-conform against simnode's train scenarios as a user runs them: the train node passes every
+// train, search and FDI check (those that move it too: the node is named), a whole run finds no
+// FAIL anywhere, and the command station creates the trains the search checks ask for.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "e2e/conform_util.hpp"
+
+#if defined(SIMNODE_PATH) && defined(LCC_CONFORM_PATH)
+
+namespace olcb::e2e {
+namespace {
+
+constexpr const char* kTrain = "05.01.01.01.22.60";
+constexpr const char* kStation = "05.01.01.01.22.80";
+
+// The JSON report's checks by ID.
+std::map<std::string, std::string> statuses(const fs::path& json) {
+    std::map<std::string, std::string> out;
+    for (const auto& c : report_checks(read_report(json.string())))
+        out[c["id"].get<std::string>()] = c["status"].get<std::string>();
+    return out;
+}
+
+TEST(LccConformTrainE2e, TheTrainPassesEveryTrainSearchAndFdiCheck) {
+    Simnode sim(source_path("scenarios/train.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-train");
+    const fs::path json = out.path() / "r.json";
+    const auto [code, text] = conform(
+        {"--connect", sim.connect(), "--node", kTrain, "--train-address", "1732", "--thorough",
+         "--only", "train.*", "--only", "search.*", "--only", "fdi.*", "--json", json.string()});
+    EXPECT_EQ(code, 0) << text;
+    const auto s = statuses(json);
+    for (const char* id : {"train.is-train-event",
+                           "train.memory-spaces",
+                           "train.controller",
+                           "train.reserve",
+                           "train.speed",
+                           "train.function",
+                           "train.function-space",
+                           "train.estop",
+                           "train.global-estop",
+                           "train.global-eoff",
+                           "train.listener",
+                           "train.listener-forward",
+                           "train.heartbeat",
+                           "search.name-match",
+                           "search.address-match",
+                           "search.no-match-silent",
+                           "search.reserved-ignored",
+                           "fdi.space",
+                           "fdi.read",
+                           "fdi.well-formed",
+                           "fdi.functions",
+                           "fdi.read-only"}) {
+        const auto it = s.find(id);
+        ASSERT_NE(it, s.end()) << id << "\n" << text;
+        EXPECT_EQ(it->second, "PASS") << id << "\n" << text;
+    }
+}
+
+TEST(LccConformTrainE2e, AWholeRunOfTheTrainFindsNoFailure) {
+    Simnode sim(source_path("scenarios/train.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-train");
+    const auto before = snapshot_images(sim.images.path());
+    const auto [code, text] = conform({"--connect", sim.connect(), "--node", kTrain, "--backup",
+                                       (out.path() / "safety.txt").string()},
+                                      milliseconds(120000));
+    EXPECT_EQ(code, 0) << text;
+    for (const auto& [status, id] : check_lines(text)) EXPECT_NE(status, "FAIL") << id;
+    EXPECT_EQ(settled_images(sim.images.path(), before), before);
+}
+
+TEST(LccConformTrainE2e, TheCommandStationCreatesTheTrainsTheSearchChecksAskFor) {
+    Simnode sim(source_path("scenarios/command-station.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    TempDir out("lcc-conform-e2e-station");
+    const fs::path json = out.path() / "r.json";
+    const auto [code, text] =
+        conform({"--connect", sim.connect(), "--node", kStation, "--command-station", "--only",
+                 "search.*", "--json", json.string()});
+    EXPECT_EQ(code, 0) << text;
+    const auto s = statuses(json);
+    for (const char* id :
+         {"search.allocate", "search.allocate-partial", "search.allocate-reserved"})
+        EXPECT_EQ(s.count(id) ? s.at(id) : "missing", "PASS") << id << "\n" << text;
+    // The trains it created are on the segment now, besides the station and its locomotive.
+    const auto [list_code, list] = conform({"--connect", sim.connect(), "--list"});
+    EXPECT_EQ(list_code, 0) << list;
+    EXPECT_NE(list.find("05.01.01.01.22.81"), std::string::npos) << list;
+    EXPECT_NE(list.find("DCC 7301"), std::string::npos) << list;
+}
+
+}  // namespace
+}  // namespace olcb::e2e
+
+#endif  // SIMNODE_PATH && LCC_CONFORM_PATH
