@@ -68,6 +68,8 @@ public:
     const std::vector<Listener>& listeners() const { return listeners_; }
     /// Heartbeat Requests sent so far.
     std::uint32_t heartbeats() const { return heartbeats_; }
+    /// A function's value, as Query Function answers it.
+    std::uint16_t function(std::uint32_t address) const;
 
 private:
     void operate(const Message& msg, const train::Command& command);
@@ -76,7 +78,6 @@ private:
     void management(const Message& msg, const train::Command& command);
     void set_speed(train::Speed speed);
     void set_function(std::uint32_t address, std::uint16_t value);
-    std::uint16_t function(std::uint32_t address) const;
     void forward(const train::Command& command, const NodeHandle& from);
     void forward_to(const train::Command& command, NodeHandle listener, bool retry);
     void reply(const Message& msg, const train::Command& asked, train::Reply reply);

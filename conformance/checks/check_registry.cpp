@@ -231,7 +231,8 @@ const std::vector<OlcbCheckerCheck>& olcbchecker_checks() {
         {"ts40", "reserved protocol values allocate nothing", ""},
         {"fd10", "space 0xFA present", ""},
         {"fd20", "FDI read to its NUL, declaration, schema",
-         "the schema itself is validated by cdi's FDI support"},
+         "the text is judged by cdi's FDI support (check_fdi_rules, validate_fdi), as lcc-cdi "
+         "validate judges a file; the functions it names are queried (fdi.functions)"},
         {"fd30", "FDI space refuses writes", ""},
         {"bt, dd", "broadcast time, DCC detector",
          "not covered: protocols of other node kinds than configurable nodes and trains"},

@@ -79,6 +79,29 @@ std::optional<R> train_ask(CheckRun& run, const train::Command& command, std::st
     return std::get<R>(*r);
 }
 
+/// "" when a check may change the state of the train under test (train_control.cpp): only on a
+/// node named with --node, never with --read-only (whole_layout: only with --thorough too, since
+/// it stops every train on the segment); otherwise why it SKIPs.
+std::string train_may_drive(CheckRun& run, bool whole_layout = false);
+
+/// Control of the train for one check (train_control.cpp): taken unless another throttle holds
+/// it; given back, the speed at zero in the train's own direction, when the check ends.
+class TrainDriving {
+public:
+    explicit TrainDriving(CheckRun& run);
+    TrainDriving(const TrainDriving&) = delete;
+    TrainDriving& operator=(const TrainDriving&) = delete;
+    ~TrainDriving();
+    /// Why the train could not be taken ("" when it was).
+    const std::string& blocked() const { return blocked_; }
+
+private:
+    CheckRun& run_;
+    std::string blocked_;
+    bool held_ = false;
+    bool reverse_ = false;
+};
+
 /// frame.cpp: AME answered, CID defended.
 std::vector<CheckSpec> frame_checks();
 /// message.cpp: Verify Node ID, unknown MTIs, Protocol Support Inquiry, unsolicited traffic.

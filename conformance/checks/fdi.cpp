@@ -1,13 +1,13 @@
 // Function Description Information (FunctionDescriptionInformationS; TrainControlS §7.2): space
-// 0xFA is there and read-only, its bytes are a NUL-terminated UTF-8 XML text whose root is <fdi>
-// with one <segment>, each <function> has a number the standard allows, and each function the
-// FDI lists answers Query Function as its kind says. Schema validation is cdi's (FDI schema).
-#include <pugixml.hpp>
-
+// 0xFA is there and read-only, and its NUL-terminated text is judged by cdi's FDI support
+// (validate_fdi, check_fdi_rules: the schema it names and the rules, as `lcc-cdi validate`
+// judges a file); the functions it names answer Query Function (and, on a train named with
+// --node, Set Function) as their kind says.
 #include <algorithm>
 #include <map>
 
-#include "base/utf8.hpp"
+#include "cdi/fdi_validator.hpp"
+#include "cdi/rule_finding.hpp"
 #include "conformance/checks/checks.hpp"
 
 namespace olcb::conform::checks {
@@ -20,8 +20,6 @@ constexpr std::uint8_t kFdi = train::kFdiSpace;
 constexpr std::uint32_t kMaxFdiBytes = 1024 * 1024;
 // Functions of the FDI queried at most (Query Function each).
 constexpr std::size_t kMaxQueried = 32;
-// The largest function number (FunctionDescriptionInformationS §5.1.4).
-constexpr std::uint32_t kMaxFunctionNumber = 16777215;
 
 // Space 0xFA read by datagrams to its NUL (at most to its highest address, or kMaxFdiBytes).
 struct FdiDownload {
@@ -56,23 +54,6 @@ struct FdiDownload {
     }
 };
 
-// The FDI parsed: pugixml's verdict and the document.
-struct FdiXml {
-    std::shared_ptr<pugi::xml_document> doc = std::make_shared<pugi::xml_document>();
-    pugi::xml_parse_result parsed;
-    std::string text;
-
-    static FdiXml ask(CheckRun& run) {
-        FdiXml x;
-        const FdiDownload& d = run.probe<FdiDownload>();
-        x.text.assign(d.bytes.begin(), d.bytes.end());
-        x.parsed = x.doc->load_buffer(x.text.data(), x.text.size(),
-                                      pugi::parse_default | pugi::parse_declaration);
-        return x;
-    }
-    bool ok() const { return !text.empty() && static_cast<bool>(parsed); }
-};
-
 void fdi_space(CheckRun& run, const CheckSpec& spec) {
     const SpaceInfo& fa = run.probe<SpaceInfoProbe>(kFdi);
     if (!fa.answered)
@@ -100,90 +81,91 @@ void fdi_read(CheckRun& run, const CheckSpec& spec) {
         return v.fail("no NUL after " + std::to_string(d.bytes.size()) + " bytes of FDI" +
                           (d.failed.empty() ? "" : " (" + d.failed + ")"),
                       "a zero-terminated string (§5)", "no NUL");
-    if (d.bytes.size() >= 3 && d.bytes[0] == 0xEF && d.bytes[1] == 0xBB && d.bytes[2] == 0xBF)
-        return v.fail("the FDI starts with a byte-order mark", "no BOM (§5)", "EF BB BF");
-    const std::string_view text(reinterpret_cast<const char*>(d.bytes.data()), d.bytes.size());
-    if (!base::is_valid_utf8(text))
-        return v.fail("the FDI is not valid UTF-8", "UTF-8 (§5)", "invalid bytes");
     if (info.present && d.read != info.highest_address + 1)
         return v.warn(std::to_string(d.read) + " bytes read to the NUL, but Space Info says " +
                       std::to_string(info.highest_address + 1) +
                       " (OlcbChecker fd20 fails a difference)");
-    v.pass(std::to_string(d.bytes.size()) + " bytes of UTF-8 and a NUL, no BOM");
+    v.pass(std::to_string(d.bytes.size()) + " bytes and a NUL");
 }
 
-void fdi_well_formed(CheckRun& run, const CheckSpec& spec) {
-    const FdiDownload& d = run.probe<FdiDownload>();
-    if (d.bytes.empty()) return run.out(spec).skip("depends on fdi.read: no FDI text");
-    const FdiXml& x = run.probe<FdiXml>();
-    auto v = run.out(spec);
-    if (!x.parsed)
-        return v.fail(std::string("the FDI is not well-formed XML: ") + x.parsed.description() +
-                          " at byte " + std::to_string(x.parsed.offset),
-                      "XML 1.0 (§5)", x.parsed.description());
-    if (!x.text.starts_with("<?xml"))
-        return v.fail("the FDI does not start with an XML declaration",
-                      "<?xml version=\"1.0\"?> as its first line (§5)", clip(x.text.substr(0, 40)));
-    const pugi::xml_node root = x.doc->document_element();
-    if (std::string_view(root.name()) != "fdi")
-        return v.fail("the root element is <" + std::string(root.name()) + ">", "<fdi> (§5.1.1)",
-                      root.name());
-    const auto segments =
-        std::distance(root.children("segment").begin(), root.children("segment").end());
-    if (segments != 1)
-        return v.fail("<fdi> has " + std::to_string(segments) + " <segment> elements",
-                      "exactly one (§5.1.1)", std::to_string(segments));
-    v.pass("well-formed XML, root <fdi> with one <segment>");
-}
+// The FDI judged by cdi's FDI support, as `lcc-cdi validate` judges a file: the schema it names,
+// the model and the text rules, each under its fdi.* check ID.
+struct FdiText {
+    std::string text;
+    cdi::ValidatedFdi validated;
+    std::vector<cdi::RuleFinding> rules;
 
-// One <function> of the FDI.
-struct FdiFunction {
-    std::uint32_t number = 0;
-    std::string kind = "binary";
-    std::optional<long> min, max;
-    std::string name;
+    static FdiText ask(CheckRun& run) {
+        FdiText t;
+        const FdiDownload& d = run.probe<FdiDownload>();
+        t.text.assign(d.bytes.begin(), d.bytes.end());
+        t.validated = cdi::validate_fdi(t.text);
+        t.rules = cdi::check_fdi_rules(t.text, t.validated);
+        return t;
+    }
 };
 
-// Every <function> under node (groups walked iteratively); bad names the first broken one.
-std::vector<FdiFunction> functions_of(pugi::xml_node segment, std::string& bad) {
-    std::vector<FdiFunction> out;
-    std::vector<pugi::xml_node> stack{segment};
-    while (!stack.empty()) {
-        const pugi::xml_node n = stack.back();
-        stack.pop_back();
-        for (pugi::xml_node c = n.last_child(); c; c = c.previous_sibling()) {
-            if (std::string_view(c.name()) == "group") stack.push_back(c);
-        }
-        for (pugi::xml_node f : n.children("function")) {
-            FdiFunction fn;
-            fn.name = f.child_value("name");
-            const std::string text = f.child_value("number");
-            char* end = nullptr;
-            const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-            if (text.empty() || *end != '\0' || text.front() == '-' || v > kMaxFunctionNumber) {
-                if (bad.empty())
-                    bad = "function " + quoted(fn.name) + " has number " + quoted(text) +
-                          " (a decimal 0..16777215 is required, §5.1.4)";
-                continue;
-            }
-            fn.number = static_cast<std::uint32_t>(v);
-            if (auto k = f.attribute("kind")) fn.kind = k.value();
-            if (f.child("min")) fn.min = std::strtol(f.child_value("min"), nullptr, 10);
-            if (f.child("max")) fn.max = std::strtol(f.child_value("max"), nullptr, 10);
-            if (bad.empty() && fn.kind != "binary" && fn.kind != "momentary" && fn.kind != "analog")
-                bad = "function " + std::to_string(fn.number) + " has kind " + quoted(fn.kind);
-            out.push_back(fn);
-        }
+Status status_of(cdi::RuleStatus status) {
+    switch (status) {
+        case cdi::RuleStatus::kPass:
+            return Status::kPass;
+        case cdi::RuleStatus::kFail:
+            return Status::kFail;
+        case cdi::RuleStatus::kWarn:
+            return Status::kWarn;
+        case cdi::RuleStatus::kSkip:
+            return Status::kSkip;
     }
-    return out;
+    return Status::kFail;
 }
 
-// What the train says of each function (Query Function): "" when it fits its kind, else why not;
-// fatal set when a query went unanswered.
-std::string behaviour(CheckRun& run, const std::vector<FdiFunction>& fns, bool& fatal) {
+// The text-only checks: each reports check_fdi_rules()' finding for its own ID, so a node's FDI
+// gets the verdicts `lcc-cdi validate` gives the same text in a file.
+void fdi_text_rule(CheckRun& run, const CheckSpec& spec) {
+    if (run.probe<FdiDownload>().bytes.empty())
+        return run.out(spec).skip("depends on fdi.read: no FDI text");
+    for (const cdi::RuleFinding& f : run.probe<FdiText>().rules) {
+        if (f.check_id != spec.id) continue;
+        std::vector<std::string> details;
+        details.reserve(f.diagnostics.size());
+        for (const cdi::Diagnostic& d : f.diagnostics) details.push_back(cdi::located(d));
+        return run.out(spec).add(status_of(f.status), f.message, f.expected, f.seen,
+                                 std::move(details));
+    }
+    run.out(spec).fail("cdi::check_fdi_rules() has no rule for this check", std::string(spec.id),
+                       "none");
+}
+
+std::string number_text(std::uint32_t n) {
+    return "function " + std::to_string(n);
+}
+
+// The value a function is set to for the check: another than it has, one its kind allows.
+std::uint16_t other_value(const cdi::FdiFunction& f, std::uint16_t now) {
+    if (f.kind != cdi::FunctionKind::kAnalog) return now == 0 ? 1 : 0;
+    const auto lo = static_cast<std::uint16_t>(std::clamp<std::int64_t>(f.value_min(), 0, 0xFFFF));
+    const auto hi = static_cast<std::uint16_t>(std::clamp<std::int64_t>(f.value_max(), 0, 0xFFFF));
+    return now == hi ? lo : hi;
+}
+
+// Why a function's value does not fit its kind ("" when it does).
+std::string misfit(const cdi::FdiFunction& f, std::uint16_t value) {
+    if (f.kind != cdi::FunctionKind::kAnalog) {
+        if (value <= 1) return {};
+        return std::string(cdi::function_kind_name(f.kind)) + " " + number_text(f.number) +
+               " reads " + std::to_string(value) + " (0 or 1 expected, §6.3)";
+    }
+    if (value >= f.value_min() && value <= f.value_max()) return {};
+    return "analog " + number_text(f.number) + " reads " + std::to_string(value) +
+           ", outside its " + std::to_string(f.value_min()) + ".." + std::to_string(f.value_max());
+}
+
+// What the train says of each function the FDI names (Query Function): "" when each fits its
+// kind, else why not; fatal set when a query went unanswered.
+std::string queried(CheckRun& run, const std::vector<cdi::FdiFunction>& fns, bool& fatal) {
     std::string odd;
     for (std::size_t i = 0; i < fns.size() && i < kMaxQueried; ++i) {
-        const FdiFunction& f = fns[i];
+        const cdi::FdiFunction& f = fns[i];
         std::string why;
         const auto r = train_ask<train::FunctionReply>(run, {train::QueryFunction{f.number}}, why);
         if (!r) {
@@ -191,47 +173,79 @@ std::string behaviour(CheckRun& run, const std::vector<FdiFunction>& fns, bool& 
             return "Query Function " + std::to_string(f.number) + " (" + quoted(f.name) +
                    "): " + why;
         }
-        const long lo = f.min.value_or(0);
-        const long hi = f.max.value_or(255);
-        const bool on_off = f.kind != "analog";
-        if (odd.empty() && on_off && r->value > 1)
-            odd = f.kind + " function " + std::to_string(f.number) + " reads " +
-                  std::to_string(r->value) + " (0 or 1 expected, §6.3)";
-        if (odd.empty() && !on_off && (r->value < lo || r->value > hi))
-            odd = "analog function " + std::to_string(f.number) + " reads " +
-                  std::to_string(r->value) + ", outside its " + std::to_string(lo) + ".." +
-                  std::to_string(hi);
+        if (odd.empty()) odd = misfit(f, r->value);
     }
     return odd;
 }
 
-void fdi_functions(CheckRun& run, const CheckSpec& spec) {
-    const FdiXml& x = run.probe<FdiXml>();
-    if (!x.ok()) return run.out(spec).skip("depends on fdi.well-formed: no FDI document");
-    std::string bad;
-    const auto fns = functions_of(x.doc->document_element().child("segment"), bad);
-    if (!bad.empty()) return run.out(spec).fail(bad, "numbers and kinds as §5.1.4 says", bad);
-    std::map<std::uint32_t, int> seen;
-    for (const FdiFunction& f : fns) {
-        if (++seen[f.number] == 2)
-            return run.out(spec).warn("function number " + std::to_string(f.number) +
-                                      " is described twice (a throttle cannot tell which)");
-        if (f.kind == "analog" && f.min && f.max && *f.min > *f.max)
-            return run.out(spec).warn("analog function " + std::to_string(f.number) +
-                                      " has min > max");
+// The first function number the FDI does not name (from 1 up: F0 is named almost always).
+std::uint32_t unnamed_number(const cdi::FdiDocument& doc) {
+    std::uint32_t n = 1;
+    while (doc.find(n) != nullptr && n < cdi::kMaxFunctionNumber) ++n;
+    return n;
+}
+
+// On a train the user named: the first function the FDI names is set to another value, read
+// back and restored; a number the FDI does not name is queried after it and must still be
+// answered. "" when the train behaves; fail set when a reply the standard asks for is missing.
+std::string set_and_query(CheckRun& run, const cdi::FdiDocument& doc, bool& fail) {
+    const cdi::FdiFunction& f = doc.functions.front();
+    const std::string q = "Query Function " + std::to_string(f.number) + ": ";
+    std::string why;
+    const auto before = train_ask<train::FunctionReply>(run, {train::QueryFunction{f.number}}, why);
+    if (!before) {
+        fail = true;
+        return q + why;
     }
-    const auto& pip = run.probe<PipProbe>().reply;
-    if (!pip || !pip->has(Protocol::kTractionControl))
-        return run.out(spec).pass(std::to_string(fns.size()) +
-                                  " functions, numbers and kinds "
-                                  "valid (no Traction Control to ask)");
+    const TrainDriving driving(run);
+    if (!driving.blocked().empty()) return {};
+    const std::uint16_t want = other_value(f, before->value);
+    train_send(run, {train::SetFunction{f.number, want}});
+    const auto after = train_ask<train::FunctionReply>(run, {train::QueryFunction{f.number}}, why);
+    train_send(run, {train::SetFunction{f.number, before->value}});
+    if (!after) {
+        fail = true;
+        return q + why;
+    }
+    if (after->value != want)
+        return "Set Function " + std::to_string(f.number) + " (" + quoted(f.name) + ") = " +
+               std::to_string(want) + " reads back " + std::to_string(after->value);
+    const std::uint32_t other = unnamed_number(doc);
+    if (!train_ask<train::FunctionReply>(run, {train::QueryFunction{other}}, why)) {
+        fail = true;
+        return "Query Function " + std::to_string(other) + " (a number the FDI does not name): " +
+               why;
+    }
+    return {};
+}
+
+void fdi_functions(CheckRun& run, const CheckSpec& spec) {
+    const FdiText& t = run.probe<FdiText>();
+    if (!t.validated.document) return run.out(spec).skip("depends on fdi.valid: no FDI document");
+    const cdi::FdiDocument& doc = *t.validated.document;
+    std::map<std::uint32_t, int> seen;
+    for (const cdi::FdiFunction& f : doc.functions) {
+        if (++seen[f.number] == 2)
+            return run.out(spec).warn(number_text(f.number) +
+                                      " is described twice (a throttle cannot tell which)");
+    }
+    const std::string expected = "a Query Function Reply (TrainControlS §4.4)";
     bool fatal = false;
-    const std::string odd = behaviour(run, fns, fatal);
-    if (fatal) return run.out(spec).fail(odd, "a Query Function Reply (TrainControlS §4.4)", odd);
+    const std::string odd = queried(run, doc.functions, fatal);
+    if (fatal) return run.out(spec).fail(odd, expected, odd);
     if (!odd.empty()) return run.out(spec).warn(odd);
-    run.out(spec).pass(std::to_string(fns.size()) + " functions with valid numbers and kinds; " +
-                       std::to_string(std::min(fns.size(), kMaxQueried)) +
-                       " queried, each answering a value its kind allows");
+    const std::string may = train_may_drive(run);
+    std::string drove = "; Set Function not tried (" + may + ")";
+    if (!doc.functions.empty() && may.empty()) {
+        const std::string bad = set_and_query(run, doc, fatal);
+        if (fatal) return run.out(spec).fail(bad, expected, bad);
+        if (!bad.empty()) return run.out(spec).warn(bad + " (§6.3, §7.1)");
+        drove = "; the first set to another value reads it back, and a number the FDI does not "
+                "name is answered";
+    }
+    run.out(spec).pass(std::to_string(doc.functions.size()) + " functions; " +
+                       std::to_string(std::min(doc.functions.size(), kMaxQueried)) +
+                       " queried, each answering a value its kind allows" + drove);
 }
 
 void fdi_read_only(CheckRun& run, const CheckSpec& spec) {
@@ -257,31 +271,50 @@ std::vector<CheckSpec> fdi_checks() {
         return s;
     };
     return {
-        fdi({"fdi.space", 743, Category::kFdi,
+        fdi({"fdi.space", 731, Category::kFdi,
              "FunctionDescriptionInformationS §1, §3; TrainControlS §7.2", Strength::kShall,
              "a node claiming FDI serves it in space 0xFA, a read-only space", "fd10, tr070",
              "Space Info 0xFA: present (WARN when not flagged read-only)", fdi_space}),
-        fdi({"fdi.read", 744, Category::kFdi, "FunctionDescriptionInformationS §5",
-             Strength::kShall, "the FDI is a zero-terminated UTF-8 string without a BOM", "fd20",
-             "datagram reads of 0xFA to the NUL: UTF-8, no BOM (WARN when the length differs from "
-             "Space Info's)",
+        fdi({"fdi.read", 732, Category::kFdi, "FunctionDescriptionInformationS §5",
+             Strength::kShall, "the FDI is a zero-terminated string", "fd20",
+             "datagram reads of 0xFA to the NUL (WARN when the length differs from Space Info's)",
              fdi_read}),
-        fdi({"fdi.well-formed", 745, Category::kFdi, "FunctionDescriptionInformationS §5, §5.1.1",
+        fdi({"fdi.no-bom", 733, Category::kFdi, "FunctionDescriptionInformationS §5",
+             Strength::kShall, "the FDI string carries no byte-order mark", "fd20",
+             "cdi::check_fdi_rules: no UTF-8 byte-order mark", fdi_text_rule}),
+        fdi({"fdi.utf8", 734, Category::kFdi, "FunctionDescriptionInformationS §5",
+             Strength::kShall, "the FDI string is UTF-8", "fd20",
+             "cdi::check_fdi_rules: valid UTF-8 (FAIL: where the first invalid sequence is)",
+             fdi_text_rule}),
+        fdi({"fdi.xml-declaration", 735, Category::kFdi, "FunctionDescriptionInformationS §5",
+             Strength::kShall, "the first line is the XML 1.0 declaration", "fd20",
+             "cdi::check_fdi_rules: the first line starts with <?xml version=\"1.0\"?>",
+             fdi_text_rule}),
+        fdi({"fdi.well-formed", 736, Category::kFdi, "FunctionDescriptionInformationS §5",
+             Strength::kShall, "the FDI is XML 1.0", "fd20",
+             "cdi::check_fdi_rules: libxml2's parse (FAIL quotes the first error)", fdi_text_rule}),
+        fdi({"fdi.valid", 737, Category::kFdi, "FunctionDescriptionInformationS §5, §5.1",
              Strength::kShall,
-             "XML 1.0 with its declaration first; root <fdi> with exactly one <segment>", "fd20",
-             "the FDI parsed: well-formed, <?xml first, <fdi>, one <segment> (the schema is "
-             "cdi's FDI validation)",
-             fdi_well_formed}),
-        fdi({"fdi.functions", 746, Category::kFdi,
-             "FunctionDescriptionInformationS §5.1.4; TrainControlS §4.4, §6.3", Strength::kShall,
-             "every function has a decimal number 0..16777215 and a known kind; the train "
-             "answers Query Function for it",
+             "the FDI validates against the FDI schema it names and follows §5.1's element rules",
+             "fd20",
+             "cdi::validate_fdi: FAIL with every error (details), WARN with every warning, PASS "
+             "when none",
+             fdi_text_rule}),
+        fdi({"fdi.schema-location", 738, Category::kFdi, "FunctionDescriptionInformationS §5",
+             Strength::kNone, "naming the schema lets a tool pick its version (advice)", "",
+             "cdi::check_fdi_rules: the root names an FDI schema (WARN when not)", fdi_text_rule}),
+        fdi({"fdi.functions", 739, Category::kFdi,
+             "FunctionDescriptionInformationS §5.1.4; TrainControlS §4.4, §6.3, §7.1",
+             Strength::kShall,
+             "the train answers Query Function for every function its FDI names, with a value its "
+             "kind allows",
              "",
-             "numbers and kinds of every <function> (WARN for a number twice, min > max); Query "
-             "Function for up to 32 of them: a reply, 0/1 for binary and momentary, min..max "
-             "for analog (WARN otherwise)",
+             "Query Function for up to 32 functions of the FDI: a reply, 0/1 for binary and "
+             "momentary, min..max for analog (WARN otherwise, and for a number described twice); "
+             "on a train named with --node the first set to another value, read back, restored, "
+             "and a number the FDI does not name queried: a reply (a value not kept: WARN)",
              fdi_functions}),
-        fdi({"fdi.read-only", 747, Category::kFdi, "TrainControlS §7.2; MemoryConfigurationS §4.9",
+        fdi({"fdi.read-only", 743, Category::kFdi, "TrainControlS §7.2; MemoryConfigurationS §4.9",
              Strength::kShall,
              "0xFA is read-only: a write fails with an error code (0x1083 recommended)", "fd30",
              "byte 0 of 0xFA written back as read: refused (skipped with --read-only)",

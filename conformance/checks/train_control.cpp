@@ -23,9 +23,11 @@ using namespace std::chrono_literals;
 // move; both exact in float16.
 const tr::Speed kFast = tr::Speed::of(0.75, false);
 const tr::Speed kSlow = tr::Speed::of(0.5, false);
-// The longest a train's first Heartbeat Request is awaited (TrainControlTN §2.6.6 suggests a 10 s
-// period).
+// The longest a train's first Heartbeat Request is awaited with --thorough (TrainControlTN §2.6.6
+// suggests a 10 s period); without it, the short wait: heartbeats are optional, and 12 s of
+// nothing on a train without them was most of a train node's run.
 constexpr std::chrono::seconds kHeartbeatWait{12};
+constexpr std::chrono::seconds kHeartbeatShortWait{3};
 // Made-up listeners of train.listener: never on the segment, so nothing is forwarded to them.
 constexpr NodeId kListenerA{kOtherNodeId + 0x10};
 constexpr NodeId kListenerB{kOtherNodeId + 0x11};
@@ -44,54 +46,10 @@ std::string flags_text(std::uint8_t flags) {
 
 // "" when the check may change the train's state; otherwise why it SKIPs.
 std::string may_drive(CheckRun& run, bool whole_layout = false) {
-    if (!run.options().named)
-        return "changes the train's state: runs only on a node named with --node";
-    if (run.options().read_only) return "--read-only: the train's state is left alone";
-    if (whole_layout && !run.options().selection.thorough)
-        return "stops every train on the segment for a moment: runs only with --thorough";
-    return {};
+    return train_may_drive(run, whole_layout);
 }
 
-// Control of the train for one check: taken unless another throttle holds it; given back, the
-// speed at zero in the train's own direction, when the check ends.
-class Driving {
-public:
-    explicit Driving(CheckRun& run) : run_(run) {
-        std::string why;
-        const auto c = train_ask<tr::ControllerReply>(run, {tr::QueryController{}}, why);
-        if (c && !c->controller.is_zero() && c->controller != me(run)) {
-            blocked_ = "the train is controlled by " + c->controller.to_string() +
-                       ": lcc-conform does not take it away";
-            return;
-        }
-        if (const auto s = train_ask<tr::SpeedsReply>(run, {tr::QuerySpeeds{}}, why))
-            reverse_ = s->set.reverse();
-        const auto a = train_ask<tr::AssignReply>(run, {tr::AssignController{0, me(run)}}, why);
-        if (!a) {
-            blocked_ = "depends on train.controller: Assign Controller got no reply (" + why + ")";
-        } else if (a->result != tr::assign_result::kOk) {
-            blocked_ = "the train refused lcc-conform as its controller (result " +
-                       hex(a->result, 2) + ")";
-        } else {
-            held_ = true;
-        }
-    }
-    Driving(const Driving&) = delete;
-    Driving& operator=(const Driving&) = delete;
-    ~Driving() {
-        if (!held_) return;
-        train_send(run_, {tr::SetSpeed{tr::Speed::of(0, reverse_)}});
-        train_send(run_, {tr::ReleaseController{0, me(run_)}});
-        run_.session().wait(0ms);  // both on the wire before the next check
-    }
-    const std::string& blocked() const { return blocked_; }
-
-private:
-    CheckRun& run_;
-    std::string blocked_;
-    bool held_ = false;
-    bool reverse_ = false;
-};
+using Driving = TrainDriving;
 
 // Sets a speed and reads it back: "" when the Set Speed reads back as sent, else why not.
 std::string set_and_read(CheckRun& run, tr::Speed speed, tr::SpeedsReply* got = nullptr) {
@@ -611,11 +569,13 @@ void train_heartbeat(CheckRun& run, const CheckSpec& spec) {
     if (const auto bad = set_and_read(run, kSlow); !bad.empty())
         return run.out(spec).skip("depends on train.speed: " + bad);
     const TimePoint moving = run.session().link().now();
-    const auto first = await_heartbeat(run, kHeartbeatWait);
+    const bool thorough = run.options().selection.thorough;
+    const std::chrono::seconds wait = thorough ? kHeartbeatWait : kHeartbeatShortWait;
+    const auto first = await_heartbeat(run, wait);
     if (!first)
-        return run.out(spec).pass("no Heartbeat Request in " +
-                                  std::to_string(kHeartbeatWait.count()) + " s" +
-                                  " while moving: heartbeats are optional (§6.6)");
+        return run.out(spec).pass("no Heartbeat Request in " + std::to_string(wait.count()) +
+                                  " s while moving: heartbeats are optional (§6.6)" +
+                                  (thorough ? "" : "; --thorough waits 12 s"));
     const Duration period = run.session().link().now() - moving;
     const std::string bad = heartbeat_steps(run, period);
     if (!bad.empty()) return run.out(spec).fail(bad, "the heartbeat as §6.6 says", bad);
@@ -652,6 +612,43 @@ void train_function_space(CheckRun& run, const CheckSpec& spec) {
 }
 
 }  // namespace
+
+std::string train_may_drive(CheckRun& run, bool whole_layout) {
+    if (!run.options().named)
+        return "changes the train's state: runs only on a node named with --node";
+    if (run.options().read_only) return "--read-only: the train's state is left alone";
+    if (whole_layout && !run.options().selection.thorough)
+        return "stops every train on the segment for a moment: runs only with --thorough";
+    return {};
+}
+
+TrainDriving::TrainDriving(CheckRun& run) : run_(run) {
+    std::string why;
+    const auto c = train_ask<tr::ControllerReply>(run, {tr::QueryController{}}, why);
+    if (c && !c->controller.is_zero() && c->controller != me(run)) {
+        blocked_ = "the train is controlled by " + c->controller.to_string() +
+                   ": lcc-conform does not take it away";
+        return;
+    }
+    if (const auto s = train_ask<tr::SpeedsReply>(run, {tr::QuerySpeeds{}}, why))
+        reverse_ = s->set.reverse();
+    const auto a = train_ask<tr::AssignReply>(run, {tr::AssignController{0, me(run)}}, why);
+    if (!a) {
+        blocked_ = "depends on train.controller: Assign Controller got no reply (" + why + ")";
+    } else if (a->result != tr::assign_result::kOk) {
+        blocked_ = "the train refused lcc-conform as its controller (result " +
+                   hex(a->result, 2) + ")";
+    } else {
+        held_ = true;
+    }
+}
+
+TrainDriving::~TrainDriving() {
+    if (!held_) return;
+    train_send(run_, {tr::SetSpeed{tr::Speed::of(0, reverse_)}});
+    train_send(run_, {tr::ReleaseController{0, me(run_)}});
+    run_.session().wait(0ms);  // both on the wire before the next check
+}
 
 void train_send(CheckRun& run, const tr::Command& command) {
     Message m;
@@ -711,7 +708,7 @@ std::vector<CheckSpec> train_control_checks() {
                "Space Info 0xF9 and 0xFA: WARN when the PIP claims no FDI and 0xFA is missing "
                "(with the FDI claim, fdi.space judges 0xFA)",
                train_memory_spaces}),
-        train({"train.controller", 748, Category::kTrain, "TrainControlS §4.3, §4.4, §6.1",
+        train({"train.controller", 744, Category::kTrain, "TrainControlS §4.3, §4.4, §6.1",
                Strength::kShall,
                "Assign Controller answered within 3 s; Query Controller names the active "
                "controller (zero when none); Release by the controller clears it",
@@ -719,14 +716,14 @@ std::vector<CheckSpec> train_control_checks() {
                "Query Controller; on a node named with --node: Assign (lcc-conform), Query, "
                "Release, Query; the flags byte is reserved and only shown",
                train_controller}),
-        train({"train.reserve", 749, Category::kTrain, "TrainControlS §4.3, §4.4", Strength::kShall,
+        train({"train.reserve", 745, Category::kTrain, "TrainControlS §4.3, §4.4", Strength::kShall,
                "Reserve is answered with a Reserve Reply; the standard gives no rule on a second "
                "Reserve from the same node",
                "tr100",
                "(--node) Reserve, Reserve again, Release, Reserve, Release: each Reserve gets a "
                "Reply; the results are shown, not judged",
                train_reserve}),
-        train({"train.speed", 751, Category::kTrain, "TrainControlS §4.3, §4.4, §5",
+        train({"train.speed", 746, Category::kTrain, "TrainControlS §4.3, §4.4, §5",
                Strength::kShall,
                "Query Speeds returns the most recent Set Speed, float16 with its sign as the "
                "direction (zero included)",
@@ -734,10 +731,10 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node) Set Speed 0.75 reverse, 0 reverse, 0.75 forward, 0 forward, each "
                "followed by Query Speeds: the same 16 bits back",
                train_speed}),
-        train({"train.function", 752, Category::kTrain, "TrainControlS §4.3, §4.4, §6.3",
+        train({"train.function", 747, Category::kTrain, "TrainControlS §4.3, §4.4, §6.3",
                Strength::kShall, "Query Function returns the value Set Function set", "tr030",
                "(--node) Set Function F0 = 1, Query; F0 = 0, Query; F0 restored", train_function}),
-        train({"train.function-space", 753, Category::kTrain, "TrainControlS §6.3, §7.1",
+        train({"train.function-space", 748, Category::kTrain, "TrainControlS §6.3, §7.1",
                Strength::kShould,
                "function values are the 0xF9 space: a write there is what Query Function reads "
                "(a read need not return the last write, TN §2.7.1)",
@@ -745,7 +742,7 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node, 0xF9 present) Set F0 = 0, write 1 to 0xF9 byte 0, Query Function F0 "
                "reads 1; F0 restored",
                train_function_space}),
-        train({"train.estop", 754, Category::kTrain, "TrainControlS §4.4, §5, §6.2",
+        train({"train.estop", 749, Category::kTrain, "TrainControlS §4.4, §5, §6.2",
                Strength::kShall,
                "Emergency Stop sets the Set Speed to zero keeping the direction and sets status "
                "bit 0; a Set Speed leaves the state",
@@ -753,7 +750,7 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node) Set Speed 0.5 reverse, Emergency Stop, Query: 0 reverse and bit 0; Set "
                "Speed 0.5 forward, Query: 0.5 forward and bit 0 clear",
                train_estop}),
-        train({"train.global-estop", 755, Category::kTrain, "TrainControlS §5, §6.2",
+        train({"train.global-estop", 751, Category::kTrain, "TrainControlS §5, §6.2",
                Strength::kShall,
                "Emergency Stop All stops the train without changing its Set Speed; a Set Speed "
                "during it is kept",
@@ -761,7 +758,7 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node --thorough) Set Speed 0.5 reverse, PCER Emergency Stop All, Query: "
                "unchanged; Set Speed 0.5 forward, Query; PCER Clear Emergency Stop All",
                train_global_stop, true}),
-        train({"train.global-eoff", 756, Category::kTrain, "TrainControlS §5, §6.2",
+        train({"train.global-eoff", 752, Category::kTrain, "TrainControlS §5, §6.2",
                Strength::kShall,
                "Emergency Off All stops the train without changing its Set Speed; a Set Speed "
                "during it is kept",
@@ -769,7 +766,7 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node --thorough) as train.global-estop with Emergency Off All and Clear "
                "Emergency Off All",
                train_global_off, true}),
-        train({"train.listener", 757, Category::kTrain, "TrainControlS §4.3, §4.4, §5, §6.5",
+        train({"train.listener", 753, Category::kTrain, "TrainControlS §4.3, §4.4, §5, §6.5",
                Strength::kShall,
                "Attach/Detach Node replies echo the node ID with an error code; Query Nodes "
                "lists the listeners in attach order with their flags; new flags keep the place",
@@ -777,7 +774,7 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node) attach A (Reverse) and B (Link F0), list them, update A's flags, detach "
                "A, list, detach A again (WARN unless an error code), detach B",
                train_listener}),
-        train({"train.listener-forward", 758, Category::kTrain, "TrainControlS §6.5",
+        train({"train.listener-forward", 754, Category::kTrain, "TrainControlS §6.5",
                Strength::kShall,
                "operations are forwarded to listeners with the P bit: Set Speed always (reversed "
                "with Rev direction), F0 iff Link F0, other functions iff Link Fn, never back to "
@@ -786,11 +783,12 @@ std::vector<CheckSpec> train_control_checks() {
                "(--node) lcc-conform attached (Reverse, Link F0); a second node lcc-conform "
                "speaks for sends Set Speed, F0, F3: forwarded as the flags say",
                train_listener_forward}),
-        train({"train.heartbeat", 759, Category::kTrain, "TrainControlS §6.6", Strength::kShall,
+        train({"train.heartbeat", 755, Category::kTrain, "TrainControlS §6.6", Strength::kShall,
                "no Heartbeat Request while the Set Speed is zero; any command clears a request; "
                "an unanswered one stops the train at its deadline",
                "tr110",
-               "(--node) Set Speed 0.5, wait up to 12 s for a request (none: PASS, optional), "
+               "(--node) Set Speed 0.5, wait up to 3 s (--thorough: 12 s) for a request (none: "
+               "PASS, optional), "
                "No-op, wait for the next, leave it unanswered: Set Speed 0 after the deadline",
                train_heartbeat}),
     };

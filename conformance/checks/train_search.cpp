@@ -300,40 +300,40 @@ std::vector<CheckSpec> train_search_checks() {
         return s;
     };
     return {
-        train({"search.name-match", 761, Category::kSearch, "TrainSearchS §6.1, §6.3",
+        train({"search.name-match", 756, Category::kSearch, "TrainSearchS §6.1, §6.3",
                Strength::kShall,
                "a train node matching a search answers Producer Identified (Train Search is "
                "strongly recommended for trains: no answer at all is a WARN)",
                "", "search for the first digits of the SNIP user name: the node answers",
                search_name_match}),
-        train({"search.address-match", 762, Category::kSearch, "TrainSearchS §6.1, §6.3",
+        train({"search.address-match", 757, Category::kSearch, "TrainSearchS §6.1, §6.3",
                Strength::kShall,
                "a train node answers an exact search for its address (no answer at all is a "
                "WARN: Train Search is strongly recommended)",
                "", "(--train-address N) exact address-only search for N: the node answers",
                search_address_match}),
-        train({"search.no-match-silent", 763, Category::kSearch, "TrainSearchS §6.1",
+        train({"search.no-match-silent", 758, Category::kSearch, "TrainSearchS §6.1",
                Strength::kShall, "a train node does not answer a search it does not match", "",
                "exact search for DCC address 999999: no answer from the node",
                search_no_match_silent}),
-        train({"search.reserved-ignored", 764, Category::kSearch, "TrainSearchS §5.2, §6.3",
+        train({"search.reserved-ignored", 759, Category::kSearch, "TrainSearchS §5.2, §6.3",
                Strength::kShall, "a search with reserved values matches nothing", "ts40",
                "the answered address or name search with the reserved protocol value 0x03: no "
                "answer",
                search_reserved_ignored}),
-        {"search.allocate", 765, Category::kSearch, "TrainSearchS §6.1, §6.2", Strength::kShall,
+        {"search.allocate", 761, Category::kSearch, "TrainSearchS §6.1, §6.2", Strength::kShall,
          "a command station answers an allocating search no train answers with a new train "
          "node's Producer Identified Valid; the train then answers searches",
          "ts10",
          "(--node --command-station) exact search for a free test address, allocate it, search "
          "again: answered by the new train",
          search_allocate},
-        {"search.allocate-partial", 766, Category::kSearch, "TrainSearchS §6.3", Strength::kShall,
+        {"search.allocate-partial", 762, Category::kSearch, "TrainSearchS §6.3", Strength::kShall,
          "a search whose digits are a prefix of a train's address matches it", "ts20",
          "(--node --command-station) allocate a test address, search its first 1, 2 and n-1 "
          "digits (not exact): each answered",
          search_allocate_partial},
-        {"search.allocate-reserved", 767, Category::kSearch, "TrainSearchS §5.2, §6.2, §6.3",
+        {"search.allocate-reserved", 763, Category::kSearch, "TrainSearchS §5.2, §6.2, §6.3",
          Strength::kShall,
          "an allocating search with reserved values (nibbles 0xA-0xE, protocol 0b1x.., 0x03) "
          "creates nothing and is not answered",

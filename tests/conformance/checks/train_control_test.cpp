@@ -87,7 +87,12 @@ TEST(TrainChecks, ATrainNodePassesThemAll) {
                            "train.heartbeat",
                            "fdi.space",
                            "fdi.read",
+                           "fdi.no-bom",
+                           "fdi.utf8",
+                           "fdi.xml-declaration",
                            "fdi.well-formed",
+                           "fdi.valid",
+                           "fdi.schema-location",
                            "fdi.functions",
                            "fdi.read-only",
                            "search.name-match",
@@ -116,6 +121,47 @@ TEST(TrainChecks, WithoutNodeTheStateChangingChecksSkip) {
     expect_status(results, "train.is-train-event", Status::kPass);
     expect_status(results, "train.controller", Status::kPass);
     expect_status(results, "fdi.functions", Status::kPass);
+}
+
+TEST(FdiChecks, AnFdiItsSchemaRefusesFailsFdiValidAndItsFunctionsAreStillAsked) {
+    simnode::NodeConfig c = train_config();
+    // The second function's <number> is no number: the schema refuses it.
+    c.train->fdi =
+        "<?xml version=\"1.0\"?>\n<fdi xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+        "xsi:noNamespaceSchemaLocation=\"https://openlcb.org/schema/fdi/1/1/fdi.xsd\">\n"
+        "<segment><function kind=\"binary\"><name>Light</name><number>0</number></function>\n"
+        "<function kind=\"binary\"><name>Bad</name><number>two</number></function>\n"
+        "</segment></fdi>\n";
+    const auto results = run_train(c, train_options());
+    expect_status(results, "fdi.well-formed", Status::kPass);
+    const CheckResult& v = expect_status(results, "fdi.valid", Status::kFail);
+    EXPECT_NE(v.message.find("FDI"), std::string::npos) << v.message;
+    // The model keeps the function it could read, and the train answers for it.
+    expect_status(results, "fdi.functions", Status::kPass);
+}
+
+TEST(FdiChecks, OnANamedTrainTheFirstFunctionIsSetReadBackAndRestored) {
+    // The only function is analog 0..31: set to 31, read back, set back to 0.
+    simnode::NodeConfig c = train_config();
+    c.train->fdi =
+        "<?xml version=\"1.0\"?>\n<fdi xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+        "xsi:noNamespaceSchemaLocation=\"https://openlcb.org/schema/fdi/1/1/fdi.xsd\">\n"
+        "<segment><function kind=\"analog\"><name>Volume</name><number>8</number>"
+        "<min>0</min><max>31</max></function>\n</segment></fdi>\n";
+    testing::SimBench* b = nullptr;
+    const auto results = run_train(c, train_options(), &b);
+    expect_status(results, "fdi.valid", Status::kPass);
+    const CheckResult& f = expect_status(results, "fdi.functions", Status::kPass);
+    EXPECT_NE(f.message.find("does not name is answered"), std::string::npos) << f.message;
+    ASSERT_TRUE(b && b->dut->train());
+    EXPECT_EQ(b->dut->train()->function(8), 0u);
+    EXPECT_TRUE(b->dut->train()->controller().is_zero());
+}
+
+TEST(FdiChecks, WithoutNodeNoFunctionIsSet) {
+    const auto results = run_train(train_config(), train_options(false));
+    const CheckResult& f = expect_status(results, "fdi.functions", Status::kPass);
+    EXPECT_NE(f.message.find("Set Function not tried"), std::string::npos) << f.message;
 }
 
 struct FaultCase {
