@@ -151,7 +151,17 @@ void memory_space_info_layout(CheckRun& run, const CheckSpec& spec) {
     }
 }
 
+// Why the form checks judge nothing: with no CDI layout they fall back to 0xFF, which a node
+// whose PIP claims no CDI need not serve (OpenMRN's train node refuses it 0x1081, rightly).
+std::string no_form_space(CheckRun& run) {
+    if (!layout_spaces(run).empty()) return {};
+    const auto& pip = run.probe<PipProbe>().reply;
+    if (pip && pip->has(Protocol::kCdi)) return {};
+    return "no CDI layout to pick a space from, and the PIP claims no CDI (space 0xFF)";
+}
+
 void memory_read_byte6_form(CheckRun& run, const CheckSpec& spec) {
+    if (const auto why = no_form_space(run); !why.empty()) return run.out(spec).skip(why);
     const FormProbe& p = run.probe<FormProbe>();
     const std::string what = "read of space " + hex(p.space, 2) + " in the byte-6 form";
     run.out(spec).judge(p.byte6.ok, p.byte6.ok ? what : what + ": " + describe(p.byte6),
@@ -159,6 +169,7 @@ void memory_read_byte6_form(CheckRun& run, const CheckSpec& spec) {
 }
 
 void memory_read_short_form(CheckRun& run, const CheckSpec& spec) {
+    if (const auto why = no_form_space(run); !why.empty()) return run.out(spec).skip(why);
     const FormProbe& p = run.probe<FormProbe>();
     if (!p.short_form)
         return run.out(spec).skip("space " + hex(p.space, 2) + " has only the byte-6 form");
@@ -169,6 +180,7 @@ void memory_read_short_form(CheckRun& run, const CheckSpec& spec) {
 }
 
 void memory_reply_form(CheckRun& run, const CheckSpec& spec) {
+    if (const auto why = no_form_space(run); !why.empty()) return run.out(spec).skip(why);
     const FormProbe& p = run.probe<FormProbe>();
     if (!p.byte6.ok)
         return run.out(spec).skip("depends on memory.read-byte6-form: " + describe(p.byte6));
@@ -315,7 +327,7 @@ static_assert(base::kReplyDue == std::chrono::milliseconds(750),
               "memory.reply-latency says 750 ms");
 
 std::vector<CheckSpec> memory_checks() {
-    return {
+    std::vector<CheckSpec> all = {
         {"memory.config-options", 100, Category::kMemory,
          "DatagramTransportS §6; MemoryConfigurationS §4.3, §4.13, §4.14", Strength::kShall,
          "every datagram is answered; the command is optional, so a rejection is a SKIP", "mc10",
@@ -393,6 +405,12 @@ std::vector<CheckSpec> memory_checks() {
          "(every read of the run) no Read Reply OK shorter than asked except at the end of the "
          "space"},
     };
+    // A read judged by its form means nothing on a node that claims no Memory Configuration.
+    for (CheckSpec& s : all) {
+        if (s.id == "memory.read-byte6-form" || s.id == "memory.read-short-form")
+            s.needs = Protocol::kMemoryConfiguration;
+    }
+    return all;
 }
 
 }  // namespace olcb::conform::checks

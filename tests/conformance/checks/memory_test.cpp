@@ -55,6 +55,28 @@ TEST(MemoryChecksTest, AWrongReplyFormWarns) {
     expect_status(results, "memory.reply-form", Status::kWarn);
 }
 
+// A node whose PIP claims no Memory Configuration (OpenMRN's train node) gets no verdict on the
+// read forms: CheckSpec::needs, not the node's name, decides.
+TEST(MemoryChecksTest, TheReadFormsSkipOnANodeThatClaimsNoMemoryConfiguration) {
+    simnode::NodeConfig c;
+    c.node_id = NodeId{0x05'01'01'01'22'70ull};
+    c.cdi = read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "scenarios/train.xml");
+    c.memory_config = false;
+    std::string error;
+    auto bench = testing::SimBench::serve(c, error);
+    ASSERT_TRUE(bench) << error;
+    auto node = bench->start();
+    ASSERT_TRUE(node);
+    ProtocolOptions o;
+    o.selection.only = {"memory.read-*-form"};
+    CheckContext ctx;
+    const auto results = run_protocol_checks(*bench->session, *node, o, ctx);
+    for (const char* id : {"memory.read-byte6-form", "memory.read-short-form"}) {
+        const CheckResult& r = expect_status(results, id, Status::kSkip);
+        EXPECT_EQ(r.message, "not run: the node's PIP does not claim Memory Configuration") << id;
+    }
+}
+
 // MemoryConfigurationS §4.3: an unknown command shall be answered with Datagram Rejected.
 TEST(MemoryChecksTest, AnUnknownCommandAcceptedFails) {
     FakeBench f = memory_node();
