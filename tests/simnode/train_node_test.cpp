@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cdi/fdi_validator.hpp"
 #include "openlcb/sim_network.hpp"
 #include "openlcb/train_search.hpp"
 #include "simnode/sim_node.hpp"
@@ -370,6 +371,17 @@ TEST_F(TrainNodeTest, ACommandStationCreatesATrainThatAnswersTheSearch) {
     search(net_, throttle_, *ts::Query::of("13", 0xE3), 1s);
     search(net_, throttle_, *ts::Query::of("14", 0xE2), 1s);
     EXPECT_EQ(created.size(), 1u);
+}
+
+// The FDI the train scenarios serve is one `lcc-cdi validate` passes: schema and rules.
+TEST(TrainScenarioFdi, ValidatesAgainstItsSchema) {
+    const cdi::ValidatedFdi v =
+        cdi::validate_fdi(test::read_source_file("scenarios/fdi/train.xml"));
+    std::string found;
+    for (const cdi::Diagnostic& d : v.diagnostics) found += cdi::located(d) + "\n";
+    EXPECT_TRUE(v.diagnostics.empty()) << found;
+    ASSERT_TRUE(v.document);
+    EXPECT_EQ(v.document->functions.size(), 5u);
 }
 
 }  // namespace
