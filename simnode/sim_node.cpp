@@ -166,8 +166,9 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
     std::vector<Mti> globals(std::begin(kAnsweredGlobals), std::end(kAnsweredGlobals));
     if (config_.train) {
-        train_ = std::make_unique<TrainNode>(*config_.train, config_.node_id, *life_, faults_,
-                                             [this](Message m) { return send_message(std::move(m)); });
+        train_ =
+            std::make_unique<TrainNode>(*config_.train, config_.node_id, *life_, faults_,
+                                        [this](Message m) { return send_message(std::move(m)); });
         globals.push_back(Mti::kEventReport);  // the global emergency events
     }
     if (config_.command_station) {

@@ -410,6 +410,18 @@ void print_node_summaries(const std::vector<NodeReport>& reports, const RunInfo&
         std::cout << "  " << id << "  another lcc-conform run (not checked)\n";
 }
 
+// The protocol checks' options of the command line (the selection is the node's own).
+ProtocolOptions protocol_options(const po::variables_map& vm, const RunOptions& ro) {
+    ProtocolOptions o;
+    o.read_only = ro.read_only;
+    o.reboot = ro.reboot;
+    o.no_stream = vm.count("no-stream") > 0;
+    o.named = vm.count("node") > 0;
+    o.command_station = vm.count("command-station") > 0;
+    if (vm.count("train-address")) o.train_address = vm["train-address"].as<std::uint32_t>();
+    return o;
+}
+
 int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes,
                 const po::variables_map& vm, const Reports& out) {
     const RunOptions ro = run_options(vm);
@@ -426,14 +438,7 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
     // The selection of the node being run (a protocol-only node's is narrower).
     CheckSelection selection = ro.selection;
     ProtocolChecks protocol = [&](Session& s, const NodeInfo& n, CheckContext& ctx) {
-        ProtocolOptions po_opts;
-        po_opts.read_only = ro.read_only;
-        po_opts.reboot = ro.reboot;
-        po_opts.no_stream = vm.count("no-stream") > 0;
-        po_opts.named = vm.count("node") > 0;
-        po_opts.command_station = vm.count("command-station") > 0;
-        if (vm.count("train-address"))
-            po_opts.train_address = vm["train-address"].as<std::uint32_t>();
+        ProtocolOptions po_opts = protocol_options(vm, ro);
         po_opts.selection = selection;
         return run_protocol_checks(s, n, po_opts, ctx);
     };

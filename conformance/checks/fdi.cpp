@@ -208,13 +208,13 @@ std::string set_and_query(CheckRun& run, const cdi::FdiDocument& doc, bool& fail
         return q + why;
     }
     if (after->value != want)
-        return "Set Function " + std::to_string(f.number) + " (" + quoted(f.name) + ") = " +
-               std::to_string(want) + " reads back " + std::to_string(after->value);
+        return "Set Function " + std::to_string(f.number) + " (" + quoted(f.name) +
+               ") = " + std::to_string(want) + " reads back " + std::to_string(after->value);
     const std::uint32_t other = unnamed_number(doc);
     if (!train_ask<train::FunctionReply>(run, {train::QueryFunction{other}}, why)) {
         fail = true;
-        return "Query Function " + std::to_string(other) + " (a number the FDI does not name): " +
-               why;
+        return "Query Function " + std::to_string(other) +
+               " (a number the FDI does not name): " + why;
     }
     return {};
 }
@@ -240,8 +240,9 @@ void fdi_functions(CheckRun& run, const CheckSpec& spec) {
         const std::string bad = set_and_query(run, doc, fatal);
         if (fatal) return run.out(spec).fail(bad, expected, bad);
         if (!bad.empty()) return run.out(spec).warn(bad + " (§6.3, §7.1)");
-        drove = "; the first set to another value reads it back, and a number the FDI does not "
-                "name is answered";
+        drove =
+            "; the first set to another value reads it back, and a number the FDI does not "
+            "name is answered";
     }
     run.out(spec).pass(std::to_string(doc.functions.size()) + " functions; " +
                        std::to_string(std::min(doc.functions.size(), kMaxQueried)) +

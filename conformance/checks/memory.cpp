@@ -326,8 +326,19 @@ void memory_readonly_refused(CheckRun& run, const CheckSpec& spec) {
 static_assert(base::kReplyDue == std::chrono::milliseconds(750),
               "memory.reply-latency says 750 ms");
 
+namespace {
+
+// A check that needs Memory Configuration in the PIP: a read judged by its form means nothing
+// on a node that claims none.
+CheckSpec mc(CheckSpec s) {
+    s.needs = Protocol::kMemoryConfiguration;
+    return s;
+}
+
+}  // namespace
+
 std::vector<CheckSpec> memory_checks() {
-    std::vector<CheckSpec> all = {
+    return {
         {"memory.config-options", 100, Category::kMemory,
          "DatagramTransportS §6; MemoryConfigurationS §4.3, §4.13, §4.14", Strength::kShall,
          "every datagram is answered; the command is optional, so a rejection is a SKIP", "mc10",
@@ -348,13 +359,13 @@ std::vector<CheckSpec> memory_checks() {
          "`20 84 SP` per space a CDI segment uses: present, highest address + 1 >= end of the "
          "layout in that space",
          memory_space_info_layout},
-        {"memory.read-byte6-form", 380, Category::kMemory, "MemoryConfigurationS §4.2, §4.4",
-         Strength::kShall, "any space may be named in byte 6", "mc30",
-         "8-byte read of the data space (0xFD preferred) in the byte-6 form: Read Reply OK",
-         memory_read_byte6_form},
-        {"memory.read-short-form", 390, Category::kMemory, "MemoryConfigurationS §4.2, §4.4",
-         Strength::kShall, "spaces 0xFD-0xFF may be named by the command byte", "mc30",
-         "the same read in the short form (0xFD-0xFF): Read Reply OK", memory_read_short_form},
+        mc({"memory.read-byte6-form", 380, Category::kMemory, "MemoryConfigurationS §4.2, §4.4",
+            Strength::kShall, "any space may be named in byte 6", "mc30",
+            "8-byte read of the data space (0xFD preferred) in the byte-6 form: Read Reply OK",
+            memory_read_byte6_form}),
+        mc({"memory.read-short-form", 390, Category::kMemory, "MemoryConfigurationS §4.2, §4.4",
+            Strength::kShall, "spaces 0xFD-0xFF may be named by the command byte", "mc30",
+            "the same read in the short form (0xFD-0xFF): Read Reply OK", memory_read_short_form}),
         {"memory.reply-form", 400, Category::kMemory, "MemoryConfigurationS §4.5", Strength::kNone,
          "both reply forms are defined; nothing ties the reply to the request's form", "mc30",
          "(those reads and the CDI reads) every reply uses the request's form", memory_reply_form},
@@ -405,12 +416,6 @@ std::vector<CheckSpec> memory_checks() {
          "(every read of the run) no Read Reply OK shorter than asked except at the end of the "
          "space"},
     };
-    // A read judged by its form means nothing on a node that claims no Memory Configuration.
-    for (CheckSpec& s : all) {
-        if (s.id == "memory.read-byte6-form" || s.id == "memory.read-short-form")
-            s.needs = Protocol::kMemoryConfiguration;
-    }
-    return all;
 }
 
 }  // namespace olcb::conform::checks

@@ -21,8 +21,12 @@ using namespace std::chrono_literals;
 
 // The speeds the checks set: OlcbChecker's 0.75 for set/query, 0.5 where the train only needs to
 // move; both exact in float16.
-const tr::Speed kFast = tr::Speed::of(0.75, false);
-const tr::Speed kSlow = tr::Speed::of(0.5, false);
+tr::Speed fast() {
+    return tr::Speed::of(0.75, false);
+}
+tr::Speed slow() {
+    return tr::Speed::of(0.5, false);
+}
 // The longest a train's first Heartbeat Request is awaited with --thorough (TrainControlTN §2.6.6
 // suggests a 10 s period); without it, the short wait: heartbeats are optional, and 12 s of
 // nothing on a train without them was most of a train node's run.
@@ -177,7 +181,7 @@ void train_speed(CheckRun& run, const CheckSpec& spec) {
     if (!d.blocked().empty()) return run.out(spec).skip(d.blocked());
     // Direction at zero too: the sign of ±0 is the train's direction (TN §2.5).
     for (tr::Speed speed :
-         {kFast.flipped(), tr::Speed::of(0, true), kFast, tr::Speed::of(0, false)}) {
+         {fast().flipped(), tr::Speed::of(0, true), fast(), tr::Speed::of(0, false)}) {
         if (const std::string bad = set_and_read(run, speed); !bad.empty())
             return run.out(spec).fail(bad, speed.to_string() + " (" + hex(speed.bits(), 4) + ")",
                                       bad);
@@ -215,7 +219,7 @@ void train_estop(CheckRun& run, const CheckSpec& spec) {
     Driving d(run);
     if (!d.blocked().empty()) return run.out(spec).skip(d.blocked());
     auto v = run.out(spec);
-    if (const auto bad = set_and_read(run, kSlow.flipped()); !bad.empty())
+    if (const auto bad = set_and_read(run, slow().flipped()); !bad.empty())
         return v.skip("depends on train.speed: " + bad);
     train_send(run, {tr::EmergencyStop{}});
     std::string why;
@@ -228,8 +232,8 @@ void train_estop(CheckRun& run, const CheckSpec& spec) {
         return v.fail("after Emergency Stop the status byte is " + hex(stopped->status, 2),
                       "bit 0 set (Emergency Stop state, §4.4)", hex(stopped->status, 2));
     tr::SpeedsReply resumed;
-    if (const auto bad = set_and_read(run, kSlow, &resumed); !bad.empty())
-        return v.fail("after Emergency Stop: " + bad, kSlow.to_string(), bad);
+    if (const auto bad = set_and_read(run, slow(), &resumed); !bad.empty())
+        return v.fail("after Emergency Stop: " + bad, slow().to_string(), bad);
     if ((resumed.status & tr::kStatusEmergencyStop) != 0)
         return v.fail("a Set Speed after Emergency Stop left status bit 0 set",
                       "bit 0 clear: a Set Speed leaves the Emergency Stop state (§5)",
@@ -246,7 +250,7 @@ void global_stop(CheckRun& run, const CheckSpec& spec, EventId enter, EventId le
     Driving d(run);
     if (!d.blocked().empty()) return run.out(spec).skip(d.blocked());
     auto v = run.out(spec);
-    if (const auto bad = set_and_read(run, kSlow.flipped()); !bad.empty())
+    if (const auto bad = set_and_read(run, slow().flipped()); !bad.empty())
         return v.skip("depends on train.speed: " + bad);
     const auto report = [&](EventId id) {
         Message m;
@@ -261,10 +265,10 @@ void global_stop(CheckRun& run, const CheckSpec& spec, EventId enter, EventId le
     std::string bad;
     if (!during) {
         bad = "Query Speeds: " + why;
-    } else if (during->set != kSlow.flipped()) {
+    } else if (during->set != slow().flipped()) {
         bad = "the event changed the Set Speed to " + during->set.to_string();
     } else {
-        bad = set_and_read(run, kSlow);  // a Set Speed during the state is taken
+        bad = set_and_read(run, slow());  // a Set Speed during the state is taken
     }
     report(leave);
     run.session().wait(0ms);
@@ -472,11 +476,11 @@ std::vector<tr::Command> forwarded_after(CheckRun& run, OtherNode& other, const 
 
 // The forwarding steps of train.listener-forward: "" when all held, else the first that did not.
 std::string forwarding_steps(CheckRun& run, OtherNode& other, bool& refused) {
-    auto got = forwarded_after(run, other, {tr::SetSpeed{kSlow}}, true, refused);
+    auto got = forwarded_after(run, other, {tr::SetSpeed{slow()}}, true, refused);
     if (refused) return {};
     if (got.empty()) return "Set Speed 0.5 forward from another node was not forwarded";
     const auto* s = std::get_if<tr::SetSpeed>(&got.front().body);
-    if (!s || !got.front().forwarded || s->speed != kSlow.flipped())
+    if (!s || !got.front().forwarded || s->speed != slow().flipped())
         return "Set Speed 0.5 forward arrived as " + tr::describe(got.front()) +
                " (listener flags Reverse: 0.5 reverse with the P bit expected)";
     got = forwarded_after(run, other, {tr::SetFunction{0, 1}}, true, refused);
@@ -486,7 +490,7 @@ std::string forwarding_steps(CheckRun& run, OtherNode& other, bool& refused) {
     if (!got.empty()) return "Set Function F3 was forwarded although Link Fn is clear";
     // From the listener itself: never back to the source (§6.5).
     const std::size_t mark = run.session().message_mark();
-    train_send(run, {tr::SetSpeed{kSlow.flipped()}});
+    train_send(run, {tr::SetSpeed{slow().flipped()}});
     run.session().wait(run.options().window);
     if (!forwarded_to_us(run, mark).empty()) return "a Set Speed from the listener came back to it";
     return {};
@@ -543,7 +547,7 @@ std::string heartbeat_steps(CheckRun& run, Duration period) {
     // Any command clears the request: the train keeps its speed (§6.6).
     train_send(run, {tr::Noop{}});
     const auto kept = train_ask<tr::SpeedsReply>(run, {tr::QuerySpeeds{}}, why);
-    if (!kept || kept->set != kSlow)
+    if (!kept || kept->set != slow())
         return "after a No-op answered the request the Set Speed is " +
                (kept ? kept->set.to_string() : why);
     const auto second = await_heartbeat(run, period + period / 2 + run.options().answer_window);
@@ -551,7 +555,7 @@ std::string heartbeat_steps(CheckRun& run, Duration period) {
     // Unanswered: at the deadline the train takes a Set Speed 0 (§6.6).
     run.session().wait(std::chrono::seconds(*second) + run.options().window);
     const auto after = train_ask<tr::SpeedsReply>(run, {tr::QuerySpeeds{}}, why);
-    if (!after || after->set != kSlow.stopped())
+    if (!after || after->set != slow().stopped())
         return "the heartbeat deadline (" + std::to_string(*second) +
                " s) passed unanswered, "
                "the Set Speed is still " +
@@ -566,7 +570,7 @@ void train_heartbeat(CheckRun& run, const CheckSpec& spec) {
     if (const auto why = may_drive(run); !why.empty()) return run.out(spec).skip(why);
     Driving d(run);
     if (!d.blocked().empty()) return run.out(spec).skip(d.blocked());
-    if (const auto bad = set_and_read(run, kSlow); !bad.empty())
+    if (const auto bad = set_and_read(run, slow()); !bad.empty())
         return run.out(spec).skip("depends on train.speed: " + bad);
     const TimePoint moving = run.session().link().now();
     const bool thorough = run.options().selection.thorough;
@@ -636,8 +640,8 @@ TrainDriving::TrainDriving(CheckRun& run) : run_(run) {
     if (!a) {
         blocked_ = "depends on train.controller: Assign Controller got no reply (" + why + ")";
     } else if (a->result != tr::assign_result::kOk) {
-        blocked_ = "the train refused lcc-conform as its controller (result " +
-                   hex(a->result, 2) + ")";
+        blocked_ =
+            "the train refused lcc-conform as its controller (result " + hex(a->result, 2) + ")";
     } else {
         held_ = true;
     }
@@ -678,7 +682,7 @@ std::optional<tr::Reply> train_await(CheckRun& run, std::size_t mark,
                     continue;
                 }
                 if (!wanted(*d.value)) continue;
-                got = std::move(d.value);
+                got = d.value;
                 return true;
             }
             return false;
@@ -691,38 +695,16 @@ std::optional<tr::Reply> train_await(CheckRun& run, std::size_t mark,
     return got;
 }
 
-std::vector<CheckSpec> train_control_checks() {
-    const auto train = [](CheckSpec s) {
-        s.needs = Protocol::kTractionControl;
-        return s;
-    };
+namespace {
+
+CheckSpec train(CheckSpec s) {
+    s.needs = Protocol::kTractionControl;
+    return s;
+}
+
+// The checks that move the train (only on a node named with --node).
+std::vector<CheckSpec> train_moving_checks() {
     return {
-        train({"train.is-train-event", 741, Category::kTrain, "TrainControlS §4.1, §6.4",
-               Strength::kShall, "a train node produces the Is Train event", "tr010",
-               "Identify Producer 01.01.00.00.00.00.03.03: a Producer Identified from the node",
-               train_is_train}),
-        train({"train.memory-spaces", 742, Category::kTrain, "TrainControlS §3, §7",
-               Strength::kShould,
-               "a train node is strongly recommended to provide FDI (0xFA); 0xF9 is optional",
-               "tr070",
-               "Space Info 0xF9 and 0xFA: WARN when the PIP claims no FDI and 0xFA is missing "
-               "(with the FDI claim, fdi.space judges 0xFA)",
-               train_memory_spaces}),
-        train({"train.controller", 744, Category::kTrain, "TrainControlS §4.3, §4.4, §6.1",
-               Strength::kShall,
-               "Assign Controller answered within 3 s; Query Controller names the active "
-               "controller (zero when none); Release by the controller clears it",
-               "tr090",
-               "Query Controller; on a node named with --node: Assign (lcc-conform), Query, "
-               "Release, Query; the flags byte is reserved and only shown",
-               train_controller}),
-        train({"train.reserve", 745, Category::kTrain, "TrainControlS §4.3, §4.4", Strength::kShall,
-               "Reserve is answered with a Reserve Reply; the standard gives no rule on a second "
-               "Reserve from the same node",
-               "tr100",
-               "(--node) Reserve, Reserve again, Release, Reserve, Release: each Reserve gets a "
-               "Reply; the results are shown, not judged",
-               train_reserve}),
         train({"train.speed", 746, Category::kTrain, "TrainControlS §4.3, §4.4, §5",
                Strength::kShall,
                "Query Speeds returns the most recent Set Speed, float16 with its sign as the "
@@ -792,6 +774,42 @@ std::vector<CheckSpec> train_control_checks() {
                "No-op, wait for the next, leave it unanswered: Set Speed 0 after the deadline",
                train_heartbeat}),
     };
+}
+
+}  // namespace
+
+std::vector<CheckSpec> train_control_checks() {
+    std::vector<CheckSpec> all = {
+        train({"train.is-train-event", 741, Category::kTrain, "TrainControlS §4.1, §6.4",
+               Strength::kShall, "a train node produces the Is Train event", "tr010",
+               "Identify Producer 01.01.00.00.00.00.03.03: a Producer Identified from the node",
+               train_is_train}),
+        train({"train.memory-spaces", 742, Category::kTrain, "TrainControlS §3, §7",
+               Strength::kShould,
+               "a train node is strongly recommended to provide FDI (0xFA); 0xF9 is optional",
+               "tr070",
+               "Space Info 0xF9 and 0xFA: WARN when the PIP claims no FDI and 0xFA is missing "
+               "(with the FDI claim, fdi.space judges 0xFA)",
+               train_memory_spaces}),
+        train({"train.controller", 744, Category::kTrain, "TrainControlS §4.3, §4.4, §6.1",
+               Strength::kShall,
+               "Assign Controller answered within 3 s; Query Controller names the active "
+               "controller (zero when none); Release by the controller clears it",
+               "tr090",
+               "Query Controller; on a node named with --node: Assign (lcc-conform), Query, "
+               "Release, Query; the flags byte is reserved and only shown",
+               train_controller}),
+        train({"train.reserve", 745, Category::kTrain, "TrainControlS §4.3, §4.4", Strength::kShall,
+               "Reserve is answered with a Reserve Reply; the standard gives no rule on a second "
+               "Reserve from the same node",
+               "tr100",
+               "(--node) Reserve, Reserve again, Release, Reserve, Release: each Reserve gets a "
+               "Reply; the results are shown, not judged",
+               train_reserve}),
+    };
+    std::vector<CheckSpec> moving = train_moving_checks();
+    all.insert(all.end(), moving.begin(), moving.end());
+    return all;
 }
 
 }  // namespace olcb::conform::checks

@@ -714,8 +714,9 @@ void NodeRun::note_not_tested() {
     std::vector<std::string>& out = report_.not_tested;
     const CheckSelection& sel = options_.selection;
     if (!options_.protocol_only.empty()) {
-        out.push_back(options_.protocol_only +
-                      ": checked for frame, message, SNIP, PIP, events, train, train search and FDI only");
+        out.push_back(
+            options_.protocol_only +
+            ": checked for frame, message, SNIP, PIP, events, train, train search and FDI only");
         return;
     }
     if (options_.read_only && sel.wants_writes())

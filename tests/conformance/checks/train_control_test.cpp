@@ -114,8 +114,7 @@ TEST(TrainChecks, WithoutNodeTheStateChangingChecksSkip) {
     for (const char* id : {"train.speed", "train.function", "train.estop", "train.listener",
                            "train.heartbeat", "train.reserve"}) {
         const CheckResult& c = expect_status(results, id, Status::kSkip);
-        EXPECT_EQ(c.message,
-                  "changes the train's state: runs only on a node named with --node")
+        EXPECT_EQ(c.message, "changes the train's state: runs only on a node named with --node")
             << id;
     }
     expect_status(results, "train.is-train-event", Status::kPass);
