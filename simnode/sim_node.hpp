@@ -20,6 +20,7 @@
 #include "openlcb/node_stack.hpp"
 #include "openlcb/pip.hpp"
 #include "simnode/answer_delay.hpp"
+#include "simnode/broadcast_clock.hpp"
 #include "simnode/event_roles.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/faults/fault_hooks.hpp"
@@ -51,6 +52,8 @@ struct NodeConfig {
     /// Memory Configuration and the CDI served (PIP bits, datagrams answered); false = a node
     /// that is no configurable node (a throttle): memory-config datagrams rejected 0x1042.
     bool memory_config = true;
+    /// Broadcast Time clocks the node runs (generators and consumers; docs/scenarios.md).
+    std::vector<ClockConfig> clocks;
 };
 
 /// Counters of what a node did, for tests and the program's statistics.
@@ -103,6 +106,8 @@ public:
     std::vector<std::pair<EventId, EventRole>> events() const { return advertised_events(); }
     /// What the node did so far.
     const NodeCounters& counters() const { return counters_; }
+    /// The node's Broadcast Time clocks, in NodeConfig::clocks order.
+    const std::vector<BroadcastClock>& clocks() const { return clocks_; }
     /// Reset/Reboot commands obeyed.
     std::uint32_t reboot_count() const { return counters_.reboots; }
     /// Told a line (without "simnode: ") when storage fails; unset: the line goes to stderr.
@@ -157,6 +162,8 @@ private:
     std::vector<std::pair<EventId, EventRole>> advertised_events() const;
     void start_stream_read(std::uint16_t src, const memory::StreamRead& read);
     void on_stream_event(const StreamEvent& event);
+    void clock_message(const Message& msg);
+    void arm_clocks();
 
     // A Read Stream waiting for its stream to be accepted, or being sent.
     struct PendingStreamRead {
@@ -186,6 +193,9 @@ private:
     // Event IDs at the last start-up (events-stale-after-write identifies only these).
     std::vector<std::pair<EventId, EventRole>> startup_events_;
     std::map<std::uint32_t, PendingStreamRead> stream_reads_;  // by stream handle
+    std::vector<BroadcastClock> clocks_;
+    BroadcastClock::Send clock_send_;       // what the clocks send goes out through the stack
+    std::optional<TimePoint> clock_timer_;  // when the clocks' scheduled poll runs
     LogHandler log_;
 };
 

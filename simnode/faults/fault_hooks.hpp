@@ -18,6 +18,7 @@
 #include "memory/memory_space.hpp"
 #include "memory/snip.hpp"
 #include "openlcb/node_stack.hpp"
+#include "simnode/broadcast_clock.hpp"
 #include "simnode/faults.hpp"
 
 namespace olcb::cdi {
@@ -182,6 +183,8 @@ struct FaultHooks {
     void (*store)(StoredValue&, FaultValue) = nullptr;
     /// Which event IDs it identifies.
     void (*events)(EventPolicy&, FaultValue) = nullptr;
+    /// How its Broadcast Time clocks break the standard.
+    void (*clock)(ClockQuirks&, FaultValue) = nullptr;
 
     // The running node.
     /// Its first Initialization Complete.
@@ -231,6 +234,7 @@ public:
     bool stores() const;
     void store(const cdi::Element& element, std::span<std::uint8_t> bytes) const;
     EventPolicy events() const;
+    ClockQuirks clock() const;
 
     void started(NodeLife& life) const;
     void powering_up(NodeLife& life) const;
