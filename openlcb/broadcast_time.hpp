@@ -88,8 +88,7 @@ constexpr bool is_report(Kind k) {
 }
 /// True for the four Set forms.
 constexpr bool is_set(Kind k) {
-    return k == Kind::kSetTime || k == Kind::kSetDate || k == Kind::kSetYear ||
-           k == Kind::kSetRate;
+    return k == Kind::kSetTime || k == Kind::kSetDate || k == Kind::kSetYear || k == Kind::kSetRate;
 }
 
 /// Meaning of a suffix (the event ID's low 16 bits); fields out of their ranges (hour 24,

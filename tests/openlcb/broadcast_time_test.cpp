@@ -48,7 +48,7 @@ TEST(BroadcastTime, EveryFormEncodesAsTheStandardLaysItOut) {
     EXPECT_EQ(encode(ClockEvent::report_date(12, 31)), 0x2C1F);
     EXPECT_EQ(encode(ClockEvent::report_year(2023)), 0x37E7);
     EXPECT_EQ(encode(ClockEvent::report_year(4095)), 0x3FFF);
-    EXPECT_EQ(encode(ClockEvent::report_rate(16)), 0x4010);  // 4.00
+    EXPECT_EQ(encode(ClockEvent::report_rate(16)), 0x4010);     // 4.00
     EXPECT_EQ(encode(ClockEvent::report_rate(-2048)), 0x4800);  // -512.00 (TN §2.4.4)
     EXPECT_EQ(encode(ClockEvent::report_rate(-1)), 0x4FFF);     // -0.25
     EXPECT_EQ(encode(ClockEvent::report_time(5, 30).as_set()), 0x851E);
