@@ -424,6 +424,7 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         ProtocolOptions po_opts;
         po_opts.read_only = ro.read_only;
         po_opts.reboot = ro.reboot;
+        po_opts.chosen = vm.count("node") > 0;
         po_opts.no_stream = vm.count("no-stream") > 0;
         po_opts.selection = selection;
         return run_protocol_checks(s, n, po_opts, ctx);
@@ -445,7 +446,7 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         one.protocol_only = t.protocol_only;
         if (!t.protocol_only.empty()) {
             one.selection.categories = {Category::kFrame, Category::kMessage, Category::kSnip,
-                                        Category::kPip, Category::kEvents};
+                                        Category::kPip,   Category::kEvents,  Category::kClock};
         }
         selection = one.selection;
         if (targets.size() > 1) {

@@ -32,6 +32,9 @@ struct ProtocolOptions {
     bool no_stream = false;
     /// --reboot: checks that need a Reset/Reboot (the start-up sequence) may send one.
     bool reboot = false;
+    /// --node named this node: checks that change a state of the node no backup holds (a
+    /// Broadcast Time clock's time, which they put back) may run.
+    bool chosen = false;
     /// --only / --skip / --thorough: which registry entries run.
     CheckSelection selection;
     /// Called with the bytes read so far while the CDI downloads (run_protocol_checks() passes

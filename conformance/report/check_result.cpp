@@ -47,6 +47,8 @@ std::string_view category_name(Category category) {
             return "events";
         case Category::kStream:
             return "stream";
+        case Category::kClock:
+            return "clock";
     }
     return "?";
 }

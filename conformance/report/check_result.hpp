@@ -31,12 +31,13 @@ enum class Category : std::uint8_t {
     kNode,    ///< the node as a whole: it stopped answering or restarted during the run
     kEvents,  ///< event identification (Identify Events, Identify Producer/Consumer)
     kStream,  ///< memory-config stream reads and the stream transport under them
+    kClock,   ///< Broadcast Time: clock generators and consumers
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
 /// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link",
-/// "node", "events" or "stream".
+/// "node", "events", "stream" or "clock".
 std::string_view category_name(Category category);
 
 /// One executed check.
