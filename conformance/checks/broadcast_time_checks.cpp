@@ -10,9 +10,11 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <set>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "conformance/checks/checks.hpp"
@@ -379,28 +381,38 @@ std::vector<const ClockMsg*> unexcused(const std::vector<ClockMsg>& msgs,
     return out;
 }
 
+// The first two Report Time PCERs of msgs less than a real minute apart with no reason
+// (nullopt: none).
+std::optional<std::pair<const ClockMsg*, const ClockMsg*>> too_close(
+    const std::vector<ClockMsg>& msgs, const std::set<int>& asked) {
+    const auto free = unexcused(msgs, asked);
+    for (std::size_t i = 1; i < free.size(); ++i)
+        if (free[i]->at - free[i - 1]->at < kReportSpacing - kJitter)
+            return std::make_pair(free[i - 1], free[i]);
+    return std::nullopt;
+}
+
 PerClock judge_frequency(CheckRun& run, NodeId clock) {
-    const SetSession& set = set_session(run, clock);
-    if (!set.not_run.empty()) return skip(set.not_run);
-    const RunSession& running = run_session(run, clock);
+    const SessionsMade made = sessions_made(run, clock);
+    if (const std::string why = made.not_run(); !why.empty()) return skip(why);
     std::set<int> asked = asked_minutes(run.session(), clock);
     // And the minutes lcc-conform itself identified consuming (its own messages are not logged).
     asked.insert({23 * 60 + 59, 0});
+    std::vector<const std::vector<ClockMsg>*> seen;
+    if (made.set && made.set->not_run.empty()) seen.push_back(&made.set->set_msgs);
+    if (made.running && made.running->not_run.empty()) seen.push_back(&made.running->run.msgs);
     std::size_t reports = 0;
-    for (const auto* msgs : {&set.set_msgs, &running.run.msgs}) {
+    for (const auto* msgs : seen) {
         reports += static_cast<std::size_t>(
             std::count_if(msgs->begin(), msgs->end(),
                           [](const ClockMsg& m) { return is_pcer(m, Kind::kReportTime); }));
-        const auto free = unexcused(*msgs, asked);
-        for (std::size_t i = 1; i < free.size(); ++i) {
-            const Duration gap = free[i]->at - free[i - 1]->at;
-            if (gap < kReportSpacing - kJitter)
-                return fail(
-                    "Report Time events no consumer asked for came " + ms_text(gap) + " apart",
-                    "at most one a real minute, besides those consumers asked for, item "
-                    "6 of a sequence and a Set's report",
-                    bt::describe(free[i - 1]->event) + ", then " + bt::describe(free[i]->event));
-        }
+        if (const auto pair = too_close(*msgs, asked))
+            return fail(
+                "Report Time events no consumer asked for came " +
+                    ms_text(pair->second->at - pair->first->at) + " apart",
+                "at most one a real minute, besides those consumers asked for, item "
+                "6 of a sequence and a Set's report",
+                bt::describe(pair->first->event) + ", then " + bt::describe(pair->second->event));
     }
     return pass(std::to_string(reports) +
                 " Report Time events while the clock was set and run, "
@@ -413,22 +425,24 @@ void report_frequency(CheckRun& run, const CheckSpec& spec) {
 }
 
 PerClock judge_restored(CheckRun& run, NodeId clock) {
-    const SetSession& set = set_session(run, clock);
-    if (!set.not_run.empty()) return skip(set.not_run);
-    const RunSession& running = run_session(run, clock);
-    for (const Restore* r : {&set.restore, &running.restore}) {
-        if (r->to.empty()) return skip("the saved state is no date: nothing was set back");
-        if (!r->problem.empty())
-            return fail("the clock was set back to " + r->to + ", but " + r->problem, r->to,
-                        r->problem);
+    const SessionsMade made = sessions_made(run, clock);
+    if (const std::string why = made.not_run(); !why.empty()) return skip(why);
+    std::string to;
+    for (const auto& [name, session] :
+         {std::pair{"the Set exchange", made.set ? &made.set->restore : nullptr},
+          std::pair{"the run through midnight", made.running ? &made.running->restore : nullptr}}) {
+        if (!session) continue;
+        const Restore& r = *session;
+        if (r.to.empty()) return skip("the saved state is no date: nothing was set back");
+        if (!r.problem.empty())
+            return fail("after " + std::string(name) + " the clock was set back to " + r.to +
+                            ", but " + r.problem,
+                        r.to, r.problem);
+        to += (to.empty() ? "after " : "; after ") + std::string(name) + ": " + r.to;
     }
-    return pass(
-        "after the Set and the running exchanges the clock was set back to its saved "
-        "state, last " +
-        running.restore.to +
-        ", and a Query shows it; it may go on "
-        "reporting 23:59 and 00:00, which lcc-conform identified consuming (no message "
-        "withdraws that)");
+    return pass("the clock was set back to its saved state and a Query shows it (" + to +
+                "); it may go on reporting 23:59 and 00:00, which lcc-conform identified "
+                "consuming (no message withdraws that)");
 }
 
 void restored(CheckRun& run, const CheckSpec& spec) {
@@ -478,13 +492,13 @@ void startup(CheckRun& run, const CheckSpec& spec) {
                  [&](NodeId c) { return judge_startup(run, c); });
 }
 
-constexpr auto C = Category::kClock;
+constexpr auto kClock = Category::kClock;
 constexpr auto kShall = Strength::kShall;
 
 // The entries judging the Query and the Set exchange.
 std::vector<CheckSpec> set_entries() {
     return {
-        {"clock.identify-ranges", 741, C, "BroadcastTimeS §6.1; EventTransportS §6.2", kShall,
+        {"clock.identify-ranges", 741, kClock, "BroadcastTimeS §6.1; EventTransportS §6.2", kShall,
          "a generator identifies the Report, Start/Stop and Date Rollover events it produces and "
          "the Set, Query and Start/Stop events it consumes; not as the two whole-clock ranges "
          "it announces at start-up WARNs",
@@ -492,7 +506,7 @@ std::vector<CheckSpec> set_entries() {
          "(the Identify Events addressed answer) for each clock the node generates: events of "
          "every form covered, ideally by Producer and Consumer Range Identified of all 16 bits",
          identify_ranges},
-        {"clock.query", 742, C, "BroadcastTimeS §6.3, §6.4", kShall,
+        {"clock.query", 742, kClock, "BroadcastTimeS §6.3, §6.4", kShall,
          "a Query is answered with Producer Identified Valid for Start/Stop, Rate, Year, Date "
          "and Time in this order, then the next minute's Report Time when it becomes valid",
          "bt10",
@@ -500,26 +514,26 @@ std::vector<CheckSpec> set_entries() {
          "before it at a negative rate) when the clock runs and its next minute is within 10 s "
          "(--thorough: 65 s); nothing more while stopped",
          query},
-        {"clock.set-immediate", 743, C, "BroadcastTimeS §6.5", kShall,
+        {"clock.set-immediate", 743, kClock, "BroadcastTimeS §6.5", kShall,
          "a Set Time, Date, Year or Rate takes effect at once and the generator produces the "
          "effective Report",
          "bt30",
          "(--node; the clock's state saved by clock.query) Stop, Set Time 01:23, Set Date 07-22, "
          "Set Year 2023, a second later Set Rate 4.00: each Report within the answer window",
          set_immediate},
-        {"clock.set-sync", 744, C, "BroadcastTimeS §6.3, §6.5", kShall,
+        {"clock.set-sync", 744, kClock, "BroadcastTimeS §6.3, §6.5", kShall,
          "three seconds after the last Set the synchronization sequence carries what was set",
          "bt20",
          "(the same Sets) the sequence after the last Set: Stop and the values the Reports gave, "
          "in order",
          set_sync},
-        {"clock.set-once", 745, C, "BroadcastTimeS §6.5", kShall,
+        {"clock.set-once", 745, kClock, "BroadcastTimeS §6.5", kShall,
          "the sequence follows three seconds after the last Set, so Sets in a row bring one",
          "bt40",
          "(the same Sets, the last a second after the first) exactly one sequence until 3 s + "
          "two answer windows after the last Set, not before its three seconds",
          set_once},
-        {"clock.set-effective", 746, C, "BroadcastTimeS §6.5", kShall,
+        {"clock.set-effective", 746, kClock, "BroadcastTimeS §6.5", kShall,
          "the Report a Set produces is the effective value", "",
          "(--node) Set Date 02-30 in 2023, then Query: its Report Date is the date the sequence "
          "then shows",
@@ -530,44 +544,47 @@ std::vector<CheckSpec> set_entries() {
 // The entries judging the run through midnight, the start-up and the restore.
 std::vector<CheckSpec> run_entries() {
     return {
-        {"clock.requested-minute", 747, C, "BroadcastTimeS §6.2", kShall,
+        {"clock.requested-minute", 747, kClock, "BroadcastTimeS §6.2", kShall,
          "a generator that received a Consumer Identified for a specific Report Time produces it "
          "when appropriate",
          "bt60",
-         "(--node) Consumer Identified Valid for 23:59 and 00:00, then Stop, Set Rate 60.00, Set "
+         "(--node) Consumer Identified Valid for 23:59 and 00:00, then Stop, Set Rate 240.00, Set "
          "Year 2023, Set Date 12-31, Set Time 23:58, Start: Report Time 23:59 and 00:00 come",
          requested_minute},
-        {"clock.report-frequency", 748, C, "BroadcastTimeS §6.2", kShall,
+        {"clock.report-frequency", 748, kClock, "BroadcastTimeS §6.2", kShall,
          "a running generator sends Report Time at most once a real minute, except item 6 of a "
          "sequence and the minutes consumers identified",
          "bt50",
-         "(the Set and running exchanges) no two Report Time PCERs without such a reason less "
-         "than a minute apart; the hourly minimum is not judged (it needs an hour)",
+         "(the Set and running exchanges the selected checks made; alone, the Set exchange) no "
+         "two Report Time PCERs without such a reason less than a minute apart; the hourly "
+         "minimum is not judged (it needs an hour)",
          report_frequency},
-        {"clock.rate", 749, C, "BroadcastTimeS §5", kShall,
+        {"clock.rate", 749, kClock, "BroadcastTimeS §5", kShall,
          "a running clock's time advances rate times as fast as real time (a normative "
          "statement of §5)",
          "",
-         "(the running exchange) from Report Time 23:59 to the last Report Time seen: the fast "
+         "(the running exchange, ended by a Query) from Report Time 23:59 to the last Report Time "
+         "PCER (item 6 of that Query's sequence): the fast "
          "minutes between them at the rate the clock reported, within 3 % + 50 ms",
          rate},
-        {"clock.rollover", 751, C, "BroadcastTimeS §5, §6.2", kShall,
+        {"clock.rollover", 751, kClock, "BroadcastTimeS §5, §6.2", kShall,
          "Date Rollover goes out right before time passes 00:00, Report Year and Report Date "
          "three seconds later, naming the next day",
          "bt70",
          "(the running exchange) Date Rollover, not after Report Time 00:00; Report Year 2024 "
          "and Report Date 01-01 3 s (-0.25 s, + the answer window) after it",
          rollover},
-        {"clock.startup", 752, C, "BroadcastTimeS §6.1", kShall,
+        {"clock.startup", 752, kClock, "BroadcastTimeS §6.1", kShall,
          "a starting generator sends Producer and Consumer Range Identified covering the "
          "clock's 16 bits and the synchronization sequence",
          "bt80",
          "(--reboot `20 A9`, or a start-up seen during the run) after Initialization Complete: "
          "both ranges of all 16 bits, the sequence in order (item 6 as for clock.query)",
          startup},
-        {"clock.restored", 753, C, "BroadcastTimeS §6.5", kShall,
+        {"clock.restored", 753, kClock, "BroadcastTimeS §6.5", kShall,
          "Sets of the saved state take effect, so the clock ends as it was", "",
-         "(after the Set exchange and after the running one) Stop, Set Rate, Year, Date and Time "
+         "(after each exchange that set the clock; alone, the Set exchange) Stop, Set Rate, Year, "
+         "Date and Time "
          "of the state clock.query saved, advanced by the time passed, Start if it ran, then a "
          "Query: its sequence agrees (time within 2 fast minutes)",
          restored},
@@ -578,7 +595,7 @@ std::vector<CheckSpec> run_entries() {
 
 std::vector<CheckSpec> broadcast_time_checks() {
     std::vector<CheckSpec> all = set_entries();
-    for (CheckSpec& s : run_entries()) all.push_back(std::move(s));
+    for (const CheckSpec& s : run_entries()) all.push_back(s);
     // Clock events are Event Transport messages: a node whose PIP denies Event Exchange has no
     // clock to judge (there is no Broadcast Time bit; ClockRoles decides the rest).
     for (CheckSpec& s : all) s.needs = Protocol::kEventExchange;

@@ -180,21 +180,21 @@ void consumer_startup(CheckRun& run, const CheckSpec& spec) {
                  [&](NodeId c) { return judge_consumer_startup(run, c); });
 }
 
-constexpr auto C = Category::kClock;
+constexpr auto kClock = Category::kClock;
 constexpr auto kShall = Strength::kShall;
 
 }  // namespace
 
 std::vector<CheckSpec> clock_consumer_checks() {
     std::vector<CheckSpec> all = {
-        {"clock.consumer-startup", 754, C, "BroadcastTimeS §6.1", kShall,
+        {"clock.consumer-startup", 754, kClock, "BroadcastTimeS §6.1", kShall,
          "a starting consumer sends Consumer Range Identified for the clock, or Consumer "
          "Identified for the events it uses",
          "bt100",
          "(--reboot, or a start-up seen during the run) after Initialization Complete: a "
          "Consumer (Range) Identified of the clock",
          consumer_startup},
-        {"clock.consumer-sync", 755, C, "EventTransportS §6.4; BroadcastTimeS §6.3", kShall,
+        {"clock.consumer-sync", 755, kClock, "EventTransportS §6.4; BroadcastTimeS §6.3", kShall,
          "a consumer answers Identify Consumer for a clock event it consumes with Consumer "
          "Identified carrying that event ID; Consumer Range Identified alone WARNs",
          "bt110",
@@ -202,11 +202,11 @@ std::vector<CheckSpec> clock_consumer_checks() {
          "Consumer for Stop, Rate 4.00, Year, Date, Time and Start; at the end a Query so the "
          "layout's generator resets every display",
          consumer_sync},
-        {"clock.consumer-start-stop", 756, C, "EventTransportS §6.4; BroadcastTimeS §4.10", kShall,
-         "as clock.consumer-sync, for Stop and Start", "bt120",
+        {"clock.consumer-start-stop", 756, kClock, "EventTransportS §6.4; BroadcastTimeS §4.10",
+         kShall, "as clock.consumer-sync, for Stop and Start", "bt120",
          "(--node) PCER Stop, Identify Consumer Stop; PCER Start, Identify Consumer Start",
          consumer_start_stop},
-        {"clock.consumer-rate", 757, C, "EventTransportS §6.4; BroadcastTimeS §4.4", kShall,
+        {"clock.consumer-rate", 757, kClock, "EventTransportS §6.4; BroadcastTimeS §4.4", kShall,
          "as clock.consumer-sync, for a new rate", "bt130",
          "(--node) PCER Report Rate 8.00, Identify Consumer for it", consumer_rate},
     };

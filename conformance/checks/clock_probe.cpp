@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "base/hex.hpp"
 #include "conformance/checks/clock_roles.hpp"
 
 namespace olcb::conform::checks::clocks {
@@ -17,8 +18,9 @@ using namespace std::chrono_literals;
 
 namespace {
 
-// The rate a clock is run at: a fast minute per real second.
-constexpr int kRunQuarters = 240;
+// The rate a clock is run through midnight at: a fast minute per quarter of a real second, so
+// the run lasts little more than the three seconds Report Year and Date follow the rollover by.
+constexpr int kRunQuarters = 960;
 // The longest running exchange (a clock that only takes slow rates is not run).
 constexpr Duration kMaxRun = 150s;
 // How long item 6 of a sequence is awaited (the next minute of a 1x clock is up to 60 s away).
@@ -123,9 +125,19 @@ void odd_date_exchange(CheckRun& run, NodeId clock, SetSession& c) {
     c.odd_sync = read_sync(msgs);
 }
 
+// A Query at the end of the run: item 6 of its sequence marks a minute boundary as exactly as
+// Report Time 23:59 did, a dozen fast minutes later, which is what clock.rate measures.
+void end_with_query(CheckRun& run, NodeId clock, const RunSeen& seen) {
+    Session& s = run.session();
+    const std::size_t mark = s.message_mark();
+    send_event(s, Mti::kEventReport, clock, ClockEvent::of(Kind::kQuery));
+    watch(run, clock, mark, fast_minute(seen.rate) + 2 * answer_window(run),
+          [](const std::vector<ClockMsg>& m) { return read_sync(m).next.has_value(); });
+}
+
 // Asks for the reports of 23:59 and 00:00 as a display would, then runs the clock from
-// 2023-12-31 23:58 at a fast minute per second; watches until Report Year and Date follow the
-// rollover (or the time the rate gives has passed).
+// 2023-12-31 23:58 at a fast minute per quarter second; watches until Report Year and Date
+// follow the rollover (or the time the rate gives has passed), then ends with a Query.
 void run_exchange(CheckRun& run, NodeId clock, RunSeen& seen) {
     Session& s = run.session();
     const std::size_t mark = s.message_mark();
@@ -159,6 +171,8 @@ void run_exchange(CheckRun& run, NodeId clock, RunSeen& seen) {
                std::any_of(roll, m.end(),
                            [](const ClockMsg& x) { return is_pcer(x, Kind::kReportDate); });
     });
+    end_with_query(run, clock, seen);
+    seen.msgs = clock_msgs(s, run.alias(), mark, clock);
 }
 
 // The Sets that put the saved state back, its time advanced by the real time passed at its rate.
@@ -246,6 +260,18 @@ const RunSession& run_session(CheckRun& run, NodeId clock) {
     return run.probe<RunSession>(clock.value());
 }
 
+std::string SessionsMade::not_run() const {
+    if (set && set->not_run.empty()) return "";
+    if (running && running->not_run.empty()) return "";
+    return set ? set->not_run : running ? running->not_run : "no session set the clock";
+}
+
+SessionsMade sessions_made(CheckRun& run, NodeId clock) {
+    SessionsMade made{run.asked<SetSession>(clock.value()), run.asked<RunSession>(clock.value())};
+    if (!made.set && !made.running) made.set = &set_session(run, clock);
+    return made;
+}
+
 Startup Startup::ask(CheckRun& run) {
     Session& s = run.session();
     auto find = [&]() -> std::optional<std::size_t> {
@@ -259,20 +285,26 @@ Startup Startup::ask(CheckRun& run) {
         }
         return std::nullopt;
     };
-    if (auto at = find()) return {at};
+    if (auto at = find()) return {at, ""};
     if (!run.options().reboot) return {};
     const NodeId id = run.node().id;
     const std::uint32_t before = s.track(id).reservations;
     static constexpr std::uint8_t kReset[] = {0x20, 0xA9};
-    s.command(run.node(), kReset);
+    const MemResult r = s.command(run.node(), kReset);
+    // A node may refuse to restart (OpenMRN on Linux: 0x1041); then no start-up is coming.
+    if (r.rejected && !r.timed_out && r.error != 0 && !find())
+        return {std::nullopt, "Reset/Reboot rejected with " + base::hex(r.error, 4) +
+                                  ": the start-up was not observed"};
     s.run_until([&] { return find().has_value(); }, 10s);
     const std::uint32_t after = s.track(id).reservations;
     if (after > before) s.excuse_reservations(id, after - before);
-    return {find()};
+    return {find(), ""};
 }
 
 std::string startup_gate(CheckRun& run) {
-    if (run.probe<Startup>().mark) return "";
+    const Startup& st = run.probe<Startup>();
+    if (st.mark) return "";
+    if (!st.refused.empty()) return st.refused;
     return run.options().reboot ? "no Initialization Complete within 10 s of Reset/Reboot"
                                 : "needs --reboot (sends Reset/Reboot), or the node starting "
                                   "while lcc-conform runs";

@@ -81,10 +81,23 @@ const ClockQuery& query_of(CheckRun& run, NodeId clock);
 const SetSession& set_session(CheckRun& run, NodeId clock);
 const RunSession& run_session(CheckRun& run, NodeId clock);
 
+/// The sessions that set the clock in this run, whichever the selected checks made (nullptr:
+/// not made); when neither was, the Set exchange is made now. For the checks that judge every
+/// session (clock.report-frequency, clock.restored), so that a selection of the Set checks or
+/// of the midnight checks does not also make the other session.
+struct SessionsMade {
+    const SetSession* set = nullptr;
+    const RunSession* running = nullptr;
+    /// Why nothing was set ("" when a session ran).
+    std::string not_run() const;
+};
+SessionsMade sessions_made(CheckRun& run, NodeId clock);
+
 /// Where the node's last start-up begins in the session's messages (its Initialization
 /// Complete); with --reboot and none seen yet, a Reset/Reboot is sent for it.
 struct Startup {
     std::optional<std::size_t> mark;  ///< nullopt: no start-up seen
+    std::string refused;              ///< why the node did not restart ("" when not refused)
     static Startup ask(CheckRun& run);
 };
 

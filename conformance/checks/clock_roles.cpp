@@ -161,6 +161,7 @@ void judge_clocks(CheckRun& run, const CheckSpec& spec, const std::vector<NodeId
         return out.add(p.status, p.message, p.expected, p.seen);
     }
     std::vector<std::string> details;
+    details.reserve(all.size());
     for (std::size_t i = 0; i < all.size(); ++i)
         details.push_back(bt::clock_name(clocks[i]) + ": " + all[i].message);
     const PerClock& w = all[worst];

@@ -62,16 +62,17 @@ struct Options {
     bool chosen = true;
     bool reboot = true;
     bool read_only = false;
+    std::vector<std::string> only = {"clock.*"};
 };
 
-std::vector<CheckResult> clock_checks(SimBench& b, Options o = {}) {
+std::vector<CheckResult> clock_checks(SimBench& b, const Options& o = {}) {
     auto node = b.start();
     if (!node) return {};
     ProtocolOptions po;
     po.chosen = o.chosen;
     po.reboot = o.reboot;
     po.read_only = o.read_only;
-    po.selection.only = {"clock.*"};
+    po.selection.only = o.only;
     CheckContext ctx;
     return run_protocol_checks(*b.session, *node, po, ctx);
 }
@@ -112,6 +113,20 @@ TEST(BroadcastTimeChecks, WithoutNodeOnlyTheChecksThatSetNothingRun) {
     EXPECT_TRUE(contains(set.message, "--node")) << set.message;
     expect_status(results, "clock.startup", Status::kSkip);
     EXPECT_TRUE(b->dut->clocks().front().subscribed().empty());
+}
+
+TEST(BroadcastTimeChecks, RestoredJudgesOnlyTheSessionsTheSelectionMade) {
+    auto b = clock_node({"generator default-fast rate=60 time=1955-07-04T06:00"});
+    ASSERT_TRUE(b);
+    // Alone it makes the Set exchange; with the midnight checks, the run's session only.
+    auto results = clock_checks(*b, {.only = {"clock.restored"}});
+    const auto& alone = expect_status(results, "clock.restored", Status::kPass);
+    EXPECT_TRUE(contains(alone.message, "after the Set exchange")) << alone.message;
+    EXPECT_FALSE(contains(alone.message, "midnight")) << alone.message;
+    results = clock_checks(*b, {.only = {"clock.rollover", "clock.restored"}});
+    const auto& run = expect_status(results, "clock.restored", Status::kPass);
+    EXPECT_TRUE(contains(run.message, "after the run through midnight")) << run.message;
+    EXPECT_FALSE(contains(run.message, "Set exchange")) << run.message;
 }
 
 TEST(BroadcastTimeChecks, ReadOnlySetsNothing) {
