@@ -89,6 +89,19 @@ bool whole(const std::set<std::uint64_t>& ranges, NodeId clock) {
                        [&](std::uint64_t r) { return bt::covers_whole_clock(EventId(r), clock); });
 }
 
+// "Producer Range Identified 01.01.00.00.01.00.FF.FF, Consumer Range Identified ...": the ranges
+// of the answer within the clock's block.
+std::string clock_ranges(const EventAnswers& a, NodeId clock) {
+    std::string out;
+    for (const auto& [name, ranges] :
+         {std::pair{"Producer", &a.produced_ranges}, std::pair{"Consumer", &a.consumed_ranges}})
+        for (std::uint64_t r : *ranges)
+            if (bt::clock_of(EventId(r)) == clock)
+                out += (out.empty() ? "" : ", ") + std::string(name) + " Range Identified " +
+                       EventId(r).to_string();
+    return out.empty() ? "no range of the clock" : out;
+}
+
 PerClock judge_ranges(CheckRun& run, NodeId clock) {
     const EventAnswers& a = run.probe<EventAnswers>(IdentifyTo::kTheNode);
     const std::string produced =
@@ -107,13 +120,10 @@ PerClock judge_ranges(CheckRun& run, NodeId clock) {
             "produces or consumes",
             "Producer and Consumer Range Identified " + range, seen);
     }
-    if (!whole(a.produced_ranges, clock) || !whole(a.consumed_ranges, clock)) {
-        PerClock p;
-        p.status = Status::kWarn;
-        p.message = "the generator's events are identified, but not as the two ranges of " + range +
-                    " it announces at start-up (§6.1): " + a.describe();
-        return p;
-    }
+    if (!whole(a.produced_ranges, clock) || !whole(a.consumed_ranges, clock))
+        return warn("the generator's events are identified, but not as the two ranges of " + range +
+                    " it announces at start-up (§6.1): " + clock_ranges(a, clock) + " (" +
+                    a.describe() + ")");
     return pass("Producer and Consumer Range Identified " + range + " (the whole clock)");
 }
 

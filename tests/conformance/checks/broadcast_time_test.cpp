@@ -178,6 +178,9 @@ TEST(BroadcastTimeChecks, AHalfConsumerRangeWarnsWhenIdentified) {
     const auto results = clock_checks(*b, {false, false, false});
     const auto& r = expect_status(results, "clock.identify-ranges", Status::kWarn);
     EXPECT_TRUE(contains(r.message, "01.01.00.00.01.00.FF.FF")) << r.message;
+    // The ranges it did identify, so the reader sees which half is missing.
+    EXPECT_TRUE(contains(r.message, "Consumer Range Identified 01.01.00.00.01.00.80.00"))
+        << r.message;
 }
 
 struct FaultCase {
