@@ -459,12 +459,18 @@ void restored(CheckRun& run, const CheckSpec& spec) {
     each_generated(run, spec, true, [&](NodeId c) { return judge_restored(run, c); });
 }
 
+// Each Range Identified of the clock once, in the order first sent (the start-up's and an
+// Identify Events answer's are the same messages).
 std::string ranges_text(const std::vector<ClockMsg>& msgs) {
+    std::vector<std::string> seen;
+    for (const ClockMsg& m : msgs) {
+        if (m.mti != Mti::kProducerRangeIdentified && m.mti != Mti::kConsumerRangeIdentified)
+            continue;
+        std::string one = std::string(mti_name(m.mti)) + " " + m.id.to_string();
+        if (std::find(seen.begin(), seen.end(), one) == seen.end()) seen.push_back(std::move(one));
+    }
     std::string out;
-    for (const ClockMsg& m : msgs)
-        if (m.mti == Mti::kProducerRangeIdentified || m.mti == Mti::kConsumerRangeIdentified)
-            out +=
-                (out.empty() ? "" : ", ") + std::string(mti_name(m.mti)) + " " + m.id.to_string();
+    for (const std::string& r : seen) out += (out.empty() ? "" : ", ") + r;
     return out.empty() ? "no Range Identified of the clock" : out;
 }
 
