@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -48,6 +49,7 @@ constexpr std::string_view kNodeKeys[] = {
     "fdi",
     "heartbeat",
     "command-station",
+    "clock",
 };
 // Keys of the whole process (top level only).
 constexpr std::string_view kProcessKeys[] = {"listen",
@@ -128,7 +130,7 @@ bool add_option(Raw& raw, const std::string& key, std::vector<std::string> value
     }
     if (values.empty()) values.emplace_back();
     auto [it, fresh] = keys->try_emplace(field, Value{{}, base});
-    if (!fresh && field != "fault") {
+    if (!fresh && field != "fault" && field != "clock") {
         error = std::string(where) + ": '" + key + "' is given twice";
         return false;
     }
@@ -192,7 +194,11 @@ po::options_description node_options() {
         "a train asks its controller for a sign of life after SECONDS of silence while moving, "
         "and stops when none comes in SECONDS (0..255; default 0 = never)")(
         "command-station", po::value<std::string>()->value_name("BOOL"),
-        "a command station: an allocating Train Search creates a train node (default false)");
+        "a command station: an allocating Train Search creates a train node (default false)")(
+        "clock", po::value<std::vector<std::string>>()->value_name("SPEC"),
+        "run a Broadcast Time clock (repeatable): 'generator|consumer [default-fast|"
+        "default-realtime|alternate-1|alternate-2|ID] [rate=R] [time=YYYY-MM-DDTHH:MM|now] "
+        "[stopped]' (docs/scenarios.md)");
     return node;
 }
 
@@ -750,6 +756,17 @@ private:
         const auto memory_on = memory ? parse_bool(*memory) : std::optional<bool>(true);
         if (!memory_on)
             return fail(where + ": memory-config '" + *memory + "' must be true or false");
+        std::vector<ClockConfig> clocks;
+        if (const auto it = keys.find("clock"); it != keys.end()) {
+            const auto wall =
+                std::chrono::floor<std::chrono::minutes>(std::chrono::system_clock::now());
+            for (const auto& spec : it->second.items) {
+                std::string why;
+                auto c = parse_clock_config(spec, FastTime{wall}, why);
+                if (!c) return fail(where + ": " + why);
+                clocks.push_back(*c);
+            }
+        }
         // More would contend for an alias for ever (issue 32: 5,000 nodes never started).
         if (const std::uint64_t total = scenario_.nodes.size() + g.count;
             total > can::kAliasCount) {
@@ -780,6 +797,7 @@ private:
                 config.train->identity.address += static_cast<std::uint32_t>(k);
             }
             config.command_station = g.command_station;
+            config.clocks = clocks;
             scenario_.nodes.push_back(std::move(config));
         }
         return true;

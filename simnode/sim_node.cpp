@@ -24,6 +24,14 @@ constexpr std::uint8_t kConfigSpace = 0xFD;
 // so a driver of many nodes need not hand them to it.
 constexpr Mti kAnsweredGlobals[] = {Mti::kVerifyNodeIdGlobal, Mti::kIdentifyEventsGlobal,
                                     Mti::kIdentifyProducer, Mti::kIdentifyConsumer};
+// What a node with Broadcast Time clocks also takes: reports to follow, Set, Query, Start and
+// Stop, and the consumers' identifications (a generator reports the minutes they ask for).
+constexpr Mti kClockGlobals[] = {Mti::kEventReport,
+                                 Mti::kProducerIdentifiedValid,
+                                 Mti::kConsumerIdentifiedValid,
+                                 Mti::kConsumerIdentifiedInvalid,
+                                 Mti::kConsumerIdentifiedUnknown,
+                                 Mti::kConsumerRangeIdentified};
 
 }  // namespace
 
@@ -109,7 +117,7 @@ std::unique_ptr<SimNode> SimNode::create(NodeConfig config, std::string& error) 
         served.set(Protocol::kCdi);
         if (memory->has_acdi()) served.set(Protocol::kAcdi);
     }
-    if (!model->events.empty()) served.set(Protocol::kEventExchange);
+    if (!model->events.empty() || !config.clocks.empty()) served.set(Protocol::kEventExchange);
     if (config.streams) served.set(Protocol::kStream);
     if (config.train) {
         // It produces Is Train and consumes the emergency events (TrainControlS §6.4, §5).
@@ -163,6 +171,9 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
     memory_->serve(server_);
     startup_events_ = memory_->events();
     if (faults_.watches()) find_watched();
+    const ClockQuirks quirks = faults_.clock();
+    for (const ClockConfig& c : config_.clocks) clocks_.emplace_back(c, quirks);
+    clock_send_ = [this](Message m) { stack_.send_message(std::move(m)); };
     stack_.set_message_handler([this](const Message& m) { return on_message(m); });
     std::vector<Mti> globals(std::begin(kAnsweredGlobals), std::end(kAnsweredGlobals));
     if (config_.train) {
@@ -177,6 +188,8 @@ SimNode::SimNode(NodeConfig config, NodeStackConfig stack_config,
                        {Mti::kProducerIdentifiedValid, Mti::kProducerIdentifiedInvalid,
                         Mti::kProducerIdentifiedUnknown});
     }
+    if (!clocks_.empty())
+        globals.insert(globals.end(), std::begin(kClockGlobals), std::end(kClockGlobals));
     stack_.set_global_messages(std::move(globals));
     stack_.set_datagram_handler([this](const ReceivedDatagram& d) { on_datagram(d); });
     stack_.set_initialized_handler([this] { on_initialized(); });
@@ -300,11 +313,13 @@ bool SimNode::answer_builtin(const Message& msg) {
 
 bool SimNode::answer_message(const Message& msg) {
     if (faults_.message(*life_, msg)) return true;
+    if (!clocks_.empty()) clock_message(msg);
     if ((train_ || config_.command_station) && answer_train(msg)) return true;
     switch (msg.mti) {
         case Mti::kIdentifyEventsGlobal:
         case Mti::kIdentifyEventsAddressed:
             advertise_all();
+            for (const BroadcastClock& c : clocks_) c.identify(clock_send_);
             return true;
         case Mti::kIdentifyProducer:
         case Mti::kIdentifyConsumer: {
@@ -529,7 +544,35 @@ void SimNode::on_initialized() {
         m.payload.assign(raw.begin(), raw.end());
         stack_.send_message(std::move(m));
     }
+    for (BroadcastClock& c : clocks_) c.started(stack_.now(), clock_send_);
+    arm_clocks();
     if (!std::exchange(started_, true)) faults_.started(*life_);
+}
+
+// ---------------- Broadcast Time clocks ----------------
+
+void SimNode::clock_message(const Message& msg) {
+    if (msg.destination || msg.mti == Mti::kIdentifyEventsGlobal) return;
+    for (BroadcastClock& c : clocks_) c.on_message(msg, stack_.now(), clock_send_);
+    arm_clocks();
+}
+
+// One owner timer at the clocks' earliest deadline; a later arm that finds it earlier or equal
+// leaves it, an earlier deadline supersedes it (the superseded timer then does nothing).
+void SimNode::arm_clocks() {
+    std::optional<TimePoint> next;
+    for (const BroadcastClock& c : clocks_) {
+        const auto d = c.next_deadline();
+        if (d && (!next || *d < *next)) next = d;
+    }
+    if (!next || (clock_timer_ && *clock_timer_ <= *next)) return;
+    clock_timer_ = next;
+    stack_.schedule(*next, [this, at = *next](TimePoint now) {
+        if (clock_timer_ != at) return;
+        clock_timer_.reset();
+        for (BroadcastClock& c : clocks_) c.poll(now, clock_send_);
+        arm_clocks();
+    });
 }
 
 void SimNode::abort_node(std::chrono::milliseconds silence) {

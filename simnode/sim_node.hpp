@@ -20,6 +20,7 @@
 #include "openlcb/node_stack.hpp"
 #include "openlcb/pip.hpp"
 #include "simnode/answer_delay.hpp"
+#include "simnode/broadcast_clock.hpp"
 #include "simnode/event_roles.hpp"
 #include "simnode/faults.hpp"
 #include "simnode/faults/fault_hooks.hpp"
@@ -59,6 +60,8 @@ struct NodeConfig {
     /// A command station (TrainSearchS §6.2): an allocating Train Search creates a train node
     /// (see SimNode::set_train_factory) from this template; its node IDs follow this node's.
     std::optional<TrainConfig> command_station;
+    /// Broadcast Time clocks the node runs (generators and consumers; docs/scenarios.md).
+    std::vector<ClockConfig> clocks;
 };
 
 /// Counters of what a node did, for tests and the program's statistics.
@@ -111,6 +114,8 @@ public:
     std::vector<std::pair<EventId, EventRole>> events() const { return advertised_events(); }
     /// What the node did so far.
     const NodeCounters& counters() const { return counters_; }
+    /// The node's Broadcast Time clocks, in NodeConfig::clocks order.
+    const std::vector<BroadcastClock>& clocks() const { return clocks_; }
     /// Reset/Reboot commands obeyed.
     std::uint32_t reboot_count() const { return counters_.reboots; }
     /// The train (nullptr when the node is none).
@@ -178,6 +183,8 @@ private:
     bool answer_search(const Message& msg);
     void allocate(train_search::Query query, EventId asked);
     bool send_message(Message msg);
+    void clock_message(const Message& msg);
+    void arm_clocks();
 
     // A Read Stream waiting for its stream to be accepted, or being sent.
     struct PendingStreamRead {
@@ -207,6 +214,9 @@ private:
     // Event IDs at the last start-up (events-stale-after-write identifies only these).
     std::vector<std::pair<EventId, EventRole>> startup_events_;
     std::map<std::uint32_t, PendingStreamRead> stream_reads_;  // by stream handle
+    std::vector<BroadcastClock> clocks_;
+    BroadcastClock::Send clock_send_;       // what the clocks send goes out through the stack
+    std::optional<TimePoint> clock_timer_;  // when the clocks' scheduled poll runs
     LogHandler log_;
     std::unique_ptr<TrainNode> train_;  // the train of a train node
     TrainFactory train_factory_;

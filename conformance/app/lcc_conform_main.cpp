@@ -458,9 +458,10 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         }
         one.protocol_only = t.protocol_only;
         if (!t.protocol_only.empty()) {
-            one.selection.categories = {Category::kFrame,  Category::kMessage, Category::kSnip,
-                                        Category::kPip,    Category::kEvents,  Category::kTrain,
-                                        Category::kSearch, Category::kFdi};
+            one.selection.categories = {
+                Category::kFrame, Category::kMessage, Category::kSnip,  Category::kPip,
+                Category::kEvents, Category::kTrain,  Category::kSearch, Category::kFdi,
+                Category::kClock};
         }
         selection = one.selection;
         if (targets.size() > 1) {

@@ -37,7 +37,9 @@ std::vector<CheckSpec> build_registry() {
                         k::event_phase_checks,
                         k::train_control_checks,
                         k::train_search_checks,
-                        k::fdi_checks}) {
+                        k::fdi_checks,
+                        k::broadcast_time_checks,
+                        k::clock_consumer_checks}) {
         std::vector<CheckSpec> part = family();
         all.insert(all.end(), part.begin(), part.end());
     }
@@ -121,10 +123,10 @@ const CheckSpec* find_check(std::string_view result_id) {
 }
 
 bool is_check_pattern(std::string_view pattern) {
-    static constexpr std::array<Category, 16> kAll = {
+    static constexpr std::array<Category, 17> kAll = {
         C::kFrame,  C::kMessage, C::kPip,      C::kSnip, C::kDatagram, C::kMemory,
         C::kCdi,    C::kAcdi,    C::kEncoding, C::kLink, C::kNode,     C::kEvents,
-        C::kStream, C::kTrain,   C::kSearch,   C::kFdi};
+        C::kStream, C::kTrain,   C::kSearch,   C::kFdi,  C::kClock};
     const std::string_view first = pattern.substr(0, pattern.find('.'));
     return std::any_of(kAll.begin(), kAll.end(),
                        [&](Category c) { return category_name(c) == first; });
@@ -234,8 +236,22 @@ const std::vector<OlcbCheckerCheck>& olcbchecker_checks() {
          "the text is judged by cdi's FDI support (check_fdi_rules, validate_fdi), as lcc-cdi "
          "validate judges a file; the functions it names are queried (fdi.functions)"},
         {"fd30", "FDI space refuses writes", ""},
-        {"bt, dd", "broadcast time, DCC detector",
-         "not covered: protocols of other node kinds than configurable nodes and trains"},
+        {"bt10", "Query answered with the synchronization sequence", ""},
+        {"bt20", "Set: the sequence carries what was set", ""},
+        {"bt30", "Set: the effective Report at once", ""},
+        {"bt40", "Sets 1 s apart: one sequence", ""},
+        {"bt50", "Report Time at most once a real minute (at least once in 2 minutes)",
+         "the upper bound only: §6.2 asks for a report at least once a real hour, not every two "
+         "minutes, so a clock reporting every four minutes (OpenMRN) is no fault"},
+        {"bt60", "a Report Time asked for by Consumer Identified is produced", ""},
+        {"bt70", "Date Rollover, Report Year and Date after midnight", ""},
+        {"bt80", "generator start-up: ranges and sequence", ""},
+        {"bt100", "consumer start-up: Consumer (Range) Identified", ""},
+        {"bt110", "consumer: Identify Consumer after a sequence", ""},
+        {"bt120", "consumer: Identify Consumer after Stop and Start", ""},
+        {"bt130", "consumer: Identify Consumer after a rate change", ""},
+        {"dd", "DCC detector",
+         "not covered: protocols of other node kinds than configurable nodes, trains and clocks"},
     };
     return all;
 }

@@ -177,6 +177,14 @@ public:
             it = held.insert_or_assign(key, P::ask(*this, key)).first;
         return it->second;
     }
+    /// The keyed probe P for key when some check asked it, else nullptr (never asks): for a
+    /// check that judges whatever exchanges the selected checks made.
+    template <KeyedCheckProbe P>
+    const P* asked(const typename P::Key& key) {
+        auto& held = slot<P, std::map<typename P::Key, P>>();
+        const auto it = held.find(key);
+        return it == held.end() ? nullptr : &it->second;
+    }
     /// Takes P's result out of the cache (nullopt when never asked): once the checks are done,
     /// hand_over() gives it to the later phases this way.
     template <CheckProbe P>

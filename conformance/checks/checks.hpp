@@ -102,6 +102,32 @@ private:
     bool reverse_ = false;
 };
 
+/// The Broadcast Time clocks (their 6-byte Specific Upper Parts) a node generates, and those it
+/// only consumes, from its answer to Identify Events addressed (clock_roles.cpp). Broadcast
+/// Time has no PIP bit: this is how a check tells a clock. A generator identifies producing a
+/// well-known clock's events (01.01.00.00.01.00 to .03), or a produced range of exactly one
+/// clock's 16 bits with consumed events in the same block (§6.1's two ranges).
+struct ClockRoles {
+    std::vector<NodeId> generated;  ///< well-known clocks first, in their order
+    std::vector<NodeId> consumed;   ///< consumed and not generated
+    bool answered = false;          ///< Identify Events addressed got an answer
+
+    static ClockRoles ask(CheckRun& run);
+    /// "Default Fast Clock, Alternate Clock 1".
+    std::string describe() const;
+};
+
+/// Why a check of a protocol no PIP bit announces does not apply ("" when it does): decided
+/// from the node's answer to Identify Events addressed (the EventAnswers probe), `applies`
+/// saying whether it makes the node one the check is for, `what` naming such a node ("a
+/// Broadcast Time clock generator"). The one gate of such checks (clock_roles.cpp).
+std::string not_identified_as(CheckRun& run, const std::string& what,
+                              const std::function<bool(const EventAnswers&)>& applies);
+
+/// True when frame is a single-frame PCER of a clock the node generates or consumes: a report
+/// §6.2 requires, or a display's Query (message.no-unsolicited does not count it).
+bool is_clock_report(CheckRun& run, const CanFrame& frame);
+
 /// frame.cpp: AME answered, CID defended.
 std::vector<CheckSpec> frame_checks();
 /// message.cpp: Verify Node ID, unknown MTIs, Protocol Support Inquiry, unsolicited traffic.
@@ -146,6 +172,11 @@ std::vector<CheckSpec> train_control_checks();
 std::vector<CheckSpec> train_search_checks();
 /// fdi.cpp: the FDI of space 0xFA: its space, download, XML and functions.
 std::vector<CheckSpec> fdi_checks();
+/// broadcast_time_checks.cpp: a Broadcast Time generator (Query, Set, reports, rollover,
+/// start-up, the restore).
+std::vector<CheckSpec> broadcast_time_checks();
+/// clock_consumer_checks.cpp: a Broadcast Time consumer (start-up, Identify Consumer).
+std::vector<CheckSpec> clock_consumer_checks();
 /// message_addressing.cpp: disruptive checks that run last of all the protocol checks (e.g.
 /// the duplicate node ID, behind --thorough).
 std::vector<CheckSpec> final_checks();

@@ -17,6 +17,7 @@
 #include "conformance/checks/checks.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "openlcb/can_defs.hpp"
+#include "openlcb/event_range.hpp"
 
 namespace olcb::conform::checks {
 namespace {
@@ -35,16 +36,10 @@ constexpr std::uint32_t kMaxRead = 64;
 constexpr std::uint64_t kUnknownEvent = 0x0501'0101'3FFF'FFFEull;
 // events.follow-write writes 05.01.01.01.3F.FE.xx.yy, xx.yy from the variable's address.
 constexpr std::uint64_t kFollowBase = 0x0501'0101'3FFE'0000ull;
-// An Identify Events answer may go on this many answer windows (hundreds of events at CAN speed).
-constexpr int kMaxAnswerWindows = 10;
 // Event Inquiry: Identify Events is answered with every event the node produces and consumes.
 constexpr std::string_view kInquiry = "EventTransportS §6.2";
 
-// How long answers are awaited: quiet ends a stream of answers, answer bounds the first one.
-struct Windows {
-    Duration quiet = 250ms;
-    Duration answer = 1s;
-};
+using Windows = AnswerWindows;
 
 Windows windows_of(const ProtocolOptions& o) {
     return {o.window, o.answer_window};
@@ -57,132 +52,12 @@ Windows windows_of(const CheckContext& ctx) {
     return w;
 }
 
-bool is_producer_identified(Mti m) {
-    const auto v = to_u16(m);
-    return v >= 0x0544 && v <= 0x0547;
-}
-
-bool is_consumer_identified(Mti m) {
-    const auto v = to_u16(m);
-    return v >= 0x04C4 && v <= 0x04C7;
-}
-
-bool is_identification(Mti m) {
-    return is_producer_identified(m) || is_consumer_identified(m) ||
-           m == Mti::kProducerRangeIdentified || m == Mti::kConsumerRangeIdentified;
-}
-
-// The don't-care bits of a range (fact sheet §9): the trailing run of bits equal to bit 0.
-std::uint64_t range_mask(std::uint64_t r) {
-    return ((r & 1) ? (r ^ (r + 1)) : (r ^ (r - 1))) >> 1;
-}
-
 bool in_range(std::uint64_t id, std::uint64_t range) {
-    const std::uint64_t keep = ~range_mask(range);
-    return (id & keep) == (range & keep);
+    return olcb::in_range(EventId(id), EventId(range));
 }
 
 std::string event_text(std::uint64_t id) {
     return EventId(id).to_string();
-}
-
-// Whom Identify Events is sent to: every node (global) or the node (addressed).
-enum class IdentifyTo : std::uint8_t { kEveryNode, kTheNode };
-
-// What a node identified: exact events and ranges, per role. Also the probe of the checks that
-// judge the answer to one Identify Events, asked once per run per form, so the quiet wait is
-// made once.
-struct EventAnswers {
-    using Key = IdentifyTo;
-
-    std::set<std::uint64_t> produced, consumed, produced_ranges, consumed_ranges;
-    std::size_t messages = 0;
-
-    static EventAnswers ask(CheckRun& run, IdentifyTo to);
-
-    bool empty() const { return messages == 0; }
-    bool produces(std::uint64_t id) const {
-        return produced.count(id) || std::any_of(produced_ranges.begin(), produced_ranges.end(),
-                                                 [&](std::uint64_t r) { return in_range(id, r); });
-    }
-    bool consumes(std::uint64_t id) const {
-        return consumed.count(id) || std::any_of(consumed_ranges.begin(), consumed_ranges.end(),
-                                                 [&](std::uint64_t r) { return in_range(id, r); });
-    }
-    void add(const Message& m) {
-        const auto id = EventId::from_bytes(m.payload);
-        if (!id) return;
-        ++messages;
-        if (is_producer_identified(m.mti)) produced.insert(id->value());
-        if (is_consumer_identified(m.mti)) consumed.insert(id->value());
-        if (m.mti == Mti::kProducerRangeIdentified) produced_ranges.insert(id->value());
-        if (m.mti == Mti::kConsumerRangeIdentified) consumed_ranges.insert(id->value());
-    }
-    std::string describe() const {
-        return std::to_string(messages) + " Identified messages (" +
-               std::to_string(produced.size()) + " produced, " + std::to_string(consumed.size()) +
-               " consumed, " + std::to_string(produced_ranges.size() + consumed_ranges.size()) +
-               " ranges)";
-    }
-};
-
-// Messages from the node (alias) after mark that want accepts: awaited until done(got) holds
-// (at most first), then until quiet has passed since sending and since the last one (at most
-// kMaxAnswerWindows answer windows in all). Waits in steps: a simulated link jumps to the end of
-// a wait when nothing is scheduled, so the end of each step is the next moment that matters.
-std::vector<Message> await_answers(Session& s, std::uint16_t alias, std::size_t mark,
-                                   const std::function<bool(const Message&)>& want,
-                                   const std::function<bool(const std::vector<Message>&)>& done,
-                                   Duration first, const Windows& w) {
-    std::vector<Message> got;
-    std::size_t scanned = mark;
-    const TimePoint sent = s.link().now();
-    const TimePoint stop = sent + w.answer * kMaxAnswerWindows;
-    TimePoint last = sent;
-    auto scan = [&] {
-        bool fresh = false;
-        for (const ReceivedMessage& r : s.messages_since(scanned)) {
-            if (r.message.source.alias != alias || !want(r.message)) continue;
-            got.push_back(r.message);
-            last = std::max(last, r.at);
-            fresh = true;
-        }
-        scanned = s.message_mark();
-        return fresh;
-    };
-    s.run_until(
-        [&] {
-            scan();
-            return done(got);
-        },
-        first);
-    for (;;) {
-        scan();
-        const TimePoint until = std::min(stop, last + w.quiet);
-        const TimePoint now = s.link().now();
-        if (now >= until) break;
-        s.run_until(scan, until - now);
-    }
-    return got;
-}
-
-// Identify Events (global or addressed to the node) and every Identified message it brought.
-// first bounds the wait for the first answer.
-EventAnswers identify_events(Session& s, const NodeInfo& node, IdentifyTo to, Duration first,
-                             const Windows& w) {
-    const bool addressed = to == IdentifyTo::kTheNode;
-    const std::uint16_t alias = s.alias_of(node);
-    Message m;
-    m.mti = addressed ? Mti::kIdentifyEventsAddressed : Mti::kIdentifyEventsGlobal;
-    if (addressed) m.destination = NodeHandle{node.id, alias};
-    const std::size_t mark = s.message_mark();
-    s.send(m);
-    const auto got = await_answers(
-        s, alias, mark, [](const Message& r) { return is_identification(r.mti); },
-        [](const std::vector<Message>& g) { return !g.empty(); }, first, w);
-    EventAnswers a;
-    for (const Message& r : got) a.add(r);
-    return a;
 }
 
 bool has_event_bit(CheckRun& run) {
@@ -247,7 +122,9 @@ IdentifyBoth IdentifyBoth::ask(CheckRun& run) {
     return both;
 }
 
-EventAnswers EventAnswers::ask(CheckRun& run, IdentifyTo to) {
+// EventAnswers::ask (probes.hpp declares the probe; its asking lives here, beside the event
+// checks' windows and the shared Identify Events exchange).
+EventAnswers answers_of(CheckRun& run, IdentifyTo to) {
     if (crowd(run) == 0) {
         const IdentifyBoth& both = run.probe<IdentifyBoth>();
         if (both.split) return to == IdentifyTo::kEveryNode ? both.global : both.addressed;
@@ -765,3 +642,11 @@ std::vector<CheckSpec> event_phase_checks() {
 }
 
 }  // namespace olcb::conform::checks
+
+namespace olcb::conform {
+
+EventAnswers EventAnswers::ask(CheckRun& run, IdentifyTo to) {
+    return checks::answers_of(run, to);
+}
+
+}  // namespace olcb::conform

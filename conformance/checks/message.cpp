@@ -69,6 +69,10 @@ void no_unsolicited(CheckRun& run, const CheckSpec& spec) {
         if (!run.from_node(f) || !can::is_message(f.id) ||
             can::frame_format(f.id) != can::FrameFormat::kGlobalAddressed)
             continue;
+        // A clock generator's reports are required of it (BroadcastTimeS §6.2), a display's
+        // Query is how it learns the time.
+        if (can::can_mti(f.id) == (to_u16(Mti::kEventReport) & 0x0FFF) && is_clock_report(run, f))
+            continue;
         for (Mti m : kNeverUnasked) {
             if (can::can_mti(f.id) == (to_u16(m) & 0x0FFF) && seen.empty())
                 seen = std::string(mti_name(m));

@@ -11,6 +11,7 @@
 #include "memory/acdi.hpp"
 #include "memory/memory_config_defs.hpp"
 #include "openlcb/can_defs.hpp"
+#include "openlcb/event_range.hpp"
 
 namespace olcb::conform {
 namespace {
@@ -407,6 +408,111 @@ void hand_over(CheckRun& run, CheckContext& ctx) {
         ctx.options = options->reply;
     for (const auto& [space, info] : run.release_each<SpaceInfoProbe>()) ctx.spaces[space] = info;
     ctx.temporary_rejects += run.heard().temporary_rejects;
+}
+
+// ---- Identify Events ----
+
+namespace {
+
+// An Identify Events answer may go on this many answer windows (hundreds of events at CAN speed).
+constexpr int kMaxAnswerWindows = 10;
+
+}  // namespace
+
+bool is_producer_identified(Mti m) {
+    const auto v = to_u16(m);
+    return v >= 0x0544 && v <= 0x0547;
+}
+
+bool is_consumer_identified(Mti m) {
+    const auto v = to_u16(m);
+    return v >= 0x04C4 && v <= 0x04C7;
+}
+
+bool is_identification(Mti m) {
+    return is_producer_identified(m) || is_consumer_identified(m) ||
+           m == Mti::kProducerRangeIdentified || m == Mti::kConsumerRangeIdentified;
+}
+
+bool EventAnswers::produces(std::uint64_t id) const {
+    return produced.count(id) ||
+           std::any_of(produced_ranges.begin(), produced_ranges.end(),
+                       [&](std::uint64_t r) { return in_range(EventId(id), EventId(r)); });
+}
+
+bool EventAnswers::consumes(std::uint64_t id) const {
+    return consumed.count(id) ||
+           std::any_of(consumed_ranges.begin(), consumed_ranges.end(),
+                       [&](std::uint64_t r) { return in_range(EventId(id), EventId(r)); });
+}
+
+void EventAnswers::add(const Message& m) {
+    const auto id = EventId::from_bytes(m.payload);
+    if (!id) return;
+    ++messages;
+    if (is_producer_identified(m.mti)) produced.insert(id->value());
+    if (is_consumer_identified(m.mti)) consumed.insert(id->value());
+    if (m.mti == Mti::kProducerRangeIdentified) produced_ranges.insert(id->value());
+    if (m.mti == Mti::kConsumerRangeIdentified) consumed_ranges.insert(id->value());
+}
+
+std::string EventAnswers::describe() const {
+    return std::to_string(messages) + " Identified messages (" + std::to_string(produced.size()) +
+           " produced, " + std::to_string(consumed.size()) + " consumed, " +
+           std::to_string(produced_ranges.size() + consumed_ranges.size()) + " ranges)";
+}
+
+std::vector<Message> await_answers(Session& s, std::uint16_t alias, std::size_t mark,
+                                   const std::function<bool(const Message&)>& want,
+                                   const std::function<bool(const std::vector<Message>&)>& done,
+                                   Duration first, const AnswerWindows& w) {
+    std::vector<Message> got;
+    std::size_t scanned = mark;
+    const TimePoint sent = s.link().now();
+    const TimePoint stop = sent + w.answer * kMaxAnswerWindows;
+    TimePoint last = sent;
+    auto scan = [&] {
+        bool fresh = false;
+        for (const ReceivedMessage& r : s.messages_since(scanned)) {
+            if (r.message.source.alias != alias || !want(r.message)) continue;
+            got.push_back(r.message);
+            last = std::max(last, r.at);
+            fresh = true;
+        }
+        scanned = s.message_mark();
+        return fresh;
+    };
+    s.run_until(
+        [&] {
+            scan();
+            return done(got);
+        },
+        first);
+    for (;;) {
+        scan();
+        const TimePoint until = std::min(stop, last + w.quiet);
+        const TimePoint now = s.link().now();
+        if (now >= until) break;
+        s.run_until(scan, until - now);
+    }
+    return got;
+}
+
+EventAnswers identify_events(Session& s, const NodeInfo& node, IdentifyTo to, Duration first,
+                             const AnswerWindows& w) {
+    const bool addressed = to == IdentifyTo::kTheNode;
+    const std::uint16_t alias = s.alias_of(node);
+    Message m;
+    m.mti = addressed ? Mti::kIdentifyEventsAddressed : Mti::kIdentifyEventsGlobal;
+    if (addressed) m.destination = NodeHandle{node.id, alias};
+    const std::size_t mark = s.message_mark();
+    s.send(m);
+    const auto got = await_answers(
+        s, alias, mark, [](const Message& r) { return is_identification(r.mti); },
+        [](const std::vector<Message>& g) { return !g.empty(); }, first, w);
+    EventAnswers a;
+    for (const Message& r : got) a.add(r);
+    return a;
 }
 
 }  // namespace olcb::conform

@@ -3,9 +3,12 @@
 // the later phases of the node's run. A probe only one family uses lives in that family's file.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -117,6 +120,60 @@ struct AcdiProbe {
 
     static AcdiProbe ask(CheckRun& run);
 };
+
+/// How long answers to an Identify message are awaited: quiet ends a stream of answers, answer
+/// bounds the wait for the first one.
+struct AnswerWindows {
+    Duration quiet = std::chrono::milliseconds(250);
+    Duration answer = std::chrono::seconds(1);
+};
+
+/// Producer Identified Valid/Invalid/Reserved/Unknown.
+bool is_producer_identified(Mti m);
+/// Consumer Identified Valid/Invalid/Reserved/Unknown.
+bool is_consumer_identified(Mti m);
+/// Any Producer/Consumer Identified, or a Range Identified.
+bool is_identification(Mti m);
+
+/// Whom Identify Events is sent to: every node (global) or the node (addressed).
+enum class IdentifyTo : std::uint8_t { kEveryNode, kTheNode };
+
+/// What a node identified in answer to one Identify Events: exact events and ranges, per role.
+/// The probe of the event checks and of the checks of protocols no PIP bit announces (Broadcast
+/// Time: a clock generator is a node that identifies producing a clock's events), asked once per
+/// run per form, so its quiet wait is made once.
+struct EventAnswers {
+    using Key = IdentifyTo;
+
+    std::set<std::uint64_t> produced, consumed, produced_ranges, consumed_ranges;
+    std::size_t messages = 0;
+
+    static EventAnswers ask(CheckRun& run, IdentifyTo to);
+
+    bool empty() const { return messages == 0; }
+    /// Identified as produced, exactly or in a range.
+    bool produces(std::uint64_t id) const;
+    /// Identified as consumed, exactly or in a range.
+    bool consumes(std::uint64_t id) const;
+    /// Adds an Identified message (others are ignored).
+    void add(const Message& m);
+    /// "12 Identified messages (3 produced, 8 consumed, 1 ranges)".
+    std::string describe() const;
+};
+
+/// Messages from the node (alias) after mark that want accepts: awaited until done(got) holds
+/// (at most first), then until quiet has passed since sending and since the last one (at most ten
+/// answer windows in all). Waits in steps: a simulated link jumps to the end of a wait when
+/// nothing is scheduled, so the end of each step is the next moment that matters.
+std::vector<Message> await_answers(Session& s, std::uint16_t alias, std::size_t mark,
+                                   const std::function<bool(const Message&)>& want,
+                                   const std::function<bool(const std::vector<Message>&)>& done,
+                                   Duration first, const AnswerWindows& w);
+
+/// Identify Events (global or addressed to the node) and every Identified message it brought;
+/// first bounds the wait for the first answer.
+EventAnswers identify_events(Session& s, const NodeInfo& node, IdentifyTo to, Duration first,
+                             const AnswerWindows& w);
 
 /// Get Address Space Information of space, the exchange's outcome in outcome (the probe's
 /// exchange; short_read_checks() asks it after the checks too).

@@ -33,8 +33,9 @@ struct ProtocolOptions {
     bool no_stream = false;
     /// --reboot: checks that need a Reset/Reboot (the start-up sequence) may send one.
     bool reboot = false;
-    /// The user named the node (--node): the checks that change a train's state (speed,
-    /// functions, controller, listeners) may run; never on a node found by discovery.
+    /// The user named the node (--node): the checks that change a state no backup holds (a
+    /// train's speed, functions, controller and listeners; a Broadcast Time clock's time, which
+    /// they put back) may run; never on a node found by discovery.
     bool named = false;
     /// --command-station: the node creates train nodes on request (TrainSearchS §6.2), and the
     /// checks that make it create some may run (the trains stay, stopped and released).

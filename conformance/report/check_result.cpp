@@ -53,6 +53,8 @@ std::string_view category_name(Category category) {
             return "search";
         case Category::kFdi:
             return "fdi";
+        case Category::kClock:
+            return "clock";
     }
     return "?";
 }

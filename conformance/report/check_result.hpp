@@ -34,12 +34,13 @@ enum class Category : std::uint8_t {
     kTrain,   ///< Train Control: a train node's commands, replies, state and memory spaces
     kSearch,  ///< Train Search: finding trains, a command station creating them
     kFdi,     ///< Function Description Information in space 0xFA
+    kClock,   ///< Broadcast Time: clock generators and consumers
 };
 
 /// "PASS", "FAIL", "WARN" or "SKIP".
 std::string_view status_name(Status status);
 /// "frame", "message", "pip", "snip", "datagram", "memory", "cdi", "acdi", "encoding", "link",
-/// "node", "events", "stream", "train", "search" or "fdi".
+/// "node", "events", "stream", "train", "search", "fdi" or "clock".
 std::string_view category_name(Category category);
 
 /// One executed check.

@@ -102,6 +102,12 @@ EventPolicy ActiveFaults::events() const {
     return policy;
 }
 
+ClockQuirks ActiveFaults::clock() const {
+    ClockQuirks quirks;
+    each(on_, &FaultHooks::clock, quirks);
+    return quirks;
+}
+
 void ActiveFaults::started(NodeLife& life) const {
     each(on_, &FaultHooks::started, life);
 }

@@ -19,6 +19,7 @@
 #include "memory/snip.hpp"
 #include "openlcb/node_stack.hpp"
 #include "openlcb/train_control.hpp"
+#include "simnode/broadcast_clock.hpp"
 #include "simnode/faults.hpp"
 
 namespace olcb::cdi {
@@ -204,6 +205,8 @@ struct FaultHooks {
     void (*store)(StoredValue&, FaultValue) = nullptr;
     /// Which event IDs it identifies.
     void (*events)(EventPolicy&, FaultValue) = nullptr;
+    /// How its Broadcast Time clocks break the standard.
+    void (*clock)(ClockQuirks&, FaultValue) = nullptr;
 
     /// Its train behaviour (a train node only).
     void (*train)(TrainBuild&, FaultValue) = nullptr;
@@ -260,6 +263,7 @@ public:
     bool stores() const;
     void store(const cdi::Element& element, std::span<std::uint8_t> bytes) const;
     EventPolicy events() const;
+    ClockQuirks clock() const;
 
     void started(NodeLife& life) const;
     void powering_up(NodeLife& life) const;

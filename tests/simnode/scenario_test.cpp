@@ -305,6 +305,26 @@ TEST(ScenarioTrainTest, BadTrainKeysAreRefusedByName) {
     EXPECT_FALSE(parse_scenario_text(node + "train-address = 3\nfdi = nowhere.xml\n",
                                      scenarios_dir(), {}, error));
     EXPECT_NE(error.find("node: FDI file: "), std::string::npos) << error;
+TEST(ScenarioClockTest, ClockKeysGiveEachNodeItsClocks) {
+    std::string error;
+    const auto s = parse_scenario_text(
+        test_support::read_text(fs::path(OLCB_SOURCE_DIR) / "scenarios/clock.ini"),
+        fs::path(OLCB_SOURCE_DIR) / "scenarios", {}, error);
+    ASSERT_TRUE(s) << error;
+    ASSERT_EQ(s->nodes.size(), 4u);
+    ASSERT_EQ(s->nodes[0].clocks.size(), 1u);
+    EXPECT_EQ(clock_config_text(s->nodes[0].clocks[0]),
+              "generator default-fast rate=60.00 time=1955-07-04T06:00 running");
+    EXPECT_EQ(s->nodes[1].clocks.size(), 2u);
+    EXPECT_EQ(s->nodes[3].clocks.at(1).role, ClockRole::kConsumer);
+    // The command line replaces the file's clocks; a bad one is refused by name.
+    const auto over = parse(std::string(kOneNode) + "clock = generator\n",
+                            {"--clock", "consumer alternate-2"}, error);
+    ASSERT_TRUE(over) << error;
+    ASSERT_EQ(over->nodes[0].clocks.size(), 1u);
+    EXPECT_EQ(over->nodes[0].clocks[0].clock, broadcast_time::kAlternateClock2);
+    EXPECT_FALSE(parse(std::string(kOneNode) + "clock = generator rate=fast\n", {}, error));
+    EXPECT_NE(error.find("rate 'fast'"), std::string::npos) << error;
 }
 
 }  // namespace
