@@ -763,7 +763,7 @@ private:
             for (const auto& spec : it->second.items) {
                 std::string why;
                 auto c = parse_clock_config(spec, FastTime{wall}, why);
-                if (!c) return fail(where + ": " + why);
+                if (!c) return fail(std::string(where).append(": ").append(why));
                 clocks.push_back(*c);
             }
         }

@@ -458,10 +458,9 @@ int check_nodes(Session& session, Link& link, const std::vector<NodeInfo>& nodes
         }
         one.protocol_only = t.protocol_only;
         if (!t.protocol_only.empty()) {
-            one.selection.categories = {
-                Category::kFrame, Category::kMessage, Category::kSnip,  Category::kPip,
-                Category::kEvents, Category::kTrain,  Category::kSearch, Category::kFdi,
-                Category::kClock};
+            one.selection.categories = {Category::kFrame,  Category::kMessage, Category::kSnip,
+                                        Category::kPip,    Category::kEvents,  Category::kTrain,
+                                        Category::kSearch, Category::kFdi,     Category::kClock};
         }
         selection = one.selection;
         if (targets.size() > 1) {

@@ -305,6 +305,8 @@ TEST(ScenarioTrainTest, BadTrainKeysAreRefusedByName) {
     EXPECT_FALSE(parse_scenario_text(node + "train-address = 3\nfdi = nowhere.xml\n",
                                      scenarios_dir(), {}, error));
     EXPECT_NE(error.find("node: FDI file: "), std::string::npos) << error;
+}
+
 TEST(ScenarioClockTest, ClockKeysGiveEachNodeItsClocks) {
     std::string error;
     const auto s = parse_scenario_text(

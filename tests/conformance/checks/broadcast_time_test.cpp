@@ -59,7 +59,7 @@ std::unique_ptr<SimBench> clock_node(const std::vector<std::string>& specs,
 }
 
 struct Options {
-    bool chosen = true;
+    bool named = true;
     bool reboot = true;
     bool read_only = false;
     std::vector<std::string> only = {"clock.*"};
@@ -69,7 +69,7 @@ std::vector<CheckResult> clock_checks(SimBench& b, const Options& o = {}) {
     auto node = b.start();
     if (!node) return {};
     ProtocolOptions po;
-    po.chosen = o.chosen;
+    po.named = o.named;
     po.reboot = o.reboot;
     po.read_only = o.read_only;
     po.selection.only = o.only;
