@@ -514,7 +514,7 @@ constexpr auto kShall = Strength::kShall;
 // The entries judging the Query and the Set exchange.
 std::vector<CheckSpec> set_entries() {
     return {
-        {"clock.identify-ranges", 741, kClock, "BroadcastTimeS §6.1; EventTransportS §6.2", kShall,
+        {"clock.identify-ranges", 711, kClock, "BroadcastTimeS §6.1; EventTransportS §6.2", kShall,
          "a generator identifies the Report, Start/Stop and Date Rollover events it produces and "
          "the Set, Query and Start/Stop events it consumes; not as the two whole-clock ranges "
          "it announces at start-up WARNs",
@@ -522,7 +522,7 @@ std::vector<CheckSpec> set_entries() {
          "(the Identify Events addressed answer) for each clock the node generates: events of "
          "every form covered, ideally by Producer and Consumer Range Identified of all 16 bits",
          identify_ranges},
-        {"clock.query", 742, kClock, "BroadcastTimeS §6.3, §6.4", kShall,
+        {"clock.query", 712, kClock, "BroadcastTimeS §6.3, §6.4", kShall,
          "a Query is answered with Producer Identified Valid for Start/Stop, Rate, Year, Date "
          "and Time in this order, then the next minute's Report Time when it becomes valid",
          "bt10",
@@ -530,26 +530,26 @@ std::vector<CheckSpec> set_entries() {
          "before it at a negative rate) when the clock runs and its next minute is within 10 s "
          "(--thorough: 65 s); nothing more while stopped",
          query},
-        {"clock.set-immediate", 743, kClock, "BroadcastTimeS §6.5", kShall,
+        {"clock.set-immediate", 713, kClock, "BroadcastTimeS §6.5", kShall,
          "a Set Time, Date, Year or Rate takes effect at once and the generator produces the "
          "effective Report",
          "bt30",
          "(--node; the clock's state saved by clock.query) Stop, Set Time 01:23, Set Date 07-22, "
          "Set Year 2023, a second later Set Rate 4.00: each Report within the answer window",
          set_immediate},
-        {"clock.set-sync", 744, kClock, "BroadcastTimeS §6.3, §6.5", kShall,
+        {"clock.set-sync", 714, kClock, "BroadcastTimeS §6.3, §6.5", kShall,
          "three seconds after the last Set the synchronization sequence carries what was set",
          "bt20",
          "(the same Sets) the sequence after the last Set: Stop and the values the Reports gave, "
          "in order",
          set_sync},
-        {"clock.set-once", 745, kClock, "BroadcastTimeS §6.5", kShall,
+        {"clock.set-once", 715, kClock, "BroadcastTimeS §6.5", kShall,
          "the sequence follows three seconds after the last Set, so Sets in a row bring one",
          "bt40",
          "(the same Sets, the last a second after the first) exactly one sequence until 3 s + "
          "two answer windows after the last Set, not before its three seconds",
          set_once},
-        {"clock.set-effective", 746, kClock, "BroadcastTimeS §6.5", kShall,
+        {"clock.set-effective", 716, kClock, "BroadcastTimeS §6.5", kShall,
          "the Report a Set produces is the effective value", "",
          "(--node) Set Date 02-30 in 2023, then Query: its Report Date is the date the sequence "
          "then shows",
@@ -560,14 +560,14 @@ std::vector<CheckSpec> set_entries() {
 // The entries judging the run through midnight, the start-up and the restore.
 std::vector<CheckSpec> run_entries() {
     return {
-        {"clock.requested-minute", 747, kClock, "BroadcastTimeS §6.2", kShall,
+        {"clock.requested-minute", 717, kClock, "BroadcastTimeS §6.2", kShall,
          "a generator that received a Consumer Identified for a specific Report Time produces it "
          "when appropriate",
          "bt60",
          "(--node) Consumer Identified Valid for 23:59 and 00:00, then Stop, Set Rate 240.00, Set "
          "Year 2023, Set Date 12-31, Set Time 23:58, Start: Report Time 23:59 and 00:00 come",
          requested_minute},
-        {"clock.report-frequency", 748, kClock, "BroadcastTimeS §6.2", kShall,
+        {"clock.report-frequency", 718, kClock, "BroadcastTimeS §6.2", kShall,
          "a running generator sends Report Time at most once a real minute, except item 6 of a "
          "sequence and the minutes consumers identified",
          "bt50",
@@ -575,7 +575,7 @@ std::vector<CheckSpec> run_entries() {
          "two Report Time PCERs without such a reason less than a minute apart; the hourly "
          "minimum is not judged (it needs an hour)",
          report_frequency},
-        {"clock.rate", 749, kClock, "BroadcastTimeS §5", kShall,
+        {"clock.rate", 719, kClock, "BroadcastTimeS §5", kShall,
          "a running clock's time advances rate times as fast as real time (a normative "
          "statement of §5)",
          "",
@@ -583,21 +583,21 @@ std::vector<CheckSpec> run_entries() {
          "PCER (item 6 of that Query's sequence): the fast "
          "minutes between them at the rate the clock reported, within 3 % + 50 ms",
          rate},
-        {"clock.rollover", 751, kClock, "BroadcastTimeS §5, §6.2", kShall,
+        {"clock.rollover", 721, kClock, "BroadcastTimeS §5, §6.2", kShall,
          "Date Rollover goes out right before time passes 00:00, Report Year and Report Date "
          "three seconds later, naming the next day",
          "bt70",
          "(the running exchange) Date Rollover, not after Report Time 00:00; Report Year 2024 "
          "and Report Date 01-01 3 s (-0.25 s, + the answer window) after it",
          rollover},
-        {"clock.startup", 752, kClock, "BroadcastTimeS §6.1", kShall,
+        {"clock.startup", 722, kClock, "BroadcastTimeS §6.1", kShall,
          "a starting generator sends Producer and Consumer Range Identified covering the "
          "clock's 16 bits and the synchronization sequence",
          "bt80",
          "(--reboot `20 A9`, or a start-up seen during the run) after Initialization Complete: "
          "both ranges of all 16 bits, the sequence in order (item 6 as for clock.query)",
          startup},
-        {"clock.restored", 753, kClock, "BroadcastTimeS §6.5", kShall,
+        {"clock.restored", 723, kClock, "BroadcastTimeS §6.5", kShall,
          "Sets of the saved state take effect, so the clock ends as it was", "",
          "(after each exchange that set the clock; alone, the Set exchange) Stop, Set Rate, Year, "
          "Date and Time "

@@ -187,14 +187,14 @@ constexpr auto kShall = Strength::kShall;
 
 std::vector<CheckSpec> clock_consumer_checks() {
     std::vector<CheckSpec> all = {
-        {"clock.consumer-startup", 754, kClock, "BroadcastTimeS §6.1", kShall,
+        {"clock.consumer-startup", 724, kClock, "BroadcastTimeS §6.1", kShall,
          "a starting consumer sends Consumer Range Identified for the clock, or Consumer "
          "Identified for the events it uses",
          "bt100",
          "(--reboot, or a start-up seen during the run) after Initialization Complete: a "
          "Consumer (Range) Identified of the clock",
          consumer_startup},
-        {"clock.consumer-sync", 755, kClock, "EventTransportS §6.4; BroadcastTimeS §6.3", kShall,
+        {"clock.consumer-sync", 725, kClock, "EventTransportS §6.4; BroadcastTimeS §6.3", kShall,
          "a consumer answers Identify Consumer for a clock event it consumes with Consumer "
          "Identified carrying that event ID; Consumer Range Identified alone WARNs",
          "bt110",
@@ -202,11 +202,11 @@ std::vector<CheckSpec> clock_consumer_checks() {
          "Consumer for Stop, Rate 4.00, Year, Date, Time and Start; at the end a Query so the "
          "layout's generator resets every display",
          consumer_sync},
-        {"clock.consumer-start-stop", 756, kClock, "EventTransportS §6.4; BroadcastTimeS §4.10",
+        {"clock.consumer-start-stop", 726, kClock, "EventTransportS §6.4; BroadcastTimeS §4.10",
          kShall, "as clock.consumer-sync, for Stop and Start", "bt120",
          "(--node) PCER Stop, Identify Consumer Stop; PCER Start, Identify Consumer Start",
          consumer_start_stop},
-        {"clock.consumer-rate", 757, kClock, "EventTransportS §6.4; BroadcastTimeS §4.4", kShall,
+        {"clock.consumer-rate", 727, kClock, "EventTransportS §6.4; BroadcastTimeS §4.4", kShall,
          "as clock.consumer-sync, for a new rate", "bt130",
          "(--node) PCER Report Rate 8.00, Identify Consumer for it", consumer_rate},
     };
