@@ -125,7 +125,9 @@ IdentifyBoth IdentifyBoth::ask(CheckRun& run) {
 // EventAnswers::ask (probes.hpp declares the probe; its asking lives here, beside the event
 // checks' windows and the shared Identify Events exchange).
 EventAnswers answers_of(CheckRun& run, IdentifyTo to) {
-    if (crowd(run) == 0) {
+    // Another lcc-conform run's Identify Events global makes the node answer once more in the
+    // shared window: its counts no longer split, so each form is asked alone then.
+    if (crowd(run) == 0 && !run.other_tool()) {
         const IdentifyBoth& both = run.probe<IdentifyBoth>();
         if (both.split) return to == IdentifyTo::kEveryNode ? both.global : both.addressed;
     }
