@@ -182,27 +182,33 @@ TEST(LccConformDiscovery, ANonConfigurableNodeGetsTheShortCheckAndNoFailure) {
     }
 }
 
+// Whether the two runs' write phases overlap is a race (each runs its own checks first): the
+// pair is run again, up to three times, until one of them finds the other's lock; every pair
+// must leave the node identical.
 TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTheLock) {
     Simnode sim(source_path("scenarios/default.ini"));
     ASSERT_NE(sim.port, 0);
     TempDir out("lcc-conform-discovery");
     const auto before = snapshot_images(sim.images.path());
-    std::vector<std::unique_ptr<Child>> runs;
-    for (int i = 0; i < 2; ++i) {
-        runs.push_back(Child::spawn(LCC_CONFORM_PATH,
-                                    {"--connect", sim.connect(), "--node", kNode, "--backup",
-                                     (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
-        ASSERT_TRUE(runs.back());
-    }
     std::string all;
-    for (auto& r : runs) {
-        r->wait_line("\x01never", milliseconds(60000));
-        ASSERT_TRUE(r->wait_for(milliseconds(60000)));
-        r->wait();
-        all += r->output();
+    for (int pair = 0; pair < 3 && all.find("locked by 05.01.01.01.3F.") == std::string::npos;
+         ++pair) {
+        std::vector<std::unique_ptr<Child>> runs;
+        for (int i = 0; i < 2; ++i) {
+            runs.push_back(Child::spawn(
+                LCC_CONFORM_PATH, {"--connect", sim.connect(), "--node", kNode, "--backup",
+                                   (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
+            ASSERT_TRUE(runs.back());
+        }
+        for (auto& r : runs) {
+            r->wait_line("\x01never", milliseconds(60000));
+            ASSERT_TRUE(r->wait_for(milliseconds(60000)));
+            r->wait();
+            all += r->output();
+        }
+        EXPECT_EQ(settled_images(sim.images.path(), before), before);
     }
     EXPECT_NE(all.find("locked by 05.01.01.01.3F."), std::string::npos) << all;
-    EXPECT_EQ(settled_images(sim.images.path(), before), before);
 }
 
 // A whole --thorough --reboot run on a bus paced at CAN speed: the windows wait for the frames
