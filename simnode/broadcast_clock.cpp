@@ -169,7 +169,7 @@ std::optional<ClockConfig> parse_clock_config(std::string_view text, FastTime wa
     c.role = words[0] == "generator" ? ClockRole::kGenerator : ClockRole::kConsumer;
     for (std::size_t k = 1; k < words.size(); ++k) {
         if (!clock_word(words[k], wall_now, c, error)) {
-            error = "clock '" + std::string(text) + "': " + error;
+            error = std::string("clock '").append(text).append("': ").append(error);
             return std::nullopt;
         }
     }

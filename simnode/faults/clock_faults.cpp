@@ -35,6 +35,8 @@ void rollover(ClockQuirks& quirks, FaultValue v) {
 
 }  // namespace
 
+// A data table, one entry per fault: its length is not complexity.
+// NOLINTNEXTLINE(readability-function-size)
 std::vector<FaultDecl> clock_faults() {
     return {
         {

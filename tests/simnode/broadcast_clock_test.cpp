@@ -52,7 +52,7 @@ struct Harness {
     explicit Harness(ClockConfig config, ClockQuirks quirks = {}) : clock(config, quirks) {}
 
     BroadcastClock::Send send() {
-        return [this](Message m) {
+        return [this](const Message& m) {
             sent.push_back(words(m));
             at.push_back(now);
         };
