@@ -4,14 +4,6 @@
 #include "conformance/checks/checks.hpp"
 
 namespace olcb::conform::checks {
-namespace {
-
-// The download's checks judge nothing when it failed: say what they depend on instead.
-bool downloaded(CheckRun& run, const CheckSpec& spec) {
-    if (run.probe<CdiDownload>().read_ok) return true;
-    run.out(spec).skip("depends on cdi.read: space 0xFF returned no data");
-    return false;
-}
 
 Status status_of(cdi::RuleStatus status) {
     switch (status) {
@@ -25,6 +17,15 @@ Status status_of(cdi::RuleStatus status) {
             return Status::kSkip;
     }
     return Status::kFail;
+}
+
+namespace {
+
+// The download's checks judge nothing when it failed: say what they depend on instead.
+bool downloaded(CheckRun& run, const CheckSpec& spec) {
+    if (run.probe<CdiDownload>().read_ok) return true;
+    run.out(spec).skip("depends on cdi.read: space 0xFF returned no data");
+    return false;
 }
 
 // The text-only checks: each reports cdi::check_rules()' finding for its own ID as it stands (the

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "cdi/rule_finding.hpp"
 #include "conformance/checks/check_registry.hpp"
 #include "conformance/checks/check_run.hpp"
 #include "conformance/checks/probes.hpp"
@@ -127,6 +128,9 @@ std::string not_identified_as(CheckRun& run, const std::string& what,
 /// True when frame is a single-frame PCER of a clock the node generates or consumes: a report
 /// §6.2 requires, or a display's Query (message.no-unsolicited does not count it).
 bool is_clock_report(CheckRun& run, const CanFrame& frame);
+
+/// A cdi/ rule verdict (check_rules, check_fdi_rules) as a check status (cdi.cpp).
+Status status_of(cdi::RuleStatus status);
 
 /// frame.cpp: AME answered, CID defended.
 std::vector<CheckSpec> frame_checks();

@@ -129,23 +129,6 @@ PerClock warn(std::string message) {
     return {Status::kWarn, std::move(message), "", ""};
 }
 
-namespace {
-
-int severity(Status s) {
-    switch (s) {
-        case Status::kFail:
-            return 3;
-        case Status::kWarn:
-            return 2;
-        case Status::kPass:
-            return 1;
-        default:
-            return 0;
-    }
-}
-
-}  // namespace
-
 void judge_clocks(CheckRun& run, const CheckSpec& spec, const std::vector<NodeId>& clocks,
                   const std::function<PerClock(NodeId)>& one) {
     std::vector<PerClock> all;

@@ -105,20 +105,6 @@ struct FdiText {
     }
 };
 
-Status status_of(cdi::RuleStatus status) {
-    switch (status) {
-        case cdi::RuleStatus::kPass:
-            return Status::kPass;
-        case cdi::RuleStatus::kFail:
-            return Status::kFail;
-        case cdi::RuleStatus::kWarn:
-            return Status::kWarn;
-        case cdi::RuleStatus::kSkip:
-            return Status::kSkip;
-    }
-    return Status::kFail;
-}
-
 // The text-only checks: each reports check_fdi_rules()' finding for its own ID, so a node's FDI
 // gets the verdicts `lcc-cdi validate` gives the same text in a file.
 void fdi_text_rule(CheckRun& run, const CheckSpec& spec) {

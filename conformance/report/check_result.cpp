@@ -59,24 +59,6 @@ std::string_view category_name(Category category) {
     return "?";
 }
 
-namespace {
-
-int severity(Status s) {
-    switch (s) {
-        case Status::kFail:
-            return 3;
-        case Status::kWarn:
-            return 2;
-        case Status::kPass:
-            return 1;
-        case Status::kSkip:
-            return 0;
-    }
-    return 0;
-}
-
-}  // namespace
-
 void merge_duplicate_ids(std::vector<CheckResult>& results) {
     std::vector<CheckResult> out;
     std::map<std::string, std::size_t> index;
@@ -111,6 +93,20 @@ std::size_t NodeReport::count(Status status) const {
     return static_cast<std::size_t>(
         std::count_if(checks.begin(), checks.end(),
                       [status](const CheckResult& c) { return c.status == status; }));
+}
+
+int severity(Status s) {
+    switch (s) {
+        case Status::kFail:
+            return 3;
+        case Status::kWarn:
+            return 2;
+        case Status::kPass:
+            return 1;
+        case Status::kSkip:
+            return 0;
+    }
+    return 0;
 }
 
 }  // namespace olcb::conform

@@ -121,4 +121,7 @@ struct NodeReport {
     std::size_t count(Status status) const;
 };
 
+/// How bad a status is, for the worst of several: FAIL 3, WARN 2, PASS 1, SKIP 0.
+int severity(Status s);
+
 }  // namespace olcb::conform
