@@ -67,19 +67,24 @@ std::vector<CheckSpec> pip_checks() {
         {"pip.snip-bit", 290, Category::kPip, "SimpleNodeInformationS §6.1; MessageNetworkS §3.3.7",
          Strength::kShall, "a node supporting SNIP sets the SNIP bit", "me30",
          "PIP SNIP bit set iff the node answered SNIP", pip_snip_bit},
-        {"pip.datagram-bit", 300, Category::kPip, "MessageNetworkS §3.3.7, §3.4.3",
-         Strength::kShall,
+        // §3.4.3: the reply "will" carry the bits of what the node implements; no clause says
+        // "shall", so a disagreement WARNs (OpenMRN's train node answers datagrams, bit clear).
+        {"pip.datagram-bit", 300, Category::kPip, "MessageNetworkS §3.3.7, §3.4.3", Strength::kNone,
          "the Datagram bit is set exactly when the node implements datagrams (any OK or Datagram "
-         "Rejected shows it does)",
+         "Rejected shows it does); §3.4.3 says \"will\", not \"shall\"",
          "me30", "PIP Datagram bit set iff the node answered datagrams", pip_datagram_bit},
         {"pip.memory-config-bit", 310, Category::kPip, "MessageNetworkS §3.3.7, §3.4.3",
-         Strength::kShall,
-         "the Memory Configuration bit is set exactly when the node implements it", "me30",
-         "PIP Memory Configuration bit set iff memory configuration answered",
+         Strength::kNone,
+         "the Memory Configuration bit is set exactly when the node implements it; §3.4.3 says "
+         "\"will\", not \"shall\"",
+         "me30", "PIP Memory Configuration bit set iff memory configuration answered",
          pip_memory_config_bit},
+        // MemoryConfigurationS §4.2 puts the CDI in space 0xFF; of the bit only §3.4.3's "will".
         {"pip.cdi-bit", 320, Category::kPip, "MessageNetworkS §3.3.7; MemoryConfigurationS §4.2",
-         Strength::kShall, "the CDI bit is set exactly when the node provides a CDI", "me30",
-         "PIP CDI bit set iff space 0xFF returned data", pip_cdi_bit},
+         Strength::kNone,
+         "the CDI bit is set exactly when the node provides a CDI; MessageNetworkS §3.4.3 says "
+         "\"will\", not \"shall\"",
+         "me30", "PIP CDI bit set iff space 0xFF returned data", pip_cdi_bit},
         {"pip.acdi-bit", 330, Category::kPip, "ConfigurationDescriptionInformationS §5.1.2",
          Strength::kShall, "<acdi/> is present exactly when the PIP ACDI bit is set", "",
          "PIP ACDI bit set iff the CDI has <acdi/>", pip_acdi_bit},

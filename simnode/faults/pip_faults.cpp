@@ -26,19 +26,21 @@ std::vector<FaultDecl> pip_faults() {
             .order = 40,
             .param = {ParamKind::kChoice,
                       "",
-                      1,
+                      2,
                       1,
                       6,
                       {"cdi", "acdi", "snip", "datagram", "memory", "events"}},
             .summary = "Protocol Support Reply lacks a bit for a protocol the node serves",
-            .doc_parameter = "`cdi` (default), `acdi`, `snip`, `datagram`, `memory`, `events`",
-            .rule_broken = "MsgNet PIP: the reply lists every protocol the node implements; CDI "
-                           "5.1.2: ACDI bit iff `<acdi/>` (fact sheet 3.1)",
+            .doc_parameter = "`cdi`, `acdi` (default), `snip`, `datagram`, `memory`, `events`",
+            // Only the ACDI bit (and SNIP's "must") has a "shall": the default breaks it.
+            .rule_broken = "CDI 5.1.2: ACDI bit iff `<acdi/>` (shall); SNIP 6.1: a SNIP node "
+                           "must set the SNIP bit. MsgNet 3.4.3 says the reply \"will\" list "
+                           "the other protocols: `cdi`, `datagram`, `memory` only WARN",
             .client_sees = "Protocol Support Reply without that bit, although the node serves "
                            "the protocol",
             .verdict = Verdict::kFail,
             .category = "pip",
-            .checks = {"pip.cdi-bit"},
+            .checks = {"pip.acdi-bit"},
             .hooks = {.stack_config = drop_bit},
         },
     };

@@ -219,7 +219,7 @@ INSTANTIATE_TEST_SUITE_P(
                                    "bytes reversed"},
                       FirstFinding{"write-dropped", "FAIL", "encoding.eventid", "node kept"},
                       FirstFinding{"space-info-short", "FAIL", "acdi.space-info", "highest 108"},
-                      FirstFinding{"pip-missing-bit", "FAIL", "pip.cdi-bit", "bit clear"},
+                      FirstFinding{"pip-missing-bit", "FAIL", "pip.acdi-bit", "bit clear"},
                       FirstFinding{"reply-form", "WARN", "memory.reply-form", "short form"},
                       FirstFinding{"snip-mismatch", "FAIL", "snip.matches-acdi", "(SNIP)"},
                       FirstFinding{"slow-reply", "FAIL", "memory.reply-latency", "1200 ms"}),

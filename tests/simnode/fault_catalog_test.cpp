@@ -102,7 +102,7 @@ TEST(FaultCatalogTest, EveryFamilyFileIsInTheGeneratedList) {
 
 TEST(FaultCatalogTest, ParametersAndCategoriesReadAsBefore) {
     EXPECT_EQ(help_parameter(*find_fault("pip-missing-bit")),
-              "cdi|acdi|snip|datagram|memory|events (default cdi)");
+              "cdi|acdi|snip|datagram|memory|events (default acdi)");
     EXPECT_EQ(help_parameter(*find_fault("latency")), "MS[:JITTER] (default 200)");
     EXPECT_EQ(help_parameter(*find_fault("reject-temporary")), "N (default 3)");
     EXPECT_EQ(help_parameter(*find_fault("write-dropped")), "");

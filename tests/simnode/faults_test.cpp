@@ -30,7 +30,7 @@ TEST(ParseFaults, DefaultsOfParameters) {
     ASSERT_TRUE(f) << error;
     EXPECT_EQ(f->value("reject-temporary"), FaultValue{3});
     EXPECT_EQ(f->value("unsolicited-traffic"), FaultValue{1000});
-    EXPECT_EQ(to_names(*f), (std::vector<std::string>{"pip-missing-bit=cdi", "reject-temporary=3",
+    EXPECT_EQ(to_names(*f), (std::vector<std::string>{"pip-missing-bit=acdi", "reject-temporary=3",
                                                       "unsolicited-traffic=1000"}));
 }
 

@@ -6,8 +6,8 @@
 namespace olcb::simnode::test {
 namespace {
 
-TEST_F(FaultTest, PipMissingBit) {
-    start_with({"pip-missing-bit"});
+TEST_F(FaultTest, PipMissingCdiBit) {
+    start_with({"pip-missing-bit=cdi"});
     take();
     send_addressed(0x828);
     net_.run_for(10ms);
@@ -15,8 +15,9 @@ TEST_F(FaultTest, PipMissingBit) {
     EXPECT_TRUE(node_->served_protocols().has(Protocol::kCdi));
 }
 
-TEST_F(FaultTest, PipMissingAcdiBit) {
-    start_with({"pip-missing-bit=acdi"});
+// The default: the one bit a "shall" ties to the node (CDI 5.1.2, ACDI bit iff <acdi/>).
+TEST_F(FaultTest, PipMissingBitDropsTheAcdiBitByDefault) {
+    start_with({"pip-missing-bit"});
     take();
     send_addressed(0x828);
     net_.run_for(10ms);
