@@ -1,6 +1,7 @@
 // lcc-conform against simnode's train scenarios as a user runs them: the train node passes every
 // train, search and FDI check (those that move it too: the node is named), a whole run finds no
-// FAIL anywhere, and the command station creates the trains the search checks ask for.
+// FAIL anywhere, the command station creates the trains the search checks ask for, and trains and
+// a clock answer side by side in one simnode.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -99,6 +100,38 @@ TEST(LccConformTrainE2e, TheCommandStationCreatesTheTrainsTheSearchChecksAskFor)
     EXPECT_EQ(list_code, 0) << list;
     EXPECT_NE(list.find("05.01.01.01.22.81"), std::string::npos) << list;
     EXPECT_NE(list.find("DCC 7301"), std::string::npos) << list;
+}
+
+// scenarios/layout.ini: trains, a command station and a clock in one simnode; each answers as
+// in its own scenario, beside the others.
+TEST(LccConformTrainE2e, TrainsAndAClockShareOneProcess) {
+    Simnode sim(source_path("scenarios/layout.ini"));
+    ASSERT_NE(sim.port, 0) << "simnode did not start";
+    ASSERT_TRUE(sim.wait_initialized(milliseconds(10000)));
+    const auto [list_code, list] = conform({"--connect", sim.connect(), "--list"});
+    EXPECT_EQ(list_code, 0) << list;
+    for (const char* id : {"05.01.01.01.22.00", "05.01.01.01.22.02", "05.01.01.01.22.80",
+                           "05.01.01.01.22.A0", "05.01.01.01.22.A1"})
+        EXPECT_NE(list.find(id), std::string::npos) << id << "\n" << list;
+    TempDir out("lcc-conform-e2e-layout");
+    const fs::path train_json = out.path() / "train.json";
+    const auto [train_code, train_text] =
+        conform({"--connect", sim.connect(), "--node", "05.01.01.01.22.A1", "--train-address",
+                 "1732", "--only", "train.controller", "--only", "train.speed", "--only",
+                 "search.address-match", "--json", train_json.string()});
+    EXPECT_EQ(train_code, 0) << train_text;
+    const auto trains = statuses(train_json);
+    for (const char* id : {"train.controller", "train.speed", "search.address-match"})
+        EXPECT_EQ(trains.count(id) ? trains.at(id) : "missing", "PASS") << id << "\n" << train_text;
+    const fs::path clock_json = out.path() / "clock.json";
+    const auto [clock_code, clock_text] =
+        conform({"--connect", sim.connect(), "--node", "05.01.01.01.22.00", "--only", "clock.query",
+                 "--only", "clock.set-immediate", "--only", "clock.restored", "--json",
+                 clock_json.string()});
+    EXPECT_EQ(clock_code, 0) << clock_text;
+    const auto clocks = statuses(clock_json);
+    for (const char* id : {"clock.query", "clock.set-immediate", "clock.restored"})
+        EXPECT_EQ(clocks.count(id) ? clocks.at(id) : "missing", "PASS") << id << "\n" << clock_text;
 }
 
 }  // namespace
