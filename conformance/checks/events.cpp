@@ -78,59 +78,12 @@ std::size_t crowd(CheckRun& run) {
     return n > kCrowd ? n : 0;
 }
 
-// Identify Events global and addressed sent together, their answers awaited in one quiet period:
-// a node that answers both in full sends every Identified message twice as often as one answer
-// holds it (OpenMRN's io_board names some events twice in each answer, and interleaves the two
-// answers), so the window splits into halves. A count that is odd (one answer missing or cut
-// short) cannot be split: each form is then asked in a window of its own. Only a node that
-// ignored one form and named every event an even number of times in the other would pass
-// unseen.
-struct IdentifyBoth {
-    bool split = false;
-    EventAnswers global, addressed;
-
-    static IdentifyBoth ask(CheckRun& run);
-};
-
-IdentifyBoth IdentifyBoth::ask(CheckRun& run) {
-    Session& s = run.session();
-    const Windows w = windows_of(run.options());
-    const std::uint16_t alias = s.alias_of(run.node());
-    const std::size_t mark = s.message_mark();
-    Message m;
-    m.mti = Mti::kIdentifyEventsGlobal;
-    s.send(m);
-    m.mti = Mti::kIdentifyEventsAddressed;
-    m.destination = NodeHandle{run.node().id, alias};
-    s.send(m);
-    const auto got = await_answers(
-        s, alias, mark, [](const Message& r) { return is_identification(r.mti); },
-        [](const std::vector<Message>& g) { return !g.empty(); },
-        has_event_bit(run) ? w.answer : w.quiet, w);
-    std::map<std::pair<Mti, std::vector<std::uint8_t>>, int> seen;
-    for (const Message& r : got) ++seen[{r.mti, r.payload}];
-    IdentifyBoth both;
-    both.split =
-        std::all_of(seen.begin(), seen.end(), [](const auto& e) { return e.second % 2 == 0; });
-    std::map<std::pair<Mti, std::vector<std::uint8_t>>, int> taken;
-    for (const Message& r : got) {
-        const std::pair<Mti, std::vector<std::uint8_t>> key{r.mti, r.payload};
-        if (2 * taken[key]++ >= seen[key]) continue;  // the first half of each message's copies
-        both.global.add(r);
-        both.addressed.add(r);
-    }
-    return both;
-}
-
 // EventAnswers::ask (probes.hpp declares the probe; its asking lives here, beside the event
-// checks' windows and the shared Identify Events exchange).
+// checks' windows). Each form in a window of its own, never both at once: OpenMRN's time_server,
+// sent the addressed form while it answered the global one, left its Producer Identified messages
+// out of the next answer and answered no Broadcast Time Query until restarted (measured
+// 2026-12-05).
 EventAnswers answers_of(CheckRun& run, IdentifyTo to) {
-    // Another lcc-conform run's Identify Events global makes the node answer once more in the
-    // shared window: its counts no longer split, so each form is asked alone then.
-    if (crowd(run) == 0 && !run.other_tool()) {
-        const IdentifyBoth& both = run.probe<IdentifyBoth>();
-        if (both.split) return to == IdentifyTo::kEveryNode ? both.global : both.addressed;
-    }
     const Windows w = windows_of(run.options());
     // A node without the Event Exchange bit owes no answer: silence is awaited, not an answer.
     const Duration first = has_event_bit(run) ? w.answer : w.quiet;
@@ -612,8 +565,7 @@ std::vector<CheckSpec> event_checks() {
         {"events.identify-addressed", 620, Category::kEvents, kInquiry, Strength::kShall,
          "the addressed Identify Events is answered like the global one", "ev10",
          "Identify Events addressed: the same produced/consumed events and ranges as global "
-         "(both sent together, one quiet window: every answer twice splits it; else each form "
-         "in a window of its own)",
+         "(asked after the global one's answers ended, never while the node answers it)",
          identify_addressed},
         {"events.cdi-events-identified", 630, Category::kEvents,
          "ConfigurationDescriptionInformationS §5.1.4.4; EventTransportS §6.2", Strength::kNone,
