@@ -102,9 +102,12 @@ void cite(CheckResult& result) {
     const bool binding = spec->strength == Strength::kShall || spec->strength == Strength::kRun;
     if (binding || result.status != Status::kFail) return;
     result.status = Status::kWarn;
-    result.message += " (a WARN, not a FAIL: the standard says \"" +
-                      std::string(strength_name(spec->strength)) + "\" here, " +
-                      std::string(spec->section) + ")";
+    // "none" is no word of the standard's: such a check has no "shall" behind it at all.
+    const std::string says =
+        spec->strength == Strength::kNone
+            ? "no \"shall\" covers it"
+            : "the standard says \"" + std::string(strength_name(spec->strength)) + "\" here";
+    result.message += " (a WARN, not a FAIL: " + says + ", " + std::string(spec->section) + ")";
 }
 
 const std::vector<CheckSpec>& check_registry() {

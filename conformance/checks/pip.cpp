@@ -22,8 +22,8 @@ void bit_agrees(CheckRun& run, const CheckSpec& spec, Protocol bit, bool works,
     const std::string state = set ? "bit set" : "bit clear";
     run.out(spec).judge(set == works,
                         set == works ? what
-                                     : "PIP " + std::string(b.name) + " " + state + ", but " +
-                                           (works ? b.does : b.does_not),
+                                     : "PIP " + std::string(b.name) + (set ? " set" : " clear") +
+                                           ", but " + (works ? b.does : b.does_not),
                         works ? "bit set" : "bit clear", state);
 }
 

@@ -50,6 +50,37 @@ TEST(CheckRegistryTest, PerSpaceResultsFindTheirEntry) {
     EXPECT_EQ(find_check("no.such-check"), nullptr);
 }
 
+// A FAIL of a check without a "shall" becomes a WARN that says why, in the standard's words
+// where it has some ("should", "may"), and never quoting "none" as if the standard said it.
+CheckResult failed(std::string_view id, std::string message) {
+    CheckResult r;
+    r.id = std::string(id);
+    r.status = Status::kFail;
+    r.message = std::move(message);
+    return r;
+}
+
+TEST(CheckRegistryTest, CiteTurnsAFailWithoutShallIntoAWarnThatSaysWhy) {
+    CheckResult none = failed("pip.datagram-bit", "bit clear");
+    cite(none);
+    EXPECT_EQ(none.status, Status::kWarn);
+    EXPECT_EQ(none.message,
+              "bit clear (a WARN, not a FAIL: no \"shall\" covers it, "
+              "MessageNetworkS §3.3.7, §3.4.3)");
+    CheckResult shall = failed("pip.acdi-bit", "bit clear");
+    cite(shall);
+    EXPECT_EQ(shall.status, Status::kFail);
+    EXPECT_EQ(shall.message, "bit clear");
+    for (const CheckSpec& s : check_registry()) {
+        if (s.strength != Strength::kShould) continue;
+        CheckResult should = failed(s.id, "x");
+        cite(should);
+        EXPECT_NE(should.message.find("the standard says \"should\" here"), std::string::npos)
+            << should.message;
+        break;
+    }
+}
+
 TEST(CheckRegistryTest, DocsCarryTheGeneratedTables) {
     const std::string doc = read_text(std::filesystem::path(OLCB_SOURCE_DIR) / "docs/checks.md");
     const std::string begin = "<!-- registry:begin -->\n";
