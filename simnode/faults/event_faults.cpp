@@ -1,4 +1,7 @@
-// Event faults: which event IDs the node identifies.
+// Event faults: which event IDs the node identifies, and when it stops identifying them.
+#include <memory>
+
+#include "openlcb/can_defs.hpp"
 #include "simnode/faults/fault_families.hpp"
 
 namespace olcb::simnode {
@@ -11,6 +14,59 @@ void frozen(EventPolicy& policy, FaultValue) {
 
 void odd_slots_hidden(EventPolicy& policy, FaultValue) {
     policy.hidden = [](std::size_t slot) { return slot % 2 == 1; };
+}
+
+// Two Identify Events (either form) this close together: the second arrives while the node still
+// answers the first.
+constexpr Duration kOverlap = std::chrono::milliseconds(20);
+
+struct IdentifyStall {
+    TimePoint last{};
+    bool seen = false;
+    bool stalled = false;
+    std::uint32_t since = 0;  ///< the stack's initializations when it stalled: a restart clears it
+};
+
+bool is_single_event_identified(Mti mti) {
+    switch (mti) {
+        case Mti::kProducerIdentifiedValid:
+        case Mti::kProducerIdentifiedInvalid:
+        case Mti::kProducerIdentifiedReserved:
+        case Mti::kProducerIdentifiedUnknown:
+        case Mti::kConsumerIdentifiedValid:
+        case Mti::kConsumerIdentifiedInvalid:
+        case Mti::kConsumerIdentifiedReserved:
+        case Mti::kConsumerIdentifiedUnknown:
+            return true;
+        default:
+            return false;
+    }
+}
+
+// OpenMRN's time_server: sent Identify Events addressed while it answered the global one, it
+// identified no single event again (ranges still) and answered no Query, until restarted.
+void stall_on_overlap(StackHooks& hooks, FaultValue) {
+    auto state = std::make_shared<IdentifyStall>();
+    hooks.add_inbound([state](NodeStack& stack, const CanFrame& frame, TimePoint now) {
+        const FrameRoute route;
+        if (state->stalled && stack.initializations() != state->since) state->stalled = false;
+        if (!can::is_openlcb_frame(frame) || can::is_control(frame.id) ||
+            can::frame_format(frame.id) != can::FrameFormat::kGlobalAddressed)
+            return route;
+        const std::uint16_t mti = can::can_mti(frame.id);
+        const bool to_us = mti == 0x968 && frame.len >= 2 &&
+                           can::addressed_dest(frame.data[0], frame.data[1]) == stack.alias();
+        if (mti != 0x970 && !to_us) return route;
+        if (state->seen && now - state->last < kOverlap) {
+            state->stalled = true;
+            state->since = stack.initializations();
+        }
+        state->seen = true;
+        state->last = now;
+        return route;
+    });
+    hooks.add_outbound(
+        [state](Message& m) { return !(state->stalled && is_single_event_identified(m.mti)); });
 }
 
 }  // namespace
@@ -49,6 +105,23 @@ std::vector<FaultDecl> event_faults() {
             .category = "events",
             .checks = {"events.cdi-events-identified"},
             .hooks = {.events = odd_slots_hidden},
+        },
+        {
+            .name = "identify-overlap-stall",
+            .order = 395,
+            .summary = "Identify Events arriving while it answers another: no single event "
+                       "identified again until a restart",
+            .rule_broken = "none that a careful client provokes: it asks the second form after "
+                           "the first one's answers (EventTransportS §6.2 then owes every event). "
+                           "OpenMRN's time_server does this, and answers no Broadcast Time Query "
+                           "either",
+            .client_sees = "a second Identify Events (global, or addressed to the node) within "
+                           "20 ms of another: from then on every answer holds the ranges only, "
+                           "no Producer or Consumer Identified, until the node restarts",
+            .verdict = Verdict::kNone,
+            .category = "events",
+            .checks = {"events.identify-addressed"},
+            .hooks = {.stack = stall_on_overlap},
         },
     };
 }

@@ -1,5 +1,5 @@
-// The event faults: events-stale-after-write and events-missing against the good node's event
-// identification (sim_node_test.cpp).
+// The event faults: events-stale-after-write, events-missing and identify-overlap-stall against
+// the good node's event identification (sim_node_test.cpp).
 #include <gtest/gtest.h>
 
 #include "simnode/faults/fault_test_util.hpp"
@@ -40,6 +40,26 @@ TEST_F(SimNodeRulesTest, EventsMissing) {
     EXPECT_EQ(count_prefix(take(), ":X194C7"), 0u);
     EXPECT_TRUE(identify(kNewEvent).empty());
     EXPECT_EQ(read(0xFD, kPort0Off, 8), kNewEvent) << "stored as usual";
+}
+
+// Asked once at a time, the node answers in full; the addressed form within 20 ms of the global
+// one stalls it (ranges only, no single event) until it restarts.
+TEST_F(SimNodeRulesTest, IdentifyOverlapStall) {
+    start_with({"identify-overlap-stall"});
+    EXPECT_EQ(count_prefix(identify_events_global(), ":X194C7"), 8u);
+    net_.run_for(250ms);
+    take();
+    send_addressed(0x968);
+    net_.run_for(10ms);
+    EXPECT_EQ(count_prefix(take(), ":X194C7"), 8u) << "250 ms after the global one: no overlap";
+    send_global(0x970);
+    send_addressed(0x968);
+    net_.run_for(10ms);
+    take();
+    EXPECT_EQ(count_prefix(identify_events_global(), ":X194C7"), 0u) << "stalled";
+    EXPECT_TRUE(identify(default_event(0)).empty());
+    reboot();
+    EXPECT_EQ(count_prefix(identify_events_global(), ":X194C7"), 8u) << "a restart clears it";
 }
 
 }  // namespace
