@@ -1,12 +1,26 @@
 // Event ID ranges as Producer/Consumer Range Identified carry them (EventTransportS §4.5, fact
-// sheet §9): the trailing run of bits equal to bit 0 is the mask of "don't care" bits.
+// sheet §9): the trailing run of bits equal to bit 0 is the mask of "don't care" bits. Also which
+// Identified messages name a single event.
 #pragma once
 
 #include <cstdint>
 
 #include "base/node_id.hpp"
+#include "openlcb/mti.hpp"
 
 namespace olcb {
+
+/// Producer Identified Valid/Invalid/Reserved/Unknown: one event, produced.
+constexpr bool is_producer_identified(Mti m) {
+    return to_u16(m) >= to_u16(Mti::kProducerIdentifiedValid) &&
+           to_u16(m) <= to_u16(Mti::kProducerIdentifiedUnknown);
+}
+
+/// Consumer Identified Valid/Invalid/Reserved/Unknown: one event, consumed.
+constexpr bool is_consumer_identified(Mti m) {
+    return to_u16(m) >= to_u16(Mti::kConsumerIdentifiedValid) &&
+           to_u16(m) <= to_u16(Mti::kConsumerIdentifiedUnknown);
+}
 
 /// The don't-care bits of a range event ID: the trailing run of bits equal to bit 0.
 constexpr std::uint64_t range_mask(EventId range) {

@@ -31,11 +31,6 @@ Calendar calendar(FastTime t) {
     return {year_month_day{day}, hh_mm_ss<microseconds>{t - day}};
 }
 
-bool is_consumer_identified(Mti m) {
-    const auto v = to_u16(m);
-    return v >= 0x04C4 && v <= 0x04C7;
-}
-
 Message event_message(Mti mti, EventId id) {
     Message m;
     m.mti = mti;

@@ -419,16 +419,6 @@ constexpr int kMaxAnswerWindows = 10;
 
 }  // namespace
 
-bool is_producer_identified(Mti m) {
-    const auto v = to_u16(m);
-    return v >= 0x0544 && v <= 0x0547;
-}
-
-bool is_consumer_identified(Mti m) {
-    const auto v = to_u16(m);
-    return v >= 0x04C4 && v <= 0x04C7;
-}
-
 bool is_identification(Mti m) {
     return is_producer_identified(m) || is_consumer_identified(m) ||
            m == Mti::kProducerRangeIdentified || m == Mti::kConsumerRangeIdentified;

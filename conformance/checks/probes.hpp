@@ -19,6 +19,7 @@
 #include "conformance/checks/check_run.hpp"
 #include "memory/memory_config_codec.hpp"
 #include "memory/snip.hpp"
+#include "openlcb/event_range.hpp"
 #include "openlcb/pip.hpp"
 
 namespace olcb::conform {
@@ -128,11 +129,7 @@ struct AnswerWindows {
     Duration answer = std::chrono::seconds(1);
 };
 
-/// Producer Identified Valid/Invalid/Reserved/Unknown.
-bool is_producer_identified(Mti m);
-/// Consumer Identified Valid/Invalid/Reserved/Unknown.
-bool is_consumer_identified(Mti m);
-/// Any Producer/Consumer Identified, or a Range Identified.
+/// Any Producer/Consumer Identified (openlcb/event_range.hpp), or a Range Identified.
 bool is_identification(Mti m);
 
 /// Whom Identify Events is sent to: every node (global) or the node (addressed).

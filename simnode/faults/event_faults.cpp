@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "openlcb/can_defs.hpp"
+#include "openlcb/event_range.hpp"
 #include "simnode/faults/fault_families.hpp"
 
 namespace olcb::simnode {
@@ -27,22 +28,6 @@ struct IdentifyStall {
     std::uint32_t since = 0;  ///< the stack's initializations when it stalled: a restart clears it
 };
 
-bool is_single_event_identified(Mti mti) {
-    switch (mti) {
-        case Mti::kProducerIdentifiedValid:
-        case Mti::kProducerIdentifiedInvalid:
-        case Mti::kProducerIdentifiedReserved:
-        case Mti::kProducerIdentifiedUnknown:
-        case Mti::kConsumerIdentifiedValid:
-        case Mti::kConsumerIdentifiedInvalid:
-        case Mti::kConsumerIdentifiedReserved:
-        case Mti::kConsumerIdentifiedUnknown:
-            return true;
-        default:
-            return false;
-    }
-}
-
 // OpenMRN's time_server: sent Identify Events addressed while it answered the global one, it
 // identified no single event again (ranges still) and answered no Query, until restarted.
 void stall_on_overlap(StackHooks& hooks, FaultValue) {
@@ -65,8 +50,10 @@ void stall_on_overlap(StackHooks& hooks, FaultValue) {
         state->last = now;
         return route;
     });
-    hooks.add_outbound(
-        [state](Message& m) { return !(state->stalled && is_single_event_identified(m.mti)); });
+    hooks.add_outbound([state](Message& m) {
+        return !(state->stalled &&
+                 (is_producer_identified(m.mti) || is_consumer_identified(m.mti)));
+    });
 }
 
 }  // namespace
