@@ -184,7 +184,8 @@ TEST(LccConformDiscovery, ANonConfigurableNodeGetsTheShortCheckAndNoFailure) {
 
 // Whether the two runs' write phases overlap is a race (each runs its own checks first): the
 // pair is run again, up to three times, until one of them finds the other's lock; every pair
-// must leave the node identical.
+// must leave the node identical. Both skip frame.*: a run that saw no other tool yet ran them and
+// reached its writes 3 s after the other (seen under the lint's load: three pairs apart).
 TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTheLock) {
     Simnode sim(source_path("scenarios/default.ini"));
     ASSERT_NE(sim.port, 0);
@@ -196,8 +197,9 @@ TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTh
         std::vector<std::unique_ptr<Child>> runs;
         for (int i = 0; i < 2; ++i) {
             runs.push_back(Child::spawn(
-                LCC_CONFORM_PATH, {"--connect", sim.connect(), "--node", kNode, "--backup",
-                                   (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
+                LCC_CONFORM_PATH,
+                {"--connect", sim.connect(), "--node", kNode, "--skip", "frame.*", "--backup",
+                 (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
             ASSERT_TRUE(runs.back());
         }
         for (auto& r : runs) {
