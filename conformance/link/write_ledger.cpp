@@ -49,6 +49,19 @@ std::size_t WriteLedger::sent(NodeId node) const {
     return n;
 }
 
+bool WriteLedger::touched(NodeId node, std::uint8_t space, std::uint32_t address,
+                          std::uint32_t length) const {
+    const std::uint64_t end = std::uint64_t{address} + length;
+    for (const LedgerEntry& e : entries_) {
+        if (e.write.node != node || e.outcome == WriteOutcome::kNotSent) continue;
+        if (e.past_end != 0) return true;
+        const std::uint64_t first = e.write.address;
+        const std::uint64_t last = first + e.write.data.size();
+        if (e.write.space == space && first < end && address < last) return true;
+    }
+    return false;
+}
+
 std::vector<PastEndBytes> WriteLedger::unrestorable(NodeId node) const {
     // Distinct bytes: the same byte past the end written twice is still one byte kept.
     std::set<std::pair<std::uint8_t, std::uint64_t>> bytes;

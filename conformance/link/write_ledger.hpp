@@ -86,6 +86,11 @@ public:
     const std::vector<LedgerEntry>& entries() const { return entries_; }
     /// Writes to node that reached it (any outcome but kNotSent), restores excluded.
     std::size_t sent(NodeId node) const;
+    /// True when a write that reached node (any outcome but kNotSent, put-backs included) may
+    /// have changed a byte of [address, address + length) of space: it overlaps the range, or
+    /// some write to the node crossed the end of a space (where its bytes went is unknown).
+    bool touched(NodeId node, std::uint8_t space, std::uint32_t address,
+                 std::uint32_t length) const;
     /// Bytes a node may hold past the end of a space after the writes it accepted or left
     /// unanswered (restores excluded), one entry per space and first address.
     std::vector<PastEndBytes> unrestorable(NodeId node) const;

@@ -81,6 +81,14 @@ struct PastEndRun {
     std::uint32_t count = 0;
 };
 
+/// Saved bytes that changed during the run though none of its writes reached them: another tool's
+/// change, left as found.
+struct LeftAsFoundRun {
+    std::uint8_t space = 0;
+    std::uint32_t address = 0;
+    std::uint32_t count = 0;
+};
+
 /// What the run wrote to a node and how the restore ended, from the write ledger.
 struct RestoreRecord {
     std::size_t writes = 0;            ///< writes the node received (restores excluded)
@@ -88,7 +96,8 @@ struct RestoreRecord {
     std::size_t rewritten_bytes = 0;   ///< of them, bytes that differed and were written back
     std::optional<bool> identical;     ///< every saved byte read back as saved (unset: no restore)
     std::vector<PastEndRun> past_end;  ///< bytes stored past the end of a space (unrestorable)
-    std::string backup_kept;           ///< the backup file's path when it was kept
+    std::vector<LeftAsFoundRun> left_as_found;  ///< changed by another tool, not written back
+    std::string backup_kept;                    ///< the backup file's path when it was kept
 };
 
 /// Every check run against one node, in the order they ran.

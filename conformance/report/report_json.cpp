@@ -65,6 +65,9 @@ nlohmann::ordered_json writes_json(const RestoreRecord& r) {
     nlohmann::ordered_json past = nlohmann::ordered_json::array();
     for (const PastEndRun& p : r.past_end)
         past.push_back({{"space", p.space}, {"address", p.address}, {"count", p.count}});
+    nlohmann::ordered_json others = nlohmann::ordered_json::array();
+    for (const LeftAsFoundRun& l : r.left_as_found)
+        others.push_back({{"space", l.space}, {"address", l.address}, {"count", l.count}});
     nlohmann::ordered_json identical = nullptr;
     if (r.identical) identical = *r.identical;
     return {{"sent", r.writes},
@@ -72,6 +75,7 @@ nlohmann::ordered_json writes_json(const RestoreRecord& r) {
             {"rewritten_bytes", r.rewritten_bytes},
             {"identical", identical},
             {"past_end", std::move(past)},
+            {"left_as_found", std::move(others)},
             {"backup_kept", r.backup_kept}};
 }
 

@@ -57,7 +57,15 @@ std::string restore_line(const RestoreOutcome& outcome, const std::vector<PastEn
                                " saved bytes read back, " + std::to_string(outcome.rewritten) +
                                " of them written back";
     if (!outcome.identical) return outcome.summary() + " (" + counts + ")";
-    if (kept.empty()) return "node memory byte-identical to before (" + counts + ")";
+    std::string others;
+    if (!outcome.left_as_found.empty()) {
+        others =
+            "; changed during the run by writes this run did not send (another tool), left "
+            "as found:";
+        for (const std::string& d : outcome.left_as_found) others += " " + d + ";";
+        others.pop_back();
+    }
+    if (kept.empty()) return "node memory byte-identical to before (" + counts + ")" + others;
     std::uint64_t total = 0;
     std::string where;
     for (const PastEndBytes& p : kept) {
@@ -67,7 +75,7 @@ std::string restore_line(const RestoreOutcome& outcome, const std::vector<PastEn
     return "node memory identical to before except " + std::to_string(total) +
            " unrestorable byte" + (total == 1 ? "" : "s") + " past the end: " + where +
            ", which the node may keep where no tool can read them back or restore them (" + counts +
-           ")";
+           ")" + others;
 }
 
 bool inside(const RangeRequest& outer, std::uint8_t space, std::uint32_t address,
@@ -658,18 +666,27 @@ void NodeRun::restore_and_verify() {
     report_.restore.identical = outcome.identical;
     for (const PastEndBytes& p : kept)
         report_.restore.past_end.push_back({p.space, p.address, p.count});
+    for (const RangeRequest& r : outcome.left_as_found_ranges)
+        report_.restore.left_as_found.push_back({r.space, r.address, r.length});
     report_.restore_summary = restore_line(outcome, kept, writes);
+    // What another tool changed is no failure of the node's, but the user should know of it.
+    const bool whole = kept.empty() && outcome.left_as_found.empty();
     CheckResult restored{"encoding.restore",
                          Category::kEncoding,
                          !outcome.identical ? Status::kFail
-                         : kept.empty()     ? Status::kPass
+                         : whole            ? Status::kPass
                                             : Status::kWarn,
                          report_.restore_summary,
                          "",
                          "",
                          ""};
-    if (outcome.identical) {
+    if (outcome.identical && outcome.left_as_found.empty()) {
         cover_.remove_file();
+    } else if (outcome.identical) {
+        // The values before the other tool's change stay at hand, should it have been unwanted.
+        const std::string path = std::filesystem::absolute(cover_.path()).string();
+        report_.restore.backup_kept = path;
+        restored.message += "; the values from before the run are kept in " + path;
     } else {
         restored.expected = "memory byte-identical to before the run";
         restored.seen = outcome.summary();

@@ -268,21 +268,30 @@ std::string access_failed(const char* what, const BackupRange& r, const AccessRe
 
 }  // namespace
 
-RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
+RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory,
+                       const RestoreScope& scope) {
     // Only what differs is written: a node is touched as little as the restore allows, and a
-    // range of a read-only space that a refused probe left unchanged needs no write at all.
+    // range of a read-only space that a refused probe left unchanged needs no write at all. A
+    // range no write of the run reached is not written either: what changed there is another
+    // tool's doing (a second run, a user's configuration tool), and writing it back would undo it.
     RestoreOutcome outcome;
     std::vector<const BackupRange*> written;
+    std::vector<const BackupRange*> others;
     for (const BackupRange& r : backup.ranges()) {
         outcome.bytes += r.bytes.size();
         const AccessResult now = memory.read(r.space, r.address, r.bytes.size());
         if (now.ok && now.data == r.bytes) continue;
+        if (scope && !scope(r)) {
+            others.push_back(&r);
+            continue;
+        }
         const AccessResult w = memory.write(r.space, r.address, r.bytes);
         if (!w.ok) outcome.differences.push_back(access_failed("write", r, w));
         outcome.rewritten += r.bytes.size();
         written.push_back(&r);
     }
-    // Read back only after every write: a node may mirror one space into another (251 and 253).
+    // Read back only after every write: a node may mirror one space into another (251 and 253),
+    // so a range outside the scope may read as saved again once its mirror is restored.
     for (const BackupRange* r : written) {
         const AccessResult got = memory.read(r->space, r->address, r->bytes.size());
         if (!got.ok) {
@@ -290,6 +299,14 @@ RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory) {
         } else if (got.data != r->bytes) {
             outcome.differences.push_back(difference(*r, got));
         }
+    }
+    for (const BackupRange* r : others) {
+        const AccessResult got = memory.read(r->space, r->address, r->bytes.size());
+        if (got.ok && got.data == r->bytes) continue;
+        outcome.left_as_found.push_back(got.ok ? difference(*r, got)
+                                               : access_failed("read back", *r, got));
+        outcome.left_as_found_ranges.push_back(
+            {r->space, r->address, static_cast<std::uint32_t>(r->bytes.size())});
     }
     outcome.identical = outcome.differences.empty();
     return outcome;
@@ -300,7 +317,7 @@ RestoreGuard::~RestoreGuard() {
     // A destructor must not throw, but a node left unrestored must not go unnoticed: say so, and
     // where the values are (the backup file stays on disk for `lcc-conform restore FILE`).
     try {
-        restore(backup_, memory_);
+        restore(backup_, memory_, scope_);
     } catch (const std::exception& e) {
         std::cerr << "lcc-conform: restoring the node's values failed (" << e.what()
                   << "); restore them from the backup file with `lcc-conform restore FILE`\n";
@@ -312,7 +329,7 @@ RestoreGuard::~RestoreGuard() {
 
 RestoreOutcome RestoreGuard::finish() {
     armed_ = false;
-    return restore(backup_, memory_);
+    return restore(backup_, memory_, scope_);
 }
 
 std::string default_backup_path(const std::string& node_id) {

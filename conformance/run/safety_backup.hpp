@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -90,20 +91,31 @@ struct RestoreOutcome {
     std::size_t bytes = 0;                 ///< saved bytes read back
     std::size_t rewritten = 0;             ///< of them, bytes that differed and were written
     std::vector<std::string> differences;  ///< one line per range that differs or failed
+    /// Ranges that changed during the run though none of the run's writes reached them (another
+    /// tool's writes): not written back, one line each.
+    std::vector<std::string> left_as_found;
+    /// Those ranges, for the report's numbers.
+    std::vector<RangeRequest> left_as_found_ranges;
     /// "node memory byte-identical to before (N bytes in M ranges restored)" or what differs.
     std::string summary() const;
 };
 
-/// Reads every saved range; writes back those that differ and reads them again.
-RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory);
+/// Which saved ranges a restore may write back: those the run's own writes may have changed. A
+/// range only another tool wrote is left as that tool left it. Empty: every range (a user's
+/// `lcc-conform restore FILE`).
+using RestoreScope = std::function<bool(const BackupRange&)>;
+
+/// Reads every saved range; writes back those that differ and are in scope, and reads them again.
+RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory,
+                       const RestoreScope& scope = {});
 
 /// Restores a backup when the run leaves without finish() (an exception, an early return):
 /// the "nothing is lost" rule made structural.
 class RestoreGuard {
 public:
-    /// Guards `backup` (restored through `memory`); both must outlive the guard.
-    RestoreGuard(const SafetyBackup& backup, MemoryAccess& memory)
-        : backup_(backup), memory_(memory) {}
+    /// Guards `backup` (restored through `memory`, within `scope`); both must outlive the guard.
+    RestoreGuard(const SafetyBackup& backup, MemoryAccess& memory, RestoreScope scope = {})
+        : backup_(backup), memory_(memory), scope_(std::move(scope)) {}
     RestoreGuard(const RestoreGuard&) = delete;
     RestoreGuard& operator=(const RestoreGuard&) = delete;
     ~RestoreGuard();
@@ -115,6 +127,7 @@ public:
 private:
     const SafetyBackup& backup_;
     MemoryAccess& memory_;
+    RestoreScope scope_;
     bool armed_ = true;
 };
 

@@ -52,8 +52,14 @@ bool WriteCover::save(std::string& error) {
 }
 
 void WriteCover::arm() {
-    if (!guard_ && backup_ && !backup_->ranges().empty())
-        guard_ = std::make_unique<RestoreGuard>(*backup_, memory_);
+    if (!guard_ && backup_ && !backup_->ranges().empty()) {
+        // Saved is not written: bytes saved ahead of writes that never went out (another tool
+        // holds the lock, the run stopped) belong to whoever changes them meanwhile.
+        guard_ = std::make_unique<RestoreGuard>(*backup_, memory_, [this](const BackupRange& r) {
+            return session_.ledger().touched(node_.id, r.space, r.address,
+                                             static_cast<std::uint32_t>(r.bytes.size()));
+        });
+    }
 }
 
 GateDecision WriteCover::decide(const PlannedWrite& w, bool past_end_allowed) {
@@ -108,7 +114,12 @@ bool WriteCover::capture(const std::vector<RangeRequest>& ranges,
 RestoreOutcome WriteCover::finish() {
     WriteLedger::Restoring restoring(session_.ledger());
     WriteLedger::Origin origin(session_.ledger(), "restore");
-    return guard_ ? guard_->finish() : RestoreOutcome{true, 0, 0, {}};
+    if (!guard_) {
+        RestoreOutcome nothing;
+        nothing.identical = true;
+        return nothing;
+    }
+    return guard_->finish();
 }
 
 void WriteCover::abandon() {

@@ -107,5 +107,33 @@ TEST(WriteLedgerTest, SavingAheadAsksTheGateWithoutRecording) {
     EXPECT_TRUE(ledger.entries().empty());
 }
 
+TEST(WriteLedgerTest, TouchedAreTheBytesOfWritesThatReachedTheNode) {
+    WriteLedger ledger;
+    ledger.set_gate([](const PlannedWrite& w, bool) {
+        return GateDecision{w.address != 0x40, "cannot be saved", 0};
+    });
+    std::string why;
+    ledger.close(*ledger.open(write_of(0xFD, 0x10, 4), why), WriteOutcome::kRefused);
+    EXPECT_FALSE(ledger.open(write_of(0xFD, 0x40, 4), why)) << "refused by the gate";
+    EXPECT_TRUE(ledger.touched(kNode, 0xFD, 0x13, 1)) << "its last byte";
+    EXPECT_TRUE(ledger.touched(kNode, 0xFD, 0x00, 0x11)) << "its first byte";
+    EXPECT_FALSE(ledger.touched(kNode, 0xFD, 0x14, 8)) << "just after it";
+    EXPECT_FALSE(ledger.touched(kNode, 0xFD, 0x0C, 4)) << "just before it";
+    EXPECT_FALSE(ledger.touched(kNode, 0xFB, 0x10, 4)) << "another space";
+    EXPECT_FALSE(ledger.touched(kOther, 0xFD, 0x10, 4)) << "another node";
+    EXPECT_FALSE(ledger.touched(kNode, 0xFD, 0x40, 4)) << "never sent";
+}
+
+TEST(WriteLedgerTest, AWriteCrossingTheEndMayHaveTouchedAnything) {
+    WriteLedger ledger;
+    ledger.set_gate([](const PlannedWrite&, bool) { return GateDecision{true, "", 1}; });
+    WriteLedger::PastEndPermit permit(ledger, 0xFD);
+    std::string why;
+    EXPECT_FALSE(ledger.touched(kNode, 0xFB, 0x10, 4));
+    ledger.close(*ledger.open(write_of(0xFD, 0x156, 2), why), WriteOutcome::kAccepted);
+    EXPECT_TRUE(ledger.touched(kNode, 0xFB, 0x10, 4)) << "a spill may land in another space";
+    EXPECT_FALSE(ledger.touched(kOther, 0xFB, 0x10, 4));
+}
+
 }  // namespace
 }  // namespace olcb::conform

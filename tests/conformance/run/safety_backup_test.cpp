@@ -159,6 +159,31 @@ TEST(Restore, ReportsWhatDiffersWhenTheNodeDropsWrites) {
     EXPECT_NE(r.summary().find("NOT identical"), std::string::npos);
 }
 
+TEST(Restore, LeavesARangeOutsideItsScopeAsAnotherToolLeftIt) {
+    // Two concurrent runs: the one without the lock saved bytes it never wrote; the lock holder
+    // changed them meanwhile. Writing them back would undo the holder's test value.
+    testing::FakeMemory mem;
+    mem.spaces[251] = {1, 'A', 'B', 0};
+    SafetyBackup b("unused", "n");
+    b.add({251, 1, {'A', 'B'}});
+    b.add({251, 3, {0}});
+    mem.spaces[251] = {1, 'x', 'x', 7};
+    const RestoreScope ours = [](const BackupRange& r) { return r.address == 3; };
+    RestoreOutcome r = restore(b, mem, ours);
+    EXPECT_TRUE(r.identical) << r.summary();
+    EXPECT_EQ(mem.spaces[251], (std::vector<std::uint8_t>{1, 'x', 'x', 0}));
+    EXPECT_EQ(r.rewritten, 1u);
+    ASSERT_EQ(r.left_as_found.size(), 1u);
+    EXPECT_NE(r.left_as_found[0].find("2 bytes differ"), std::string::npos) << r.left_as_found[0];
+    ASSERT_EQ(r.left_as_found_ranges.size(), 1u);
+    EXPECT_EQ(r.left_as_found_ranges[0].address, 1u);
+    EXPECT_EQ(r.left_as_found_ranges[0].length, 2u);
+    // Without a scope (a user's `lcc-conform restore FILE`) every saved byte goes back.
+    r = restore(b, mem);
+    EXPECT_TRUE(r.left_as_found.empty());
+    EXPECT_EQ(mem.spaces[251], (std::vector<std::uint8_t>{1, 'A', 'B', 0}));
+}
+
 TEST(DefaultBackupPath, NamesTheNode) {
     EXPECT_EQ(default_backup_path("05.01.01.01.22.00"), "./lcc-conform-backup-050101012200.txt");
 }
