@@ -4,6 +4,7 @@
 #include <array>
 
 #include "conformance/checks/checks.hpp"
+#include "conformance/checks/events.hpp"
 #include "openlcb/can_defs.hpp"
 
 namespace olcb::conform::checks {
@@ -20,21 +21,13 @@ std::array<std::uint8_t, 8> tool_event(Session& s, std::uint8_t tag) {
     return e;
 }
 
-// After the frames went out: the node answers Verify Node ID, shows no restart (a new alias
-// reservation or Initialization Complete) within the silence window, and answers again.
-void judge_unharmed(CheckRun& run, const CheckSpec& spec, const NodeTrack& before,
-                    const std::string& what) {
-    Session& s = run.session();
-    // The first answer shows the frames were carried (the window then starts at once, not after
-    // their modelled bus time); the second that the node still runs after the window.
-    const bool carried = s.ping(run.node(), run.options().answer_window);
-    if (carried) s.wait(run.options().window);
-    const NodeTrack now = s.track(run.node().id);
-    const bool restarted =
-        now.initializations != before.initializations || now.reservations != before.reservations;
-    const bool answers = carried && s.ping(run.node(), run.options().answer_window);
+// The verdict on a node sent frames it need not act on: it answered Verify Node ID after them
+// (carried), shows no restart (a new alias reservation or Initialization Complete) within the
+// silence window, and answered again after it.
+void judge_unharmed(CheckRun& run, const CheckSpec& spec, bool carried, bool restarted,
+                    bool still_answers, const std::string& what) {
     // A node that stops answering breaks MessageNetworkS §3.4.2; a restart breaks no clause.
-    if (!answers)
+    if (!carried || !still_answers)
         return run.out(spec).fail(what + ": the node no longer answers Verify Node ID",
                                   "still answering", "no answer");
     if (restarted)
@@ -46,9 +39,7 @@ void judge_unharmed(CheckRun& run, const CheckSpec& spec, const NodeTrack& befor
 
 }  // namespace
 
-void pcer_payload_tolerated(CheckRun& run, const CheckSpec& spec) {
-    Session& s = run.session();
-    const NodeTrack before = s.track(run.node().id);
+void inject_payload_pcers(Session& s) {
     const std::uint16_t me = s.tool_alias();
     const auto event = tool_event(s, 0x60);
     const std::array<std::uint8_t, 8> payload = {1, 2, 3, 4, 5, 6, 7, 8};
@@ -61,7 +52,12 @@ void pcer_payload_tolerated(CheckRun& run, const CheckSpec& spec) {
         s.inject(can::make_frame(can::message_header(can::kCanMtiPcerPayloadLast, me),
                                  std::span(payload).first(middles == 0 ? 4 : 8)));
     }
-    judge_unharmed(run, spec, before,
+}
+
+void pcer_payload_tolerated(CheckRun& run, const CheckSpec& spec) {
+    // The PCERs go out in the window events.identify-producer-consumer waits anyway (probes.hpp).
+    const EventWindow& w = run.probe<EventWindow>();
+    judge_unharmed(run, spec, w.carried, w.restarted, w.still_answers,
                    "PCERs with payloads of 4 to 2,044 bytes leave the node running");
 }
 
@@ -70,7 +66,15 @@ void learn_tolerated(CheckRun& run, const CheckSpec& spec) {
     const NodeTrack before = s.track(run.node().id);
     s.inject(can::make_frame(can::message_header(to_u16(Mti::kLearnEvent) & 0x0FFF, s.tool_alias()),
                              tool_event(s, 0x70)));
-    judge_unharmed(run, spec, before, "Learn Event leaves the node running");
+    // The answer shows the frame was carried (the window then starts at once, not after its
+    // modelled bus time); the second that the node still runs after the window.
+    const bool carried = s.ping(run.node(), run.options().answer_window);
+    if (carried) s.wait(run.options().window);
+    const NodeTrack now = s.track(run.node().id);
+    const bool restarted =
+        now.initializations != before.initializations || now.reservations != before.reservations;
+    const bool answers = carried && s.ping(run.node(), run.options().answer_window);
+    judge_unharmed(run, spec, carried, restarted, answers, "Learn Event leaves the node running");
 }
 
 std::vector<CheckSpec> event_robustness_checks() {
@@ -81,7 +85,8 @@ std::vector<CheckSpec> event_robustness_checks() {
          "past 256 bytes WARNs",
          "ev60",
          "PCERs with payload (first/middle/last frames, 4 to 2,044 payload bytes) of an event in "
-         "lcc-conform's own range: no restart, the node still answers Verify Node ID",
+         "lcc-conform's own range, in the window of events.identify-producer-consumer once its "
+         "owed answers came: no restart, the node still answers Verify Node ID",
          pcer_payload_tolerated},
         {"events.learn-tolerated", 660, Category::kEvents,
          "MessageNetworkS §3.4.2; EventTransportS §6.5", Strength::kShall,

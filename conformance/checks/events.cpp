@@ -366,36 +366,92 @@ void judge_identify_answers(Verdict& out, const std::vector<std::string>& wrong,
             std::move(parts));
 }
 
+// The asks of events.identify-producer-consumer: the first identified produced and consumed
+// event (an answer owed each), and an event the node identified in neither role (silence owed).
+std::vector<EventWindow::Ask> identify_asks(CheckRun& run) {
+    const EventAnswers& a = reference_answers(run);
+    std::vector<EventWindow::Ask> asks;
+    if (!a.produced.empty()) asks.push_back({*a.produced.begin(), true, true, false});
+    if (!a.consumed.empty()) asks.push_back({*a.consumed.begin(), false, true, false});
+    if (const std::optional<std::uint64_t> unknown = unknown_event(a)) {
+        asks.push_back({*unknown, true, false, false});
+        asks.push_back({*unknown, false, false, false});
+    }
+    return asks;
+}
+
+// The node's Identified messages since mark; true when every owed ask is answered. last: when
+// the latest of them came.
+bool tally_asks(Session& s, std::uint16_t alias, std::size_t mark,
+                std::vector<EventWindow::Ask>& asks, TimePoint& last) {
+    for (EventWindow::Ask& k : asks) k.answered = false;
+    for (const ReceivedMessage& r : s.messages_since(mark)) {
+        if (r.message.source.alias != alias || !is_identification(r.message.mti)) continue;
+        last = std::max(last, r.at);
+        for (EventWindow::Ask& k : asks)
+            if (answers_ask(r.message, {k.id, k.producer})) k.answered = true;
+    }
+    return std::all_of(asks.begin(), asks.end(),
+                       [](const EventWindow::Ask& k) { return k.answered || !k.owed; });
+}
+
+EventWindow event_window(CheckRun& run) {
+    Session& s = run.session();
+    const Windows w = windows_of(run.options());
+    const CheckSelection& selected = run.options().selection;
+    EventWindow out;
+    if (selected.wants_id("events.identify-producer-consumer")) out.asks = identify_asks(run);
+    const std::size_t mark = s.message_mark();
+    for (const EventWindow::Ask& k : out.asks) send_identify(s, {k.id, k.producer});
+    const TimePoint sent = s.link().now();
+    TimePoint last = sent;
+    if (!out.asks.empty())
+        s.run_until([&] { return tally_asks(s, run.alias(), mark, out.asks, last); }, w.answer);
+    // The PCERs only once the owed answers are in: a node they upset has answered already.
+    TimePoint watched = s.link().now();
+    const NodeTrack before = s.track(run.node().id);
+    if (selected.wants_id("events.pcer-payload-tolerated")) {
+        out.pcers = true;
+        inject_payload_pcers(s);
+        // The answer shows the PCERs were carried: the restart watch starts then, not after
+        // their modelled bus time.
+        out.carried = s.ping(run.node(), run.options().answer_window);
+        if (out.carried) watched = s.link().now() + run.options().window;
+    }
+    const TimePoint stop = sent + w.answer * 10;
+    for (std::size_t seen = s.message_mark();;) {
+        tally_asks(s, run.alias(), mark, out.asks, last);
+        const TimePoint quiet = out.asks.empty() ? watched : std::min(stop, last + w.quiet);
+        const TimePoint until = std::max(watched, quiet);
+        const TimePoint now = s.link().now();
+        if (now >= until) break;
+        s.run_until([&] { return s.message_mark() != seen; }, until - now);
+        seen = s.message_mark();
+    }
+    if (out.pcers) {
+        const NodeTrack now = s.track(run.node().id);
+        out.restarted = now.initializations != before.initializations ||
+                        now.reservations != before.reservations;
+        out.still_answers = out.carried && s.ping(run.node(), run.options().answer_window);
+    }
+    return out;
+}
+
 void identify_producer_consumer(CheckRun& run, const CheckSpec& spec) {
     Verdict out = run.out(spec);
     const EventAnswers& a = reference_answers(run);
-    const std::optional<std::uint64_t> unknown = unknown_event(a);
-    std::vector<Ask> asks;
-    std::vector<bool> expected;
-    auto ask = [&](std::uint64_t id, bool producer, bool owed) {
-        asks.push_back({id, producer});
-        expected.push_back(owed);
-    };
-    if (!a.produced.empty()) ask(*a.produced.begin(), true, true);
-    if (!a.consumed.empty()) ask(*a.consumed.begin(), false, true);
-    if (unknown) {
-        ask(*unknown, true, false);
-        ask(*unknown, false, false);
-    }
-    if (asks.empty()) return out.skip("every event ID tried is the node's own");
-    const std::vector<bool> answered =
-        ask_all(run.session(), run.alias(), asks, expected, windows_of(run.options()));
+    const EventWindow& window = run.probe<EventWindow>();
+    if (window.asks.empty()) return out.skip("every event ID tried is the node's own");
     std::vector<std::string> parts, wrong;
-    for (std::size_t i = 0; i < asks.size(); ++i) {
+    for (const EventWindow::Ask& k : window.asks) {
         const std::string what =
-            std::string(asks[i].producer ? "Identify Producer " : "Identify Consumer ") +
-            event_text(asks[i].id);
-        const std::string reply = asks[i].producer ? "Producer Identified" : "Consumer Identified";
-        if (expected[i] && !answered[i])
-            wrong.push_back(std::string(what).append(": no ").append(reply));
-        if (!expected[i] && answered[i])
+            std::string(k.producer ? "Identify Producer " : "Identify Consumer ") +
+            event_text(k.id);
+        const std::string reply = k.producer ? "Producer Identified" : "Consumer Identified";
+        if (k.owed && !k.answered) wrong.push_back(std::string(what).append(": no ").append(reply));
+        if (!k.owed && k.answered)
             wrong.push_back(std::string(what).append(" (not the node's): ").append(reply));
-        parts.push_back(std::string(what).append(": ").append(expected[i] ? reply : "silence"));
+        parts.push_back(std::string(what).append(": ").append(k.owed ? reply : "silence"));
     }
     if (a.produced.empty()) parts.push_back("no produced event identified to ask for");
     if (a.consumed.empty()) parts.push_back("no consumed event identified to ask for");
@@ -601,6 +657,10 @@ namespace olcb::conform {
 
 EventAnswers EventAnswers::ask(CheckRun& run, IdentifyTo to) {
     return checks::answers_of(run, to);
+}
+
+EventWindow EventWindow::ask(CheckRun& run) {
+    return checks::event_window(run);
 }
 
 }  // namespace olcb::conform

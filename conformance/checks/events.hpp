@@ -25,4 +25,8 @@ namespace olcb::conform::checks {
 std::vector<CheckResult> events_follow_write(Session& session, const NodeInfo& node,
                                              const CheckContext& ctx, const ProtectionRules& rules);
 
+/// Sends events.pcer-payload-tolerated's PCERs with payload (4, 8, 12 and 2,044 bytes) of an event
+/// in lcc-conform's own range (event_robustness.cpp); the shared event window sends them.
+void inject_payload_pcers(Session& s);
+
 }  // namespace olcb::conform::checks

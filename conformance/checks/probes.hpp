@@ -158,6 +158,29 @@ struct EventAnswers {
     std::string describe() const;
 };
 
+/// One quiet window for two event checks whose answers tell each other apart (issue 32: a window
+/// less per run). events.identify-producer-consumer's Identify Producer/Consumer go out first and
+/// their owed answers are awaited; then events.pcer-payload-tolerated's PCERs with payload and a
+/// Verify Node ID that shows they were carried. One window then holds both the silence a foreign
+/// event is owed and the watch for a restart, and a second Verify shows the node still runs. A
+/// node the PCERs upset has answered the asks before it saw them. Each part only when its check
+/// is selected.
+struct EventWindow {
+    struct Ask {
+        std::uint64_t id = 0;
+        bool producer = false;
+        bool owed = false;      ///< the node's own event (an answer is owed), else a foreign one
+        bool answered = false;  ///< its Identified message (or a range covering it) came
+    };
+    std::vector<Ask> asks;       ///< empty when identify-producer-consumer is not selected
+    bool pcers = false;          ///< the PCERs went out (pcer-payload-tolerated selected)
+    bool carried = false;        ///< the node answered Verify Node ID after the PCERs
+    bool restarted = false;      ///< a start or alias reservation of the node from the PCERs on
+    bool still_answers = false;  ///< it answered Verify Node ID again after the window
+
+    static EventWindow ask(CheckRun& run);
+};
+
 /// Messages from the node (alias) after mark that want accepts: awaited until done(got) holds
 /// (at most first), then until quiet has passed since sending and since the last one (at most ten
 /// answer windows in all). Waits in steps: a simulated link jumps to the end of a wait when
