@@ -476,6 +476,24 @@ std::vector<CanFrame> Session::frames_since(std::size_t mark) const {
     return {frames_.begin() + static_cast<std::ptrdiff_t>(mark), frames_.end()};
 }
 
+std::vector<std::pair<std::uint16_t, std::optional<NodeId>>> Session::datagram_senders_to(
+    std::uint16_t to) const {
+    std::vector<std::pair<std::uint16_t, std::optional<NodeId>>> out;
+    const std::uint16_t me = link_.stack().alias();
+    for (const CanFrame& f : frames_) {
+        if (!can::is_openlcb_frame(f) || can::is_control(f.id) ||
+            !can::is_datagram_format(can::frame_format(f.id)) || can::dest_alias(f.id) != to)
+            continue;
+        const std::uint16_t from = can::source_alias(f.id);
+        if (from == me ||
+            std::any_of(out.begin(), out.end(), [&](const auto& s) { return s.first == from; }))
+            continue;
+        const auto a = aliases_.find(from);
+        out.emplace_back(from, a == aliases_.end() ? std::nullopt : a->second.owner);
+    }
+    return out;
+}
+
 std::vector<ReceivedMessage> Session::messages_since(std::size_t mark) const {
     std::vector<ReceivedMessage> out;
     for (std::size_t i = mark; i < messages_.size(); ++i) {

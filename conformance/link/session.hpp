@@ -180,6 +180,10 @@ public:
                                     Duration timeout);
     /// Frames seen on the segment since a mark (ours, received and injected).
     std::vector<CanFrame> frames_since(std::size_t mark) const;
+    /// Aliases other than ours that sent datagram frames to alias `to`, among the frames recorded
+    /// so far, each once with the node ID it announced (nullopt: none seen).
+    std::vector<std::pair<std::uint16_t, std::optional<NodeId>>> datagram_senders_to(
+        std::uint16_t to) const;
     /// Mark for frames_since().
     std::size_t frame_mark() const { return frames_.size(); }
     /// Messages received since a mark (see message_mark()).

@@ -447,7 +447,36 @@ bool NodeRun::take_lock() {
          (absent ? "not implemented (0x1041): Lock/Reserve is optional" : "Lock/Reserve " + how) +
              "; a second tool writing at the same time cannot be excluded",
          "", "", ""});
+    // Without the lock nothing keeps two writers apart: each reads the other's test values back
+    // as the node's failures and saves them as the values to restore (two runs at once left
+    // simnode's lock-rejected node changed, and made OpenMRN's io_board FAIL encoding checks).
+    // A run does not write while another tool sends the node datagrams (memory configuration)
+    // or another lcc-conform run is on the segment: OpenMRN's hub passes addressed frames only
+    // to their destination, so there a run's datagrams to the node are never seen by the other.
+    if (const std::string other = other_configurer(); !other.empty()) {
+        skip_writes(other +
+                        ", and the node has no Lock/Reserve to keep two writers apart: "
+                        "nothing written",
+                    "nothing written by the encoding checks (" + other +
+                        ", and the node has no Lock/Reserve)");
+        return false;
+    }
     return true;
+}
+
+std::string NodeRun::other_configurer() const {
+    const auto senders = session_.datagram_senders_to(session_.alias_of(node_));
+    if (!senders.empty()) {
+        const auto& [alias, id] = senders.front();
+        return "another tool (" +
+               (id ? (is_tool_id(*id) ? "lcc-conform run " : "node ") + id->to_string()
+                   : "alias " + base::hex(alias, 3)) +
+               ") sends the node datagrams";
+    }
+    for (const NodeInfo& n : session_.nodes_seen())
+        if (is_tool_id(n.id) && n.id != session_.tool_id())
+            return "another lcc-conform run (" + n.id.to_string() + ") is on the segment";
+    return "";
 }
 
 void NodeRun::release_lock() {

@@ -51,6 +51,9 @@ private:
     bool capture_backup();
     bool retry_one_by_one(const Missing& missing, std::string& error);
     bool take_lock();
+    /// Who else may write to the node, in words: a tool that sent it datagrams, another
+    /// lcc-conform run on the segment ("" when none was seen).
+    std::string other_configurer() const;
     void encode();
     void release_lock();
     void follow_event_write();

@@ -215,6 +215,38 @@ TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTh
     EXPECT_EQ(all.find("FAIL  encoding."), std::string::npos) << all;
 }
 
+// A node without Lock/Reserve (OpenMRN on Linux rejects it) keeps no two writers apart: each run
+// read the other's test values back as the node's failures and saved them as the values to
+// restore (a User Name left changed). A run that sees another on the segment writes nothing.
+TEST(LccConformDiscovery, TwoConcurrentRunsOnANodeWithoutLockWriteNothing) {
+    Simnode sim(source_path("scenarios/faults/lock-rejected.ini"));
+    ASSERT_NE(sim.port, 0);
+    TempDir out("lcc-conform-discovery");
+    const auto before = snapshot_images(sim.images.path());
+    std::string all;
+    for (int pair = 0; pair < 2; ++pair) {
+        std::vector<std::unique_ptr<Child>> runs;
+        for (int i = 0; i < 2; ++i) {
+            runs.push_back(Child::spawn(
+                LCC_CONFORM_PATH,
+                {"--connect", sim.connect(), "--node", kNode, "--only", "encoding.*", "--backup",
+                 (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
+            ASSERT_TRUE(runs.back());
+        }
+        for (auto& r : runs) {
+            r->wait_line("\x01never", milliseconds(60000));
+            ASSERT_TRUE(r->wait_for(milliseconds(60000)));
+            EXPECT_EQ(r->wait(), 0) << failures(r->output());
+            all += r->output();
+        }
+        EXPECT_EQ(settled_images(sim.images.path(), before), before);
+    }
+    EXPECT_EQ(all.find("FAIL  encoding."), std::string::npos) << all;
+    EXPECT_NE(all.find("and the node has no Lock/Reserve to keep two writers apart"),
+              std::string::npos)
+        << all;
+}
+
 // A whole --thorough --reboot run on a bus paced at CAN speed: the windows wait for the frames
 // queued ahead (2,047 standard frames take seconds at 125 kbit/s), so every check runs and none
 // is skipped for a node that only seemed silent (29-30 were, and the run still exited 0).

@@ -81,6 +81,29 @@ void expect_quick_unacknowledged_reset(const std::vector<std::string>& faults) {
     EXPECT_EQ(std::string(read.data.begin(), read.data.end()), "<?xml");
 }
 
+// Another tool configuring the node shows as datagram frames to it from another alias: a run
+// without the node's lock must not write then (NodeRun::take_lock).
+TEST(SessionTest, DatagramSendersToANodeAreOtherAliasesOnly) {
+    SimBench b;
+    auto node = b.start();
+    ASSERT_TRUE(node);
+    const std::uint16_t dut = b.dut->stack().alias();
+    EXPECT_TRUE(b.session->datagram_senders_to(dut).empty()) << "our own reads are not listed";
+    ASSERT_TRUE(b.session->read_range(*node, Space::kConfig, 0, 8, false).ok);
+    EXPECT_TRUE(b.session->datagram_senders_to(dut).empty());
+    Transport& other = b.net.add_endpoint([](const CanFrame&, TimePoint) {});
+    const std::array<std::uint8_t, 7> read = {0x20, 0x41, 0, 0, 0, 0, 8};
+    other.send(
+        can::make_frame(can::addressed_header(can::FrameFormat::kDatagramOnly, dut, 0x123), read));
+    other.send(can::make_frame(can::addressed_header(can::FrameFormat::kDatagramOnly, 0x456, 0x124),
+                               read));
+    b.session->wait(10ms);
+    const auto senders = b.session->datagram_senders_to(dut);
+    ASSERT_EQ(senders.size(), 1u);
+    EXPECT_EQ(senders[0].first, 0x123);
+    EXPECT_FALSE(senders[0].second) << "no node ID announced for that alias";
+}
+
 TEST(SessionTest, AnUnacknowledgedResetEndsWhenTheNodeIsBackOnANewAlias) {
     expect_quick_unacknowledged_reset({"reset-unacknowledged", "new-alias-on-reboot"});
 }
