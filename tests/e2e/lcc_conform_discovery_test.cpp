@@ -9,6 +9,7 @@
 #include <pugixml.hpp>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -182,32 +183,40 @@ TEST(LccConformDiscovery, ANonConfigurableNodeGetsTheShortCheckAndNoFailure) {
     }
 }
 
-// Whether the two runs' write phases overlap is a race: three pairs, each run only the encoding
-// checks (its writes and restore) so the phases meet; at least one run must find the other's
-// lock, and every pair must leave the node identical.
-TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTheLock) {
-    Simnode sim(source_path("scenarios/default.ini"));
-    ASSERT_NE(sim.port, 0);
+// Pairs of encoding-only runs started together against the scenario's node (only the writes and
+// the restore, so the two runs' write phases meet): every pair must exit `code` (nullopt: any)
+// and leave the node's images identical. Returns the runs' output.
+std::string concurrent_pairs(const std::string& scenario, int pairs, std::optional<int> code) {
+    Simnode sim(source_path(scenario));
+    EXPECT_NE(sim.port, 0);
     TempDir out("lcc-conform-discovery");
     const auto before = snapshot_images(sim.images.path());
     std::string all;
-    for (int pair = 0; pair < 3; ++pair) {
+    for (int pair = 0; pair < pairs; ++pair) {
         std::vector<std::unique_ptr<Child>> runs;
         for (int i = 0; i < 2; ++i) {
             runs.push_back(Child::spawn(
                 LCC_CONFORM_PATH,
                 {"--connect", sim.connect(), "--node", kNode, "--only", "encoding.*", "--backup",
                  (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
-            ASSERT_TRUE(runs.back());
+            if (!runs.back()) return "spawn failed";
         }
         for (auto& r : runs) {
             r->wait_line("\x01never", milliseconds(60000));
-            ASSERT_TRUE(r->wait_for(milliseconds(60000)));
-            r->wait();
+            EXPECT_TRUE(r->wait_for(milliseconds(60000)));
+            const int status = r->wait();
+            if (code) EXPECT_EQ(status, *code) << failures(r->output());
             all += r->output();
         }
         EXPECT_EQ(settled_images(sim.images.path(), before), before);
     }
+    return all;
+}
+
+// Whether the write phases overlap is a race: three pairs; at least one run must find the
+// other's lock.
+TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTheLock) {
+    const std::string all = concurrent_pairs("scenarios/default.ini", 3, std::nullopt);
     EXPECT_NE(all.find("locked by 05.01.01.01.3F."), std::string::npos) << all;
     // The run without the lock wrote nothing, so its restore must not write either: it once put
     // back its saved User Description over the holder's test value, and the holder FAILed
@@ -219,28 +228,7 @@ TEST(LccConformDiscovery, TwoConcurrentWritersLeaveTheNodeIdenticalAndOneFindsTh
 // read the other's test values back as the node's failures and saved them as the values to
 // restore (a User Name left changed). A run that sees another on the segment writes nothing.
 TEST(LccConformDiscovery, TwoConcurrentRunsOnANodeWithoutLockWriteNothing) {
-    Simnode sim(source_path("scenarios/faults/lock-rejected.ini"));
-    ASSERT_NE(sim.port, 0);
-    TempDir out("lcc-conform-discovery");
-    const auto before = snapshot_images(sim.images.path());
-    std::string all;
-    for (int pair = 0; pair < 2; ++pair) {
-        std::vector<std::unique_ptr<Child>> runs;
-        for (int i = 0; i < 2; ++i) {
-            runs.push_back(Child::spawn(
-                LCC_CONFORM_PATH,
-                {"--connect", sim.connect(), "--node", kNode, "--only", "encoding.*", "--backup",
-                 (out.path() / ("b" + std::to_string(i) + ".txt")).string()}));
-            ASSERT_TRUE(runs.back());
-        }
-        for (auto& r : runs) {
-            r->wait_line("\x01never", milliseconds(60000));
-            ASSERT_TRUE(r->wait_for(milliseconds(60000)));
-            EXPECT_EQ(r->wait(), 0) << failures(r->output());
-            all += r->output();
-        }
-        EXPECT_EQ(settled_images(sim.images.path(), before), before);
-    }
+    const std::string all = concurrent_pairs("scenarios/faults/lock-rejected.ini", 2, 0);
     EXPECT_EQ(all.find("FAIL  encoding."), std::string::npos) << all;
     EXPECT_NE(all.find("and the node has no Lock/Reserve to keep two writers apart"),
               std::string::npos)
