@@ -160,9 +160,7 @@ void CheckRun::add(CheckResult result) {
 }
 
 std::optional<NodeId> CheckRun::other_tool() {
-    for (const NodeInfo& n : s_.nodes_seen())
-        if (is_tool_id(n.id) && n.id != s_.tool_id()) return n.id;
-    return std::nullopt;
+    return s_.other_tool();
 }
 
 bool CheckRun::others_spoke(std::size_t mark) {

@@ -70,9 +70,7 @@ void learn_tolerated(CheckRun& run, const CheckSpec& spec) {
     // modelled bus time); the second that the node still runs after the window.
     const bool carried = s.ping(run.node(), run.options().answer_window);
     if (carried) s.wait(run.options().window);
-    const NodeTrack now = s.track(run.node().id);
-    const bool restarted =
-        now.initializations != before.initializations || now.reservations != before.reservations;
+    const bool restarted = s.track(run.node().id).restarted_since(before);
     const bool answers = carried && s.ping(run.node(), run.options().answer_window);
     judge_unharmed(run, spec, carried, restarted, answers, "Learn Event leaves the node running");
 }

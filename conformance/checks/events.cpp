@@ -380,20 +380,26 @@ std::vector<EventWindow::Ask> identify_asks(CheckRun& run) {
     return asks;
 }
 
-// The node's Identified messages since mark; true when every owed ask is answered. last: when
-// the latest of them came.
-bool tally_asks(Session& s, std::uint16_t alias, std::size_t mark,
-                std::vector<EventWindow::Ask>& asks, TimePoint& last) {
-    for (EventWindow::Ask& k : asks) k.answered = false;
-    for (const ReceivedMessage& r : s.messages_since(mark)) {
-        if (r.message.source.alias != alias || !is_identification(r.message.mti)) continue;
-        last = std::max(last, r.at);
-        for (EventWindow::Ask& k : asks)
-            if (answers_ask(r.message, {k.id, k.producer})) k.answered = true;
+// The node's Identified messages, each scan resuming where the previous one stopped: marks the
+// asks they answer and keeps when the latest came.
+struct AskTally {
+    std::uint16_t alias = 0;
+    std::size_t scanned = 0;
+    TimePoint last{};
+
+    // True when every owed ask is answered.
+    bool scan(Session& s, std::vector<EventWindow::Ask>& asks) {
+        for (const ReceivedMessage& r : s.messages_since(scanned)) {
+            if (r.message.source.alias != alias || !is_identification(r.message.mti)) continue;
+            last = std::max(last, r.at);
+            for (EventWindow::Ask& k : asks)
+                if (answers_ask(r.message, {k.id, k.producer})) k.answered = true;
+        }
+        scanned = s.message_mark();
+        return std::all_of(asks.begin(), asks.end(),
+                           [](const EventWindow::Ask& k) { return k.answered || !k.owed; });
     }
-    return std::all_of(asks.begin(), asks.end(),
-                       [](const EventWindow::Ask& k) { return k.answered || !k.owed; });
-}
+};
 
 EventWindow event_window(CheckRun& run) {
     Session& s = run.session();
@@ -401,12 +407,11 @@ EventWindow event_window(CheckRun& run) {
     const CheckSelection& selected = run.options().selection;
     EventWindow out;
     if (selected.wants_id("events.identify-producer-consumer")) out.asks = identify_asks(run);
-    const std::size_t mark = s.message_mark();
+    AskTally tally{run.alias(), s.message_mark(), {}};
     for (const EventWindow::Ask& k : out.asks) send_identify(s, {k.id, k.producer});
     const TimePoint sent = s.link().now();
-    TimePoint last = sent;
-    if (!out.asks.empty())
-        s.run_until([&] { return tally_asks(s, run.alias(), mark, out.asks, last); }, w.answer);
+    tally.last = sent;
+    if (!out.asks.empty()) s.run_until([&] { return tally.scan(s, out.asks); }, w.answer);
     // The PCERs only once the owed answers are in: a node they upset has answered already.
     TimePoint watched = s.link().now();
     const NodeTrack before = s.track(run.node().id);
@@ -420,8 +425,8 @@ EventWindow event_window(CheckRun& run) {
     }
     const TimePoint stop = sent + w.answer * 10;
     for (std::size_t seen = s.message_mark();;) {
-        tally_asks(s, run.alias(), mark, out.asks, last);
-        const TimePoint quiet = out.asks.empty() ? watched : std::min(stop, last + w.quiet);
+        tally.scan(s, out.asks);
+        const TimePoint quiet = out.asks.empty() ? watched : std::min(stop, tally.last + w.quiet);
         const TimePoint until = std::max(watched, quiet);
         const TimePoint now = s.link().now();
         if (now >= until) break;
@@ -429,9 +434,7 @@ EventWindow event_window(CheckRun& run) {
         seen = s.message_mark();
     }
     if (out.pcers) {
-        const NodeTrack now = s.track(run.node().id);
-        out.restarted = now.initializations != before.initializations ||
-                        now.reservations != before.reservations;
+        out.restarted = s.track(run.node().id).restarted_since(before);
         out.still_answers = out.carried && s.ping(run.node(), run.options().answer_window);
     }
     return out;

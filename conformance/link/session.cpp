@@ -354,6 +354,12 @@ std::vector<NodeInfo> Session::nodes_seen() const {
     return out;  // a std::map: already sorted by node ID
 }
 
+std::optional<NodeId> Session::other_tool() const {
+    for (const auto& [id, t] : tracks_)
+        if (t.alias != 0 && is_tool_id(id) && id != link_.stack().node_id()) return id;
+    return std::nullopt;
+}
+
 std::size_t Session::nodes_seen_count() const {
     const NodeId me = link_.stack().node_id();
     return static_cast<std::size_t>(

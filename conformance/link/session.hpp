@@ -113,6 +113,11 @@ struct NodeTrack {
     bool never_acks = false;
     /// Datagrams answered by their reply without an OK: the one that timed out, then the settled.
     std::uint32_t unacknowledged = 0;
+
+    /// An Initialization Complete or an alias reservation since `before` was taken.
+    bool restarted_since(const NodeTrack& before) const {
+        return initializations != before.initializations || reservations != before.reservations;
+    }
 };
 
 /// A Read Reply OK that carried fewer bytes than asked.
@@ -148,7 +153,9 @@ public:
                                    Duration quiet = std::chrono::milliseconds(500));
     /// Every node seen so far on the segment (ours excepted), by node ID.
     std::vector<NodeInfo> nodes_seen() const;
-    std::size_t nodes_seen_count() const;  // nodes_seen().size() without building the list
+    std::size_t nodes_seen_count() const;
+    /// Another lcc-conform run seen on the segment (a node of the tools' ID range, not ours).
+    std::optional<NodeId> other_tool() const;  // nodes_seen().size() without building the list
     /// Sends Verify Node ID global with id every 500 ms until that node answers or announces
     /// itself (Initialization Complete), at most `timeout`.
     std::optional<NodeInfo> find_node(NodeId id, Duration timeout = std::chrono::seconds(1));

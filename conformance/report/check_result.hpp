@@ -74,30 +74,25 @@ struct NodeIdentity {
     std::string user_description;  ///< SNIP user-provided description
 };
 
-/// Bytes a node may keep past the end of a space: written there, never readable or restorable.
-struct PastEndRun {
+/// Consecutive bytes of one space.
+struct ByteRun {
     std::uint8_t space = 0;
-    std::uint32_t address = 0;  ///< the first such byte
-    std::uint32_t count = 0;
-};
-
-/// Saved bytes that changed during the run though none of its writes reached them: another tool's
-/// change, left as found.
-struct LeftAsFoundRun {
-    std::uint8_t space = 0;
-    std::uint32_t address = 0;
+    std::uint32_t address = 0;  ///< the first byte
     std::uint32_t count = 0;
 };
 
 /// What the run wrote to a node and how the restore ended, from the write ledger.
 struct RestoreRecord {
-    std::size_t writes = 0;            ///< writes the node received (restores excluded)
-    std::size_t saved_bytes = 0;       ///< bytes the safety backup held, read back at the end
-    std::size_t rewritten_bytes = 0;   ///< of them, bytes that differed and were written back
-    std::optional<bool> identical;     ///< every saved byte read back as saved (unset: no restore)
-    std::vector<PastEndRun> past_end;  ///< bytes stored past the end of a space (unrestorable)
-    std::vector<LeftAsFoundRun> left_as_found;  ///< changed by another tool, not written back
-    std::string backup_kept;                    ///< the backup file's path when it was kept
+    std::size_t writes = 0;           ///< writes the node received (restores excluded)
+    std::size_t saved_bytes = 0;      ///< bytes the safety backup held, read back at the end
+    std::size_t rewritten_bytes = 0;  ///< of them, bytes that differed and were written back
+    std::optional<bool> identical;    ///< every saved byte read back as saved (unset: no restore)
+    /// Bytes a node may keep past the end of a space: written there, never readable or restorable.
+    std::vector<ByteRun> past_end;
+    /// Saved bytes that changed during the run though none of its writes reached them: another
+    /// tool's change, left as found.
+    std::vector<ByteRun> left_as_found;
+    std::string backup_kept;  ///< the backup file's path when it was kept
 };
 
 /// Every check run against one node, in the order they ran.

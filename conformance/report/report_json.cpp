@@ -60,22 +60,23 @@ nlohmann::ordered_json map_json(const std::vector<MemoryMapSpace>& map) {
     return nlohmann::ordered_json::parse(text);
 }
 
+nlohmann::ordered_json runs_json(const std::vector<ByteRun>& runs) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (const ByteRun& b : runs)
+        out.push_back({{"space", b.space}, {"address", b.address}, {"count", b.count}});
+    return out;
+}
+
 // The numbers behind the restore line: what the ledger says was written and how it read back.
 nlohmann::ordered_json writes_json(const RestoreRecord& r) {
-    nlohmann::ordered_json past = nlohmann::ordered_json::array();
-    for (const PastEndRun& p : r.past_end)
-        past.push_back({{"space", p.space}, {"address", p.address}, {"count", p.count}});
-    nlohmann::ordered_json others = nlohmann::ordered_json::array();
-    for (const LeftAsFoundRun& l : r.left_as_found)
-        others.push_back({{"space", l.space}, {"address", l.address}, {"count", l.count}});
     nlohmann::ordered_json identical = nullptr;
     if (r.identical) identical = *r.identical;
     return {{"sent", r.writes},
             {"saved_bytes", r.saved_bytes},
             {"rewritten_bytes", r.rewritten_bytes},
             {"identical", identical},
-            {"past_end", std::move(past)},
-            {"left_as_found", std::move(others)},
+            {"past_end", runs_json(r.past_end)},
+            {"left_as_found", runs_json(r.left_as_found)},
             {"backup_kept", r.backup_kept}};
 }
 

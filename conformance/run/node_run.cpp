@@ -62,7 +62,7 @@ std::string restore_line(const RestoreOutcome& outcome, const std::vector<PastEn
         others =
             "; changed during the run by writes this run did not send (another tool), left "
             "as found:";
-        for (const std::string& d : outcome.left_as_found) others += " " + d + ";";
+        for (const auto& l : outcome.left_as_found) others += " " + l.difference + ";";
         others.pop_back();
     }
     if (kept.empty()) return "node memory byte-identical to before (" + counts + ")" + others;
@@ -473,9 +473,8 @@ std::string NodeRun::other_configurer() const {
                    : "alias " + base::hex(alias, 3)) +
                ") sends the node datagrams";
     }
-    for (const NodeInfo& n : session_.nodes_seen())
-        if (is_tool_id(n.id) && n.id != session_.tool_id())
-            return "another lcc-conform run (" + n.id.to_string() + ") is on the segment";
+    if (const std::optional<NodeId> other = session_.other_tool())
+        return "another lcc-conform run (" + other->to_string() + ") is on the segment";
     return "";
 }
 
@@ -695,8 +694,8 @@ void NodeRun::restore_and_verify() {
     report_.restore.identical = outcome.identical;
     for (const PastEndBytes& p : kept)
         report_.restore.past_end.push_back({p.space, p.address, p.count});
-    for (const RangeRequest& r : outcome.left_as_found_ranges)
-        report_.restore.left_as_found.push_back({r.space, r.address, r.length});
+    for (const auto& l : outcome.left_as_found)
+        report_.restore.left_as_found.push_back({l.range.space, l.range.address, l.range.length});
     report_.restore_summary = restore_line(outcome, kept, writes);
     // What another tool changed is no failure of the node's, but the user should know of it.
     const bool whole = kept.empty() && outcome.left_as_found.empty();

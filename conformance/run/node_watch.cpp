@@ -49,9 +49,7 @@ std::optional<NodeIncident> NodeWatch::check_now(const std::string& step) {
 }
 
 std::optional<NodeIncident> NodeWatch::judge(const std::string& step, bool suspicious) {
-    const NodeTrack now = session_.track(node_.id);
-    suspicious = suspicious || now.initializations != base_.initializations ||
-                 now.reservations != base_.reservations;
+    suspicious = suspicious || session_.track(node_.id).restarted_since(base_);
     if (!suspicious) return std::nullopt;
     const bool answers = session_.ping(node_, kPingTimeout);
     const NodeTrack seen = session_.track(node_.id);

@@ -303,10 +303,9 @@ RestoreOutcome restore(const SafetyBackup& backup, MemoryAccess& memory,
     for (const BackupRange* r : others) {
         const AccessResult got = memory.read(r->space, r->address, r->bytes.size());
         if (got.ok && got.data == r->bytes) continue;
-        outcome.left_as_found.push_back(got.ok ? difference(*r, got)
-                                               : access_failed("read back", *r, got));
-        outcome.left_as_found_ranges.push_back(
-            {r->space, r->address, static_cast<std::uint32_t>(r->bytes.size())});
+        outcome.left_as_found.push_back(
+            {{r->space, r->address, static_cast<std::uint32_t>(r->bytes.size())},
+             got.ok ? difference(*r, got) : access_failed("read back", *r, got)});
     }
     outcome.identical = outcome.differences.empty();
     return outcome;

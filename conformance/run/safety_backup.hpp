@@ -91,11 +91,13 @@ struct RestoreOutcome {
     std::size_t bytes = 0;                 ///< saved bytes read back
     std::size_t rewritten = 0;             ///< of them, bytes that differed and were written
     std::vector<std::string> differences;  ///< one line per range that differs or failed
-    /// Ranges that changed during the run though none of the run's writes reached them (another
-    /// tool's writes): not written back, one line each.
-    std::vector<std::string> left_as_found;
-    /// Those ranges, for the report's numbers.
-    std::vector<RangeRequest> left_as_found_ranges;
+    /// A saved range that changed during the run though none of the run's writes reached it
+    /// (another tool's writes): not written back.
+    struct LeftAsFound {
+        RangeRequest range;
+        std::string difference;  ///< what reads back now, in words
+    };
+    std::vector<LeftAsFound> left_as_found;
     /// "node memory byte-identical to before (N bytes in M ranges restored)" or what differs.
     std::string summary() const;
 };

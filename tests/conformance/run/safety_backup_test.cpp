@@ -174,10 +174,11 @@ TEST(Restore, LeavesARangeOutsideItsScopeAsAnotherToolLeftIt) {
     EXPECT_EQ(mem.spaces[251], (std::vector<std::uint8_t>{1, 'x', 'x', 0}));
     EXPECT_EQ(r.rewritten, 1u);
     ASSERT_EQ(r.left_as_found.size(), 1u);
-    EXPECT_NE(r.left_as_found[0].find("2 bytes differ"), std::string::npos) << r.left_as_found[0];
-    ASSERT_EQ(r.left_as_found_ranges.size(), 1u);
-    EXPECT_EQ(r.left_as_found_ranges[0].address, 1u);
-    EXPECT_EQ(r.left_as_found_ranges[0].length, 2u);
+    const auto& left = r.left_as_found[0];
+    EXPECT_NE(left.difference.find("2 bytes differ"), std::string::npos) << left.difference;
+    EXPECT_EQ(left.range.space, 251);
+    EXPECT_EQ(left.range.address, 1u);
+    EXPECT_EQ(left.range.length, 2u);
     // Without a scope (a user's `lcc-conform restore FILE`) every saved byte goes back.
     r = restore(b, mem);
     EXPECT_TRUE(r.left_as_found.empty());
